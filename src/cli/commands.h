@@ -1,0 +1,25 @@
+// The subcommands of the offsetopt binary. Each takes the arguments after its name and returns
+// the process exit code (see ExitCode). Only this layer and main print.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace offsetopt::cli {
+
+enum ExitCode : int {
+  kExitOk = 0,            // done (and, for optimize, verified)
+  kExitInternal = 1,      // a bug or an unexpected failure
+  kExitBadInput = 2,      // bad input or usage: one line saying what and where
+  kExitGoalNotMet = 3,    // ran, but the goal is not met or the result is invalid
+};
+
+using Args = std::vector<std::string>;
+
+int run_check(const Args& args);
+int run_inspect(const Args& args);
+int run_basis(const Args& args);
+int run_skeleton(const Args& args);
+int run_optimize(const Args& args);
+int run_generate(const Args& args);
+
+}  // namespace offsetopt::cli
