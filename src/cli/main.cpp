@@ -6,7 +6,9 @@
 #include <exception>
 #include <new>
 
+#include "cli/cli_support.h"
 #include "cli/commands.h"
+#include "mesh/load_mesh.h"
 
 namespace {
 
@@ -54,6 +56,12 @@ int main(int argc, char** argv) {
     if (!std::strcmp(command, "skeleton")) return run_skeleton(args);
     if (!std::strcmp(command, "optimize")) return run_optimize(args);
     if (!std::strcmp(command, "generate")) return run_generate(args);
+  } catch (const offsetopt::MeshInputError& e) {
+    std::fprintf(stderr, "Error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "Error: %s\n", e.what());
+    return kExitBadInput;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "Error: out of memory\n");
     return kExitInternal;

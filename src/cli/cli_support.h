@@ -1,0 +1,46 @@
+// Shared pieces of the command-line layer: option-value parsing with ranges, the usage-error
+// exception every command maps to exit code 2, and writing a result to a file or stdout.
+#pragma once
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cli/commands.h"
+
+namespace offsetopt::cli {
+
+// A usage or bad-input problem found by the CLI layer: printed as "Error: <what>", exit 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Walks an argument list: positional arguments and "--name value" options.
+class ArgCursor {
+ public:
+  explicit ArgCursor(const Args& args) : args_(args) {}
+  bool done() const { return index_ >= args_.size(); }
+  const std::string& next() { return args_[index_++]; }
+  // The value following option `name`; UsageError when it is missing.
+  const std::string& value_of(const std::string& name);
+
+ private:
+  const Args& args_;
+  std::size_t index_ = 0;
+};
+
+// Strict number parsing: the whole text must be a finite number within [lo, hi].
+double parse_double(const std::string& text, const std::string& option, double lo, double hi);
+int parse_int(const std::string& text, const std::string& option, int lo, int hi);
+
+// Writes `text` to `path`, or to stdout when path is "-". Refuses (UsageError) to overwrite any
+// of `inputs` so a user's mesh is never clobbered by a mistyped output name.
+void write_text(const std::string& path, const std::string& text, const std::vector<std::string>& inputs = {});
+
+// Same protection for mesh outputs: UsageError when `output` names one of `inputs`.
+void refuse_overwriting_input(const std::string& output, const std::vector<std::string>& inputs);
+
+// Prints each warning as "Warning: <text>" on stderr unless quiet.
+void print_warnings(const std::vector<std::string>& warnings, bool quiet = false);
+
+}  // namespace offsetopt::cli
