@@ -48,7 +48,7 @@ LoadedMesh load_raw_mesh(const std::string& name, RawMesh raw, const LoadOptions
           break;
         }
       out.warnings.push_back("dropped " + plural(repeated, "degenerate face", "degenerate faces") +
-                             " that repeat a vertex (first: " + where_face(first, raw.face_line) + ")");
+                             " with a repeated vertex (first: " + where_face(first, raw.face_line) + ")");
     }
     if (copies > 0) {
       const Defect* d = validation.find(DefectKind::kDuplicateFace);
@@ -101,16 +101,6 @@ LoadedMesh load_raw_mesh(const std::string& name, RawMesh raw, const LoadOptions
     if (d.kind == DefectKind::kInsideOut || d.kind == DefectKind::kSeveralComponents) continue;
     throw MeshInputError(defect_error_message(name, d, source));
   }
-  out.components = validation.components;
-  if (validation.components > 1) {
-    const Defect* several = validation.find(DefectKind::kSeveralComponents);
-    if (options.single_component) {
-      throw MeshInputError(defect_error_message(name, *several, source) +
-                           "; this command needs one connected surface (split the file into parts)");
-    }
-    out.warnings.push_back(std::to_string(validation.components) +
-                           " separate closed shells (parts or cavities); treated as one solid");
-  }
   if (const Defect* inverted = validation.find(DefectKind::kInsideOut)) {
     const bool every_shell = inverted->count == validation.components;
     if (!every_shell || !options.flip_inside_out) {
@@ -121,6 +111,16 @@ LoadedMesh load_raw_mesh(const std::string& name, RawMesh raw, const LoadOptions
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) std::swap(mesh.F(f, 1), mesh.F(f, 2));
     out.warnings.push_back("mesh is inside-out (signed volume " + format_double(validation.volume) +
                            "); every face flipped");
+  }
+  out.components = validation.components;
+  if (validation.components > 1) {
+    const Defect* several = validation.find(DefectKind::kSeveralComponents);
+    if (options.single_component) {
+      throw MeshInputError(defect_error_message(name, *several, source) +
+                           "; this command needs one connected surface (split the file into parts)");
+    }
+    out.warnings.push_back(std::to_string(validation.components) +
+                           " separate closed shells (parts or cavities); treated as one solid");
   }
   out.mesh = std::move(mesh);
   return out;

@@ -35,6 +35,14 @@ std::int64_t parse_count(const std::string& name, int line, std::string_view tok
 }  // namespace
 
 RawMesh read_off(const std::string& name, const std::string& text) {
+  {
+    // Binary OFF puts its data right after the header line: say so instead of "NUL byte".
+    LineScanner first(text);
+    std::vector<std::string_view> words;
+    if (next_tokens(first, words) && words.size() > 1 && words[0].size() >= 3 &&
+        words[0].substr(words[0].size() - 3) == "OFF" && words[1] == "BINARY")
+      fail(name, first.line_number(), "binary OFF is not supported");
+  }
   refuse_nul_bytes(name, text);
   LineScanner lines(text);
   std::vector<std::string_view> tokens;

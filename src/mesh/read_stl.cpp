@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 #include "mesh/load_mesh.h"
 #include "mesh/read_text.h"
@@ -49,30 +50,38 @@ RawMesh weld(const std::string& name, MeshFormat format, const std::vector<Real>
   auto finite = [&](std::size_t c) {
     return std::isfinite(corner_xyz[3 * c]) && std::isfinite(corner_xyz[3 * c + 1]) && std::isfinite(corner_xyz[3 * c + 2]);
   };
-  // Non-finite corners go last and compare by index only (NaN has no order).
+  using Bits = std::conditional_t<sizeof(Real) == 4, std::uint32_t, std::uint64_t>;
+  auto bits = [&](std::size_t c, int k) {
+    Bits b;
+    std::memcpy(&b, &corner_xyz[3 * c + static_cast<std::size_t>(k)], sizeof b);
+    return b;
+  };
+  // Finite corners by value; non-finite ones after them, by bit pattern (NaN has no order).
   std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
     const bool fa = finite(a), fb = finite(b);
     if (fa != fb) return fa;
-    if (fa) {
-      for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3; ++k) {
+      if (fa) {
         const Real x = corner_xyz[3 * a + k], y = corner_xyz[3 * b + k];
         if (x < y) return true;
         if (y < x) return false;
+      } else if (bits(a, k) != bits(b, k)) {
+        return bits(a, k) < bits(b, k);
       }
     }
     return a < b;
   });
+  auto same_position = [&](std::size_t a, std::size_t b) {
+    for (int k = 0; k < 3; ++k)
+      if (finite(a) ? !(corner_xyz[3 * a + k] == corner_xyz[3 * b + k]) : bits(a, k) != bits(b, k)) return false;
+    return true;
+  };
   // representative[c] = first corner (in file order) at the same position.
   std::vector<std::uint32_t> representative(corners);
   for (std::size_t i = 0; i < corners;) {
     std::size_t j = i + 1;
     const std::uint32_t first = order[i];
-    if (finite(first)) {
-      while (j < corners && finite(order[j]) && corner_xyz[3 * order[j]] == corner_xyz[3 * first] &&
-             corner_xyz[3 * order[j] + 1] == corner_xyz[3 * first + 1] &&
-             corner_xyz[3 * order[j] + 2] == corner_xyz[3 * first + 2])
-        ++j;
-    }
+    while (j < corners && finite(order[j]) == finite(first) && same_position(first, order[j])) ++j;
     for (std::size_t k = i; k < j; ++k) representative[order[k]] = first;
     i = j;
   }

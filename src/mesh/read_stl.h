@@ -8,8 +8,8 @@
 //
 // STL stores every triangle's corners separately. Corners at exactly the same position
 // (float32 values compared as numbers, so -0 == +0) are welded into one vertex; vertices are
-// numbered in order of first appearance. Non-finite corners are never welded (each becomes its
-// own vertex) so validation can count them. Facet normals are ignored.
+// numbered in order of first appearance. Non-finite corners are welded only with corners of
+// the identical bit pattern, and kept so validation can count them. Facet normals are ignored.
 #pragma once
 #include <string>
 

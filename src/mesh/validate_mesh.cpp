@@ -358,7 +358,8 @@ MeshValidation validate_mesh(const Mesh& mesh) {
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1), roots(static_cast<std::size_t>(3 * nf));
     for (long long c = 0; c < 3 * nf; ++c) {
       const std::size_t v = static_cast<std::size_t>(mesh.F(c / 3, c % 3));
-      roots[fill[v]++] = corners.find(static_cast<std::uint32_t>(c));
+      // A face that repeats a vertex counts once at it: through its first corner there.
+      roots[fill[v]++] = corners.find(corner_of(static_cast<int>(c / 3), static_cast<int>(v)));
     }
     Defect pinched{DefectKind::kNonManifoldVertex};
     for (long long v = 0; v < nv; ++v) {
@@ -428,12 +429,12 @@ MeshValidation validate_mesh(const Mesh& mesh) {
       for (const int f : faces_of[static_cast<std::size_t>(s)]) {
         const Vec3 a = sub(row(mesh, mesh.F(f, 0)), centre), b = sub(row(mesh, mesh.F(f, 1)), centre),
                    c = sub(row(mesh, mesh.F(f, 2)), centre);
-        sum.add(dot(a, cross(b, c)) / 6.0);
+        sum.add(dot(a, cross(b, c)));  // six times the tetrahedron's volume; divided once below
       }
-      out.component_volume[static_cast<std::size_t>(s)] = sum.value();
+      out.component_volume[static_cast<std::size_t>(s)] = sum.value() / 6.0;
       total.add(sum.value());
     }
-    out.volume = total.value();
+    out.volume = total.value() / 6.0;
     out.volume_computed = true;
     out.component_depth.assign(static_cast<std::size_t>(shells), 0);
     if (shells > 1 && shells <= kMaxShellsForNesting) {
@@ -610,7 +611,8 @@ std::string defect_error_message(const std::string& file, const Defect& d, const
   if (line > 0) out += ":" + std::to_string(line);
   out += ": " + describe_defect(d, s);
   if (line == 0) out += std::string(is_vertex_defect(d.kind) ? ", vertex " : ", face ") + std::to_string(number);
-  if (d.count > 1) out += " (" + std::to_string(d.count) + " " + defect_unit(d.kind) + " in all)";
+  if (d.count > 1 && d.kind != DefectKind::kSeveralComponents)
+    out += " (" + std::to_string(d.count) + " " + defect_unit(d.kind) + " in all)";
   return out;
 }
 

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <fstream>
 
+#include <Eigen/Geometry>
+
 #include "mesh/load_mesh.h"
 #include "util/format_double.h"
 
