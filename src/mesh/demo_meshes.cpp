@@ -123,7 +123,7 @@ constexpr double kBottleLean = 0.45;
 Mesh bottle_surface(const BottleShape& s) {
   Profile p(s.bottom);
   p.line_to(s.foot_radius, s.bottom, 5);
-  p.arc(s.foot_radius, s.bottom + s.heel, s.heel, -0.5 * kPi, 0.0, 5);
+  p.arc(s.foot_radius, s.bottom + s.heel, s.heel, -0.5 * kPi, 0.0, 3);  // first step 0.5 above the base
   p.line_to(s.foot_radius + s.heel, s.body_top, 16);
   p.blend_to(s.neck_radius, s.neck_bottom, 12);
   p.line_to(s.neck_radius, s.height - s.lip, 8);
@@ -138,14 +138,16 @@ Mesh bottle() { return bottle_surface(BottleShape{}); }
 
 Mesh bottle_cavity() {
   const BottleShape outer;
-  // Walls measured horizontally; the shear and the shoulder's slope thin them along the normal
-  // by at most ~25%, hence 1.3% of the diagonal for about 1% along the normal.
-  const double wall = 0.013 * bounding_box_diagonal(bottle_surface(outer));
+  const double wall = 0.01 * bounding_box_diagonal(bottle_surface(outer));
   BottleShape inner = outer;
   inner.bottom = 0.35 * outer.body_top;  // a thick solid bottom keeps the mass low and upright
-  inner.foot_radius = outer.foot_radius - wall;
-  inner.neck_radius = outer.neck_radius - wall;
-  inner.height = outer.height - wall;
+  // Radii shrink by 1.1 walls because the shear thins the leaning side by 1/sqrt(1 + k^2); the
+  // shoulder also drops by 0.6 walls so its slope does not thin it (normal distance >= 1 wall).
+  inner.foot_radius = outer.foot_radius - 1.1 * wall;
+  inner.neck_radius = outer.neck_radius - 1.1 * wall;
+  inner.body_top = outer.body_top - 0.6 * wall;
+  inner.neck_bottom = outer.neck_bottom - 0.6 * wall;
+  inner.height = outer.height - 1.1 * wall;
   return bottle_surface(inner);
 }
 
@@ -181,7 +183,10 @@ constexpr double kRolyRadius = 30.0;
 
 Mesh rolypoly_surface(double wall, double void_bottom) {
   const double r = kRolyRadius;
-  const double head_radius = 16.0 - wall, head_center = 80.0, neck = 10.0 - wall;
+  // Horizontal offsets thin a sloped wall by cos(slope): the neck (up to 54 degrees from
+  // vertical) is offset by 1.7 walls, the torso blends from 1 to 1.7 walls.
+  const double neck_wall = 1.7 * wall;
+  const double head_radius = 16.0 - wall, head_center = 80.0, neck = 10.0 - neck_wall;
   const double head_t0 = -det_acos(neck / head_radius);
   double s0, c0;
   det_sincos(head_t0, s0, c0);
@@ -195,7 +200,7 @@ Mesh rolypoly_surface(double wall, double void_bottom) {
     p.line_to(floor_radius, void_bottom, 6);
     p.arc(0.0, r, rr, -det_asin(dz / rr), 0.0, 6);
   }
-  p.blend_to(20.0 - wall, 56.0, 12);
+  p.blend_to(20.0 - neck_wall, 56.0, 12);
   p.blend_to(neck, head_center + head_radius * s0, 5);
   p.arc_to_top_pole(head_center, head_radius, head_t0, 14);
   return make_revolution(p.points(), kSegments);
@@ -228,10 +233,12 @@ Mesh buoy_surface(double wall, double void_bottom) {
     if (!(void_bottom >= R && void_bottom < hull_top)) throw std::logic_error("buoy cavity floor outside the hull's cylinder");
     p.line_to(R - wall, void_bottom, 8);
   }
-  p.line_to(R - wall, hull_top, 8);
-  p.blend_to(mast - wall, deck_top - wall, 12);
+  // The cavity's deck drops by 1 to 2 walls so that the nearly flat middle of the ogive keeps a
+  // full wall along its normal.
+  p.line_to(R - wall, hull_top - wall, 8);
+  p.blend_to(mast - wall, deck_top - 2.0 * wall, 12);
   if (wall != 0.0) {
-    p.close_to_axis(deck_top - wall, 3);
+    p.close_to_axis(deck_top - 2.0 * wall, 3);
     return make_revolution(p.points(), kSegments);
   }
   p.line_to(mast, 88.0, 10);

@@ -11,8 +11,9 @@
 //   top       asymmetric spinning top: a single pole tip at (0, 0, 0), a lump on the +x side of
 //             its rim, so the solid's centre of mass is off the tip axis and Izx != 0.
 //   rolypoly  hemisphere of radius 30 (centre (0, 0, 30)) under a figure; solid cz > 30.
-//   buoy      keel, float and mast; sinks when solid in fluid of density 0.806, floats upright
-//             with a void of 20-50% of its volume in the float.
+//   buoy      round hull, ogive deck, mast and lamp; sinks when solid in fluid of density 0.806,
+//             floats upright (centre of mass below the centre of buoyancy) with a void of about
+//             28% of its volume in the upper hull.
 //   handle    genus-1 ring whose tube radius varies from 12 to 2 (thinner than two walls of 1%
 //             of the bounding-box diagonal), lying flat on z = 0.
 //   sphere    icosphere of radius 30, 4 subdivisions (2562 vertices).
@@ -34,10 +35,11 @@ Mesh make_demo_mesh(const std::string& name);
 
 // A hand-made inner surface strictly inside make_demo_mesh(name), for the goal demos "bottle",
 // "rolypoly", "buoy" and "top": removing the solid it bounds shows the goal is reachable by
-// carving (the tests check that). Where it follows the outer surface the wall is at least 1% of
-// the bounding-box diagonal; the bottle keeps a thick solid bottom, the roly-poly a solid lower
-// hemisphere, the buoy a solid keel. For "top" it is an ellipsoidal lens inside the lump side of
-// the rim (convex, so any copy scaled about its centroid by a factor in (0, 1] stays inside).
+// carving (the tests check that). Where it follows the outer surface the wall is about 1% of the
+// bounding-box diagonal (at least 0.95% at every cavity vertex, measured by the tests); the
+// bottle keeps a thick solid bottom, the roly-poly most of its hemisphere, the buoy its lower
+// hull. For "top" it is an ellipsoidal lens inside the lump side of the rim (convex, so any copy
+// scaled about its centroid by a factor in (0, 1] stays inside).
 // Throws std::invalid_argument for other names.
 Mesh make_demo_cavity(const std::string& name);
 
