@@ -83,6 +83,7 @@ PrincipalInertia principal_inertia(const Vector10d& P) {
     if (out.axes(largest, k) < 0.0) out.axes.col(k) = -out.axes.col(k);
   }
   out.axes.col(2) = out.axes.col(0).cross(out.axes.col(1));
+  out.axes = (out.axes.array() + 0.0).matrix();  // -0 -> +0, so reports never print "-0"
   return out;
 }
 
