@@ -33,7 +33,17 @@
 //   empty mesh                    exit 2       refused
 //   non-finite / too large coordinate  exit 2  refused, unless only unreferenced vertices
 //   vertex index out of range     exit 2       refused
+//   unsupported variant (binary
+//     OFF, 4OFF, PLY tristrips)   exit 2       refused
+//   OBJ polygon > 255 corners     exit 2       refused (tinyobjloader would truncate it)
 //   polygon with > 3 corners      warning      fan-triangulated, warning
+//   OBJ mtllib, l, p, vt, vn, g,
+//     o, s, usemtl statements     (ignored)    ignored; a warning for mtllib (never opened)
+//                                              and for l/p elements
+//   bytes after the data (binary
+//     STL/PLY), text after the
+//     last OFF face / PLY element warning      ignored, warning
+//   ASCII STL without endsolid    warning      accepted, warning
 //   unreferenced vertices         warning      dropped, warning
 //   STL corners at one position   (welded)     welded silently (that is how STL stores vertices)
 //   degenerate face, repeated
