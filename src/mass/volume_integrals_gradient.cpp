@@ -1,0 +1,51 @@
+#include "mass/volume_integrals_gradient.h"
+
+#include <Eigen/Geometry>
+
+namespace offsetopt {
+
+void accumulate_volume_integrals_gradient(const Mesh& mesh, const Eigen::Vector3d& origin, const Vector10d& w,
+                                          Vertices& gradient) {
+  // W u/120 with W = [[2wxx, wxy, wzx], [wxy, 2wyy, wyz], [wzx, wyz, 2wzz]] collects the
+  // derivative of Σ_ij w_ij G_ij with respect to one corner (G_ij's derivative is e_i u_j + e_j u_i).
+  Eigen::Matrix3d W;
+  W << 2.0 * w(kIntXX), w(kIntXY), w(kIntZX),
+       w(kIntXY), 2.0 * w(kIntYY), w(kIntYZ),
+       w(kIntZX), w(kIntYZ), 2.0 * w(kIntZZ);
+  const Eigen::Vector3d w_linear(w(kIntX), w(kIntY), w(kIntZ));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const int ia = mesh.F(f, 0), ib = mesh.F(f, 1), ic = mesh.F(f, 2);
+    const Eigen::Vector3d a = mesh.V.row(ia).transpose() - origin;
+    const Eigen::Vector3d b = mesh.V.row(ib).transpose() - origin;
+    const Eigen::Vector3d c = mesh.V.row(ic).transpose() - origin;
+    const Eigen::Vector3d bc = b.cross(c), ca = c.cross(a), ab = a.cross(b);
+    const double D = a.dot(bc);
+    const Eigen::Vector3d S = a + b + c;
+    auto G = [&](int i, int j) { return a(i) * a(j) + b(i) * b(j) + c(i) * c(j) + S(i) * S(j); };
+    // The weighted sum of the triangle's ten terms divided by D: the factor of ∂D.
+    const double per_D = w(kIntVolume) / 6.0 + w_linear.dot(S) / 24.0 +
+                         (w(kIntXX) * G(0, 0) + w(kIntYY) * G(1, 1) + w(kIntZZ) * G(2, 2) + w(kIntXY) * G(0, 1) +
+                          w(kIntYZ) * G(1, 2) + w(kIntZX) * G(2, 0)) / 120.0;
+    const Eigen::Vector3d linear_part = w_linear / 24.0;
+    const Eigen::Vector3d ga = bc * per_D + D * (linear_part + W * (a + S) / 120.0);
+    const Eigen::Vector3d gb = ca * per_D + D * (linear_part + W * (b + S) / 120.0);
+    const Eigen::Vector3d gc = ab * per_D + D * (linear_part + W * (c + S) / 120.0);
+    gradient.row(ia) += ga.transpose();
+    gradient.row(ib) += gb.transpose();
+    gradient.row(ic) += gc.transpose();
+  }
+}
+
+Eigen::MatrixXd volume_integrals_jacobian(const Mesh& mesh, const Eigen::Vector3d& origin) {
+  const Eigen::Index n = mesh.V.rows();
+  Eigen::MatrixXd J(10, 3 * n);
+  for (int k = 0; k < 10; ++k) {
+    Vertices g = Vertices::Zero(n, 3);
+    accumulate_volume_integrals_gradient(mesh, origin, Vector10d::Unit(k), g);
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) J(k, 3 * i + c) = g(i, c);
+  }
+  return J;
+}
+
+}  // namespace offsetopt
