@@ -12,7 +12,6 @@ namespace offsetopt {
 
 std::string check_reduced_options(const ReducedOptions& options) {
   if (!(options.ramp_width > 0.0) || !std::isfinite(options.ramp_width)) return "ramp width must be > 0";
-  if (!(options.outer_max >= 0.0) || !std::isfinite(options.outer_max)) return "outer-max must be >= 0";
   if (!(options.outer_penalty >= 0.0) || !std::isfinite(options.outer_penalty)) return "penalty must be >= 0";
   if (!(options.start_fraction >= 0.0 && options.start_fraction <= 1.0)) return "start fraction must be in [0, 1]";
   return {};
@@ -69,8 +68,8 @@ void ReducedProblem::build_hard_bounds() {
     hard_matrix_.block(2 * n, k, n, k) = G;
     hard_lower_.resize(3 * n);
     hard_upper_.resize(3 * n);
-    hard_lower_ << Eigen::VectorXd::Constant(n, -inf), Eigen::VectorXd::Constant(n, -options_.outer_max), band_.lower;
-    hard_upper_ << band_.upper, Eigen::VectorXd::Constant(n, options_.outer_max), Eigen::VectorXd::Constant(n, inf);
+    hard_lower_ << Eigen::VectorXd::Constant(n, -inf), -band_.outer_limit, band_.lower;
+    hard_upper_ << band_.upper, band_.outer_limit, Eigen::VectorXd::Constant(n, inf);
   }
   // Fixed vertices have zero rows: their bounds are relaxed (paper 5.2).
   for (Eigen::Index r = 0; r < hard_matrix_.rows(); ++r)
@@ -97,7 +96,7 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
     for (Eigen::Index i = 0; i < n; ++i) {
       if (band_.fixed[static_cast<std::size_t>(i)]) continue;
       if (clamp) {
-        e.outer_offset(i) = smooth_clamp(raw_outer(i), -options_.outer_max, options_.outer_max, tau, &outer_slope(i));
+        e.outer_offset(i) = smooth_clamp(raw_outer(i), -band_.outer_limit(i), band_.outer_limit(i), tau, &outer_slope(i));
       } else {
         e.outer_offset(i) = raw_outer(i);
         outer_slope(i) = 1.0;

@@ -1,7 +1,7 @@
 // The reduced-order offset problem (Musialski et al. 2015, eq. 3, in the form DESIGN.md "Reduced
 // problem" fixes). With Γ the #V by k basis (manifold harmonics; rows of fixed vertices zeroed,
 // paper 5.2) the variables are x = [α] or, with outer offsets, x = [α; β]:
-//   outer offset  δout = smoothclamp(Γβ, −omax, omax)           along w (outward),
+//   outer offset  δout = smoothclamp(Γβ, −omax_i, omax_i)       along w (outward),
 //   inner offset  δin  = smoothclamp(Γα, lo, hi),  lo = min(δl − δout, hi)   along v (inward),
 // so the wall δin + δout ≥ δl and the skeleton bound δin ≤ hi hold by construction (clamp mode).
 // In hard mode (the paper's formulation, for comparison) δin = Γα and δout = Γβ unclamped, and
@@ -32,6 +32,8 @@ struct OffsetBand {
   Eigen::VectorXd lower;     // δl: the inner offset that leaves the wall thickness, #V
   Eigen::VectorXd upper;     // hi: the largest inner offset (skeleton distance less the gap), #V, >= 0
   std::vector<char> fixed;   // #V; nonzero: both offsets are 0 there (an opening)
+  Eigen::VectorXd outer_limit;  // omax_i >= 0 per vertex (0 keeps the outer surface in place);
+                                // empty when there are no outer offsets
 };
 
 enum class BoundsMode { clamp, hard };
@@ -39,7 +41,6 @@ enum class BoundsMode { clamp, hard };
 struct ReducedOptions {
   double ramp_width = 2e-3;   // τ of the smooth clamp, in the mesh's units (> 0)
   bool outer = false;         // optimise an outer offset too
-  double outer_max = 0.0;     // omax >= 0, mesh units
   double outer_penalty = 0.0; // wp >= 0
   BoundsMode bounds = BoundsMode::clamp;
   // Start: the least-squares fit of Γα to lo + start_fraction (hi − lo) (β = 0).

@@ -42,6 +42,7 @@ Setup sphere_setup(int k) {
   }
   s.band.lower(3) = s.band.upper(3) + 0.05;  // one collapsed band (a "thin part")
   s.band.outer_direction = -s.band.inner_direction;
+  s.band.outer_limit = Eigen::VectorXd::Constant(n, 0.05);
   Eigen::MatrixXd raw(n, k);
   for (Eigen::Index i = 0; i < n; ++i) {
     const double x = s.mesh.V(i, 0), y = s.mesh.V(i, 1), z = s.mesh.V(i, 2);
@@ -105,7 +106,6 @@ TEST_CASE("reduced problem gradients match finite differences in every mode") {
         CAPTURE(to_string(goal.kind));
         ReducedOptions options;
         options.outer = outer;
-        options.outer_max = 0.05;
         options.outer_penalty = 0.5;
         options.bounds = bounds;
         options.ramp_width = 0.02;
@@ -127,7 +127,6 @@ TEST_CASE("clamped offsets stay in their band; fixed vertices do not move") {
   const Setup s = sphere_setup(10);
   ReducedOptions options;
   options.outer = true;
-  options.outer_max = 0.05;
   ReducedProblem problem(s.mesh, s.band, s.basis, false, filled_goal(), options);
   Rng rng(2);
   for (int trial = 0; trial < 20; ++trial) {
