@@ -13,6 +13,7 @@ namespace offsetopt {
 std::string check_reduced_options(const ReducedOptions& options) {
   if (!(options.ramp_width > 0.0) || !std::isfinite(options.ramp_width)) return "ramp width must be > 0";
   if (!(options.outer_penalty >= 0.0) || !std::isfinite(options.outer_penalty)) return "penalty must be >= 0";
+  if (!(options.overshoot_weight >= 0.0) || !std::isfinite(options.overshoot_weight)) return "overshoot weight must be >= 0";
   if (!(options.start_fraction >= 0.0 && options.start_fraction <= 1.0)) return "start fraction must be in [0, 1]";
   return {};
 }
@@ -30,6 +31,17 @@ ReducedProblem::ReducedProblem(const Mesh& mesh, const OffsetBand& band, const E
     for (Eigen::Index i = 0; i < mesh_.V.rows(); ++i)
       if (band_.fixed[static_cast<std::size_t>(i)]) basis_.row(i).setZero();
   fixed_outer_integrals_ = volume_integrals(mesh_, Eigen::Vector3d::Zero()).values;
+  if (options_.outer) {
+    // Inward, the outer surface may use at most half of the free band (hi − δl), so the wall
+    // coupling lo = δl − δout stays below hi and the inner surface cannot be crossed; where the
+    // band is collapsed (a part thinner than two walls) it cannot move inward at all.
+    outer_inward_limit_.resize(mesh_.V.rows());
+    for (Eigen::Index i = 0; i < mesh_.V.rows(); ++i) {
+      const double free_band = band_.upper(i) - band_.lower(i);
+      const double half = free_band > 0.0 ? 0.5 * free_band : 0.0;
+      outer_inward_limit_(i) = half < band_.outer_limit(i) ? half : band_.outer_limit(i);
+    }
+  }
   if (options_.bounds == BoundsMode::hard) build_hard_bounds();
 }
 
@@ -47,6 +59,14 @@ Eigen::Matrix<double, 10, Eigen::Dynamic> ReducedProblem::project(
   Eigen::Matrix<double, 10, Eigen::Dynamic> out = per_vertex;
   for (Eigen::Index i = 0; i < out.cols(); ++i)
     if (band_.fixed[static_cast<std::size_t>(i)]) out.col(i).setZero();
+  return out;
+}
+
+Eigen::VectorXd ReducedProblem::project_vector(const Eigen::VectorXd& per_vertex) const {
+  if (!identity_basis_) return basis_.transpose() * per_vertex;
+  Eigen::VectorXd out = per_vertex;
+  for (Eigen::Index i = 0; i < out.size(); ++i)
+    if (band_.fixed[static_cast<std::size_t>(i)]) out(i) = 0.0;
   return out;
 }
 
@@ -68,7 +88,7 @@ void ReducedProblem::build_hard_bounds() {
     hard_matrix_.block(2 * n, k, n, k) = G;
     hard_lower_.resize(3 * n);
     hard_upper_.resize(3 * n);
-    hard_lower_ << Eigen::VectorXd::Constant(n, -inf), -band_.outer_limit, band_.lower;
+    hard_lower_ << Eigen::VectorXd::Constant(n, -inf), -outer_inward_limit_, band_.lower;
     hard_upper_ << band_.upper, band_.outer_limit, Eigen::VectorXd::Constant(n, inf);
   }
   // Fixed vertices have zero rows: their bounds are relaxed (paper 5.2).
@@ -89,14 +109,15 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
   const Eigen::VectorXd raw_inner = apply_basis(x.head(k_));
 
   // Outer offsets and their slope.
+  Eigen::VectorXd raw_outer = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd outer_slope = Eigen::VectorXd::Zero(n);
   e.outer_offset = Eigen::VectorXd::Zero(n);
   if (options_.outer) {
-    const Eigen::VectorXd raw_outer = apply_basis(x.tail(k_));
+    raw_outer = apply_basis(x.tail(k_));
     for (Eigen::Index i = 0; i < n; ++i) {
       if (band_.fixed[static_cast<std::size_t>(i)]) continue;
       if (clamp) {
-        e.outer_offset(i) = smooth_clamp(raw_outer(i), -band_.outer_limit(i), band_.outer_limit(i), tau, &outer_slope(i));
+        e.outer_offset(i) = smooth_clamp(raw_outer(i), -outer_inward_limit_(i), band_.outer_limit(i), tau, &outer_slope(i));
       } else {
         e.outer_offset(i) = raw_outer(i);
         outer_slope(i) = 1.0;
@@ -164,6 +185,27 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
     const double beta1 = x(k_);
     e.objective += options_.outer_penalty * beta1 * beta1;
     e.objective_gradient(k_) += 2.0 * options_.outer_penalty * beta1;
+  }
+  if (clamp && options_.overshoot_weight > 0.0) {
+    // μ/n Σ (raw − clamped)², per vertex derivative with respect to Γα and Γβ.
+    const double weight = options_.overshoot_weight / static_cast<double>(n);
+    Eigen::VectorXd by_inner_raw = Eigen::VectorXd::Zero(n), by_outer_raw = Eigen::VectorXd::Zero(n);
+    double overshoot = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (band_.fixed[static_cast<std::size_t>(i)]) continue;
+      const double inner_excess = raw_inner(i) - e.inner_offset(i);
+      overshoot += inner_excess * inner_excess;
+      by_inner_raw(i) = 2.0 * weight * inner_excess * (1.0 - e.inner_slope(i));
+      if (options_.outer) {
+        const double outer_excess = raw_outer(i) - e.outer_offset(i);
+        overshoot += outer_excess * outer_excess;
+        // δin depends on the outer offset through lo; ∂δin/∂(Γβ) = inner_by_outer.
+        by_outer_raw(i) = 2.0 * weight * (outer_excess * (1.0 - outer_slope(i)) - inner_excess * inner_by_outer(i));
+      }
+    }
+    e.objective += weight * overshoot;
+    e.objective_gradient.head(k_) += project_vector(by_inner_raw);
+    if (options_.outer) e.objective_gradient.tail(k_) += project_vector(by_outer_raw);
   }
   e.equality_jacobian.resize(e.goal.equality.size(), nv);
   for (Eigen::Index r = 0; r < e.goal.equality.size(); ++r) e.equality_jacobian.row(r) = chain(e.goal.equality_jacobian.row(r));

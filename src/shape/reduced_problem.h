@@ -1,7 +1,7 @@
 // The reduced-order offset problem (Musialski et al. 2015, eq. 3, in the form DESIGN.md "Reduced
 // problem" fixes). With Γ the #V by k basis (manifold harmonics; rows of fixed vertices zeroed,
 // paper 5.2) the variables are x = [α] or, with outer offsets, x = [α; β]:
-//   outer offset  δout = smoothclamp(Γβ, −omax_i, omax_i)       along w (outward),
+//   outer offset  δout = smoothclamp(Γβ, −min(omax_i, (hi−δl)₊/2), omax_i)   along w (outward),
 //   inner offset  δin  = smoothclamp(Γα, lo, hi),  lo = min(δl − δout, hi)   along v (inward),
 // so the wall δin + δout ≥ δl and the skeleton bound δin ≤ hi hold by construction (clamp mode).
 // In hard mode (the paper's formulation, for comparison) δin = Γα and δout = Γβ unclamped, and
@@ -11,7 +11,8 @@
 // The goal (shape/goal.h) is evaluated on the volume integrals of both surfaces (measured from the
 // frame origin) and its derivatives are chained exactly:
 //   ∂row/∂α = (∂row/∂I_in) (∂I_in/∂δin) diag(∂δin/∂(Γα)) Γ,   O(#F + 10·#V·k) per evaluation.
-// The outer penalty wp·β₁² (paper 5.2: the first coefficient, the DC term) is added to f.
+// The outer penalty wp·β₁² (paper 5.2: the first coefficient, the DC term) and, in clamp mode,
+// the overshoot term (ReducedOptions::overshoot_weight) are added to f.
 #pragma once
 #include <string>
 #include <vector>
@@ -43,6 +44,10 @@ struct ReducedOptions {
   bool outer = false;         // optimise an outer offset too
   double outer_penalty = 0.0; // wp >= 0
   BoundsMode bounds = BoundsMode::clamp;
+  // Weight μ of the overshoot term μ · mean_i (raw_i − clamped_i)² added to f (raw = Γα or Γβ):
+  // where the clamp saturates its slope is 0 and the constraints lose their gradient; the term
+  // keeps the raw offsets near their band so the solver can still move every vertex. 0 disables.
+  double overshoot_weight = 1.0;
   // Start: the least-squares fit of Γα to lo + start_fraction (hi − lo) (β = 0).
   double start_fraction = 0.5;
 };
@@ -88,6 +93,7 @@ class ReducedProblem {
   Eigen::VectorXd apply_basis(const Eigen::VectorXd& coefficients) const;  // Γ c
   // (10 by #V) times Γ: 10 by k.
   Eigen::Matrix<double, 10, Eigen::Dynamic> project(const Eigen::Matrix<double, 10, Eigen::Dynamic>& per_vertex) const;
+  Eigen::VectorXd project_vector(const Eigen::VectorXd& per_vertex) const;  // Γᵀ v
   void build_hard_bounds();
 
   Mesh mesh_;
@@ -97,7 +103,8 @@ class ReducedProblem {
   int k_;
   GoalSpec goal_;
   ReducedOptions options_;
-  Vector10d fixed_outer_integrals_;  // the input's integrals, when there is no outer offset
+  Vector10d fixed_outer_integrals_;
+  Eigen::VectorXd outer_inward_limit_;  // per vertex, see the constructor  // the input's integrals, when there is no outer offset
   Eigen::MatrixXd hard_matrix_;      // hard mode: the linear block
   Eigen::VectorXd hard_lower_, hard_upper_;
   Evaluation cache_;
