@@ -445,12 +445,14 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   } else {
     result.status = OptimizeStatus::goal_not_met;
     std::string why = verification.failures.empty() ? "unknown" : verification.failures.front();
-    if (solved.status == AlStatus::Infeasible) {
-      why = settings.bounds == BoundsMode::hard && thin_count > 0
-                ? "the per-vertex bounds cannot be met in the basis: " + std::to_string(thin_count) +
-                      " vertices lie in parts thinner than two walls (try --bounds clamp)"
-                : "no offset in this basis meets the constraints (k too small, or a goal no void can reach); " + why;
-    }
+    const bool constraints_unmet = solved.status == AlStatus::Infeasible ||
+                                   solved.max_violation > 100.0 * settings.solver.feasibility_tolerance;
+    if (settings.bounds == BoundsMode::hard && thin_count_initial > 0)
+      why = "the per-vertex bounds cannot be met in the basis: " + std::to_string(thin_count_initial) +
+            " vertices lie in parts thinner than two walls, where no offset is both above the wall and below the "
+            "skeleton (try --bounds clamp); " + why;
+    else if (constraints_unmet)
+      why = "no offset in this basis meets the constraints (k too small, or a goal no void can reach); " + why;
     result.message = why;
     result.report["why"] = why;
   }
