@@ -47,8 +47,21 @@ struct OptimizeSettings {
   // neighbouring vertices cannot stop at very different depths (a fold).
   double bound_slope = 0.5;
   double repair_shrink = 0.6;
-  AlParams solver;               // tolerances and caps of the augmented Lagrangian
+  // Tolerances and caps of the augmented Lagrangian. The goal's constraints are met to 1e-9 of
+  // the diagonal; stationarity to 1e-6 (the objective is a preference, not a requirement, and a
+  // tighter test only spends evaluations); at most 2000 evaluations per solve (each is
+  // O(#F + 10·#V·k)), so every round of the solve is capped.
+  AlParams solver = default_solver_params();
 
+  static AlParams default_solver_params() {
+    AlParams p;
+    p.feasibility_tolerance = 1e-9;
+    p.stationarity_tolerance = 1e-6;
+    p.complementarity_tolerance = 1e-6;
+    p.max_outer_iterations = 30;
+    p.max_evaluations = 2000;
+    return p;
+  }
   static OptimizeSettings defaults() { return OptimizeSettings(); }
 };
 
