@@ -38,6 +38,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Re-orthogonalisation coefficients below this (relative to the vector) are not subtracted.
+constexpr double kCorrectionThreshold = 1e-12;
+// The exact residual estimate is computed once every wanted ‖Op y - θ y‖ / θ is below this.
+constexpr double kEstimateGate = 1e-2;
+
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -155,7 +160,8 @@ class BlockKrylovSchur {
   BlockKrylovSchur(const ShiftInvertOperator& op, const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass,
                    const Settings& settings)
       : op_(op), L_(L), n_(op.size()), k_(settings.k), b_(settings.block), m_(settings.basis),
-        capacity_(settings.basis), settings_(settings), rng_(settings.seed) {
+        capacity_(std::min(settings.basis, ((settings.k + 4 * settings.block) / settings.block + 1) * settings.block)),
+        settings_(settings), rng_(settings.seed) {
     scale_.resize(n_);
     double largest_mass = 1.0;
     for (Eigen::Index i = 0; i < n_; ++i) {
@@ -178,6 +184,7 @@ class BlockKrylovSchur {
   int restarts() const { return restarts_; }
   long applications() const { return applications_; }
   int second_passes() const { return second_passes_; }
+  int corrections() const { return corrections_; }
 
  private:
   void start();
@@ -214,14 +221,17 @@ class BlockKrylovSchur {
   int coupled_from_ = 0;
   int j_ = 0;
   Eigen::MatrixXd residual_gram_;  // (K D⁻¹ R)ᵀ (K D⁻¹ R), b by b
+  bool gram_current_ = false;      // residual_gram_ belongs to the current R
+  RowMatrix previous_;             // the block before R, contiguous
 
   // Last Rayleigh–Ritz: θ descending, Z (j by j), ‖C z‖ and estimated relative residuals.
   Eigen::VectorXd theta_;
   Eigen::MatrixXd Z_;
-  Eigen::VectorXd rho_, estimate_;
+  Eigen::MatrixXd coupling_;  // C Z
+  Eigen::VectorXd rho_;
   int required_ = 0;  // pairs that must converge (k extended to the end of its cluster)
 
-  int iterations_ = 0, restarts_ = 0, second_passes_ = 0;
+  int iterations_ = 0, restarts_ = 0, second_passes_ = 0, corrections_ = 0;
   long applications_ = 0;
   double largest_theta_ = 0.0;
 };
@@ -244,35 +254,61 @@ RowMatrix BlockKrylovSchur::project_out(RowMatrix& W, int first, int last) const
 }
 
 // CholQR twice (Yamamoto et al. 2015): orthonormal to working precision when cond(W) < ~1e7.
-// Returns false (W untouched) when W is too ill-conditioned or rank deficient.
+// Returns false when W is too ill-conditioned or rank deficient (W then spans the same space).
+// Row by row: out = in U⁻¹ (U upper triangular b by b; in place when out is null), and when
+// `gram` is given, gram += outᵀ out (lower triangle, rows in order).
+void apply_inverse_upper(RowMatrix& in, const Eigen::MatrixXd& U, RowMatrix* out, RowMatrix* gram) {
+  const Eigen::Index n = in.rows();
+  const int b = static_cast<int>(in.cols());
+  std::vector<double> u(static_cast<std::size_t>(b) * b), g(static_cast<std::size_t>(b) * b, 0.0);
+  for (int c = 0; c < b; ++c)
+    for (int d = 0; d < b; ++d) u[c * b + d] = U(d, c);  // u[c*b + d] = U(d, c): column c contiguous
+  double row[64];
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double* w = in.data() + i * b;
+    double* v = out ? out->data() + i * b : in.data() + i * b;
+    for (int c = 0; c < b; ++c) {
+      const double* uc = u.data() + c * b;
+      double x = w[c];
+      for (int d = 0; d < c; ++d) x -= row[d] * uc[d];
+      row[c] = x / uc[c];
+    }
+    for (int c = 0; c < b; ++c) v[c] = row[c];
+    if (gram)
+      for (int c = 0; c < b; ++c)
+        for (int d = 0; d <= c; ++d) g[c * b + d] += row[c] * row[d];
+  }
+  if (gram)
+    for (int c = 0; c < b; ++c)
+      for (int d = 0; d <= c; ++d) (*gram)(c, d) = g[c * b + d];
+}
+
 bool BlockKrylovSchur::cholesky_qr(RowMatrix& W, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S) const {
   const int b = static_cast<int>(W.cols());
-  RowMatrix V = W;
-  S = Eigen::MatrixXd::Identity(b, b);
+  RowMatrix gram(b, b);
+  project_onto_columns(W.data(), b, b, W.data(), b, n_, gram.data());
+  Eigen::MatrixXd U[2];
+  S = Eigen::MatrixXd::Identity(b, b);  // what has been applied so far, should a pass fail
   for (int pass = 0; pass < 2; ++pass) {
-    RowMatrix gram(b, b);
-    project_onto_columns(V.data(), b, b, V.data(), b, n_, gram.data());
     Eigen::LLT<Eigen::MatrixXd> llt(Eigen::MatrixXd(gram).selfadjointView<Eigen::Lower>());
     if (llt.info() != Eigen::Success) return false;
-    const Eigen::MatrixXd U = llt.matrixU();
+    U[pass] = llt.matrixU();
     for (int c = 0; c < b; ++c) {
-      if (!(U(c, c) > 0.0)) return false;
-      if (pass == 0 && (U(c, c) < 1e-7 * U.diagonal().maxCoeff() ||
-                        U(c, c) <= 1e-12 * std::max(reference_norms(c), largest_theta_)))
+      if (!(U[pass](c, c) > 0.0)) return false;
+      if (pass == 0 && (U[0](c, c) < 1e-7 * U[0].diagonal().maxCoeff() ||
+                        U[0](c, c) <= 1e-12 * std::max(reference_norms(c), largest_theta_)))
         return false;
     }
-    // V ← V U⁻¹ row by row.
-    for (Eigen::Index i = 0; i < n_; ++i) {
-      double* v = V.data() + i * b;
-      for (int c = 0; c < b; ++c) {
-        double x = v[c];
-        for (int d = 0; d < c; ++d) x -= v[d] * U(d, c);
-        v[c] = x / U(c, c);
-      }
-    }
-    S = (U * S).eval();
+    if (pass == 1) break;
+    // One pass over the rows: W ← W U⁻¹, accumulating the Gram matrix of the result. Should the
+    // second factorisation fail, W is already transformed: the caller falls back to Gram–Schmidt,
+    // which only needs span(W).
+    gram.setZero();
+    apply_inverse_upper(W, U[0], nullptr, &gram);
+    S = U[0];
   }
-  W = std::move(V);
+  apply_inverse_upper(W, U[1], nullptr, nullptr);
+  S = U[1] * U[0];
   return true;
 }
 
@@ -319,7 +355,15 @@ void BlockKrylovSchur::gram_schmidt_with_replacement(RowMatrix& W, int j, const 
 }
 
 void BlockKrylovSchur::orthonormalize(RowMatrix& W, int j, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S) {
-  if (!cholesky_qr(W, reference_norms, S)) gram_schmidt_with_replacement(W, j, reference_norms, S);
+  Eigen::MatrixXd applied;
+  if (cholesky_qr(W, reference_norms, applied)) {
+    S = applied;
+    return;
+  }
+  // W = W_in applied⁻¹ now; Gram–Schmidt finishes: W_in = W_out S_gs applied.
+  Eigen::MatrixXd rest;
+  gram_schmidt_with_replacement(W, j, reference_norms, rest);
+  S = rest * applied;
 }
 
 void BlockKrylovSchur::ensure_capacity(int columns) {
@@ -353,66 +397,87 @@ void BlockKrylovSchur::start() {
 // residual of φ = D⁻¹ y in the original problem is L φ - λ M φ = -K D⁻¹ R (C z) / θ.
 void BlockKrylovSchur::update_residual_gram() {
   const int b = b_;
-  RowMatrix T = RowMatrix::Zero(n_, b);
-  for (Eigen::Index col = 0; col < L_.outerSize(); ++col) {
-    const double* r = R_.data() + col * b;
-    const double inv = 1.0 / scale_(col);
-    for (Eigen::SparseMatrix<double>::InnerIterator it(L_, col); it; ++it) {
-      double* t = T.data() + it.row() * b;
-      const double v = it.value() * inv;
-      for (int c = 0; c < b; ++c) t[c] += v * r[c];
+  RowMatrix T(n_, b);
+  std::vector<double> acc(static_cast<std::size_t>(b));
+  // L is symmetric: column `row` lists the entries of row `row`.
+  for (Eigen::Index row = 0; row < L_.outerSize(); ++row) {
+    std::fill(acc.begin(), acc.end(), 0.0);
+    for (Eigen::SparseMatrix<double>::InnerIterator it(L_, row); it; ++it) {
+      const double* r = R_.data() + it.row() * b;
+      const double v = it.value() / scale_(it.row());
+      for (int c = 0; c < b; ++c) acc[c] += v * r[c];
     }
-  }
-  for (Eigen::Index i = 0; i < n_; ++i) {
-    const double diagonal = settings_.shift * scale_(i);  // s M_ii / D_ii
-    for (int c = 0; c < b; ++c) T(i, c) += diagonal * R_(i, c);
+    const double diagonal = settings_.shift * scale_(row);  // s M_ii / D_ii
+    for (int c = 0; c < b; ++c) T(row, c) = acc[c] + diagonal * R_(row, c);
   }
   RowMatrix gram(b, b);
   project_onto_columns(T.data(), b, b, T.data(), b, n_, gram.data());
   residual_gram_ = gram;
+  gram_current_ = true;
 }
 
 void BlockKrylovSchur::expand() {
   const int j = j_, b = b_;
+  // The new block V = R joins the basis; it is also kept contiguous (cache-friendly for the
+  // recurrence of this step and the next).
   for (Eigen::Index i = 0; i < n_; ++i)
     for (int c = 0; c < b; ++c) Q_(i, j + c) = R_(i, c);
   H_.block(j, 0, b, j) = C_.leftCols(j);
   H_.block(0, j, j, b) = C_.leftCols(j).transpose();
 
   RowMatrix W;
-  op_.apply(Q_.data() + j, Q_.cols(), b, W);
+  op_.apply(R_.data(), b, b, W);
   applications_ += b;
   ++iterations_;
-  const Eigen::VectorXd applied_norms = column_norms(W);
 
-  // The recurrence: coefficients Cᵀ on the old basis, A on the new block.
+  // The recurrence: coefficients Cᵀ on the old basis (the previous block, or after a restart the
+  // kept vectors), then A = Vᵀ W on the new block.
   if (j > coupled_from_) {
     const RowMatrix known = C_.block(0, coupled_from_, b, j - coupled_from_).transpose();
-    subtract_combination(Q_.data() + coupled_from_, Q_.cols(), j - coupled_from_, known.data(), b, n_, W.data());
+    if (coupled_from_ == j - b && previous_.rows() == n_)
+      subtract_combination(previous_.data(), b, b, known.data(), b, n_, W.data());
+    else
+      subtract_combination(Q_.data() + coupled_from_, Q_.cols(), j - coupled_from_, known.data(), b, n_, W.data());
   }
-  Eigen::MatrixXd diagonal_block = project_out(W, j, j + b);
-  // Re-orthogonalisation against everything, repeated when it removed much (DGKS, 1/√2).
+  RowMatrix diagonal(b, b);
+  project_onto_columns(R_.data(), b, b, W.data(), b, n_, diagonal.data());
+  subtract_combination(R_.data(), b, b, diagonal.data(), b, n_, W.data());
+  Eigen::MatrixXd diagonal_block = diagonal;
+
+  // Re-orthogonalisation against the whole basis: the coefficients are computed every step; the
+  // correction is applied when one exceeds kCorrectionThreshold relative to the column (below
+  // that it is rounding noise and subtracting it changes nothing measurable), and repeated when
+  // it removed much (DGKS, 1/√2; the norm after is |before|² - |coefficients|², Q orthonormal).
   const Eigen::VectorXd before = column_norms(W);
-  RowMatrix correction = project_out(W, 0, j + b);
-  diagonal_block += correction.bottomRows(b);
-  Eigen::VectorXd after = column_norms(W);
-  bool again = false;
-  for (int c = 0; c < b; ++c) again = again || after(c) < 0.7071067811865476 * before(c);
-  if (again) {
-    ++second_passes_;
-    correction = project_out(W, 0, j + b);
+  RowMatrix correction(j + b, b);
+  project_onto_columns(Q_.data(), Q_.cols(), j + b, W.data(), b, n_, correction.data());
+  bool significant = false, again = false;
+  for (int c = 0; c < b; ++c) {
+    const double largest = correction.col(c).cwiseAbs().maxCoeff();
+    significant = significant || largest > kCorrectionThreshold * before(c);
+    again = again || before(c) * before(c) - correction.col(c).squaredNorm() < 0.5 * before(c) * before(c);
+  }
+  if (significant) {
+    ++corrections_;
+    subtract_combination(Q_.data(), Q_.cols(), j + b, correction.data(), b, n_, W.data());
     diagonal_block += correction.bottomRows(b);
+    if (again) {
+      ++second_passes_;
+      correction = project_out(W, 0, j + b);
+      diagonal_block += correction.bottomRows(b);
+    }
   }
   H_.block(j, j, b, b) = 0.5 * (diagonal_block + diagonal_block.transpose());
 
   Eigen::MatrixXd S;
-  orthonormalize(W, j + b, applied_norms, S);
+  orthonormalize(W, j + b, before, S);
+  previous_ = std::move(R_);
   R_ = std::move(W);
   C_.setZero();
   C_.block(0, j, b, b) = S;
   coupled_from_ = j;
   j_ = j + b;
-  update_residual_gram();
+  gram_current_ = false;
 }
 
 void BlockKrylovSchur::rayleigh_ritz() {
@@ -425,15 +490,9 @@ void BlockKrylovSchur::rayleigh_ritz() {
     Z_.col(i) = eigen.eigenvectors().col(j - 1 - i);
   }
   largest_theta_ = std::max(largest_theta_, theta_(0));
-  const Eigen::MatrixXd coupling = C_.leftCols(j) * Z_;
+  coupling_ = C_.leftCols(j) * Z_;
   rho_.resize(j);
-  estimate_.resize(j);
-  const double denominator = settings_.norm_L * smallest_phi_norm_;
-  for (int i = 0; i < j; ++i) {
-    rho_(i) = coupling.col(i).norm();
-    const double squared = coupling.col(i).dot(residual_gram_ * coupling.col(i));
-    estimate_(i) = std::sqrt(std::max(squared, 0.0)) / (std::abs(theta_(i)) * denominator);
-  }
+  for (int i = 0; i < j; ++i) rho_(i) = coupling_.col(i).norm();
 }
 
 bool BlockKrylovSchur::converged_estimate() {
@@ -446,9 +505,19 @@ bool BlockKrylovSchur::converged_estimate() {
     ++required;
   required_ = required;
   if (required >= j) return false;  // the pair past the cluster is not in the basis yet
-  const double tol = settings_.tolerance * internal_scale_;
+  // Cheap gate first: the residual in the shifted-inverted problem, relative to θ, is far above
+  // the true relative residual only on meshes with very uneven vertex areas; until it is below
+  // kEstimateGate the exact estimate is not worth a pass over L.
   for (int i = 0; i < required; ++i)
-    if (!(estimate_(i) <= tol)) return false;
+    if (!(rho_(i) <= kEstimateGate * theta_(i))) return false;
+  if (!gram_current_) update_residual_gram();
+  const double tol = settings_.tolerance * internal_scale_;
+  const double denominator = settings_.norm_L * smallest_phi_norm_;
+  for (int i = 0; i < required; ++i) {
+    const double squared = coupling_.col(i).dot(residual_gram_ * coupling_.col(i));
+    const double estimate = std::sqrt(std::max(squared, 0.0)) / (std::abs(theta_(i)) * denominator);
+    if (!(estimate <= tol)) return false;
+  }
   // The first pair past the cluster only needs its value accurate enough to show the gap.
   const double guard = std::max(tol, 0.1 * settings_.cluster_tolerance);
   return rho_(required) <= guard * theta_(required);
@@ -473,19 +542,20 @@ void BlockKrylovSchur::restart() {
   C_.setZero();
   C_.leftCols(keep) = coupling;
   coupled_from_ = 0;
+  previous_.resize(0, 0);
   j_ = keep;
   ++restarts_;
 }
 
 bool BlockKrylovSchur::run() {
-  if (j_ == 0 && applications_ == 0) start();
+  if (Q_.size() == 0) start();
   while (true) {
     if (j_ + b_ > capacity_) {
       // A cluster reaching past the basis: grow the basis instead of restarting in vain.
-      if (required_ + 1 + 2 * b_ > m_) {
-        m_ = ((required_ + 1 + 2 * b_ + b_ - 1) / b_) * b_;
-        ensure_capacity(m_);
-        if (j_ + b_ <= capacity_) continue;
+      if (required_ + 1 + 2 * b_ > m_) m_ = ((required_ + 1 + 2 * b_ + b_ - 1) / b_) * b_;
+      if (capacity_ < m_) {
+        ensure_capacity(std::min(m_, ((capacity_ * 3 / 2 + b_ - 1) / b_) * b_));
+        continue;
       }
       restart();
     }
@@ -507,6 +577,11 @@ Eigen::MatrixXd BlockKrylovSchur::wanted_vectors() const {
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Zk = Z_.leftCols(count);
   RowMatrix Y(n_, count);
   combine_columns(Q_.data(), Q_.cols(), j, Zk.data(), count, n_, Y.data(), count);
+  // φ = D⁻¹ y.
+  for (Eigen::Index i = 0; i < n_; ++i) {
+    const double d = scale_(i);
+    for (int c = 0; c < count; ++c) Y(i, c) /= d;
+  }
   return Eigen::MatrixXd(Y);
 }
 
@@ -545,7 +620,7 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
 
   const int b = std::min<int>(options.block_size, static_cast<int>(n));
   int basis = options.max_basis;
-  if (basis == 0) basis = k + std::max(k, 4 * b);
+  if (basis == 0) basis = std::max(3 * k, k + 24 * b);
   basis = std::max(basis, k + 1 + 2 * b);
   basis = ((basis + b - 1) / b) * b;
   const long cap = options.max_operator_applications > 0 ? options.max_operator_applications : 200L * (k + b);
@@ -585,10 +660,7 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
   bool converged = false;
   for (int verification = 0; verification < 6; ++verification) {
     converged = solver.run();
-    X = solver.wanted_vectors();
-    if (mass.size())
-      for (Eigen::Index i = 0; i < n; ++i) X.row(i) /= std::sqrt(mass(i));
-    result.eigenvectors = X;
+    result.eigenvectors = solver.wanted_vectors();
     result.converged = finalize_pairs(L, mass, result.matrix_norm, options.tolerance, result.eigenvectors,
                                       result.eigenvalues, result.residuals);
     if (!converged || result.converged == k) break;
@@ -600,6 +672,7 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
   result.restarts = solver.restarts();
   result.operator_applications = solver.applications();
   result.second_passes = solver.second_passes();
+  result.corrections = solver.corrections();
   result.iteration_seconds = seconds_since(iterate);
   if (result.converged == k) {
     result.status = LanczosStatus::Converged;
