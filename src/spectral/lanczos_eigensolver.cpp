@@ -68,58 +68,79 @@ double dot(const double* a, const double* b, Eigen::Index n, Eigen::Index stride
 // quotients, normalisation, sign, sorting, true residuals. Returns the number meeting `tolerance`.
 int finalize_pairs(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass, double norm_L, double tolerance,
                    Eigen::MatrixXd& X, Eigen::VectorXd& eigenvalues, Eigen::VectorXd& residuals) {
-  const Eigen::Index n = X.rows(), k = X.cols();
+  const Eigen::Index n = X.rows();
+  const int k = static_cast<int>(X.cols());
   const bool generalised = mass.size() > 0;
-  // Normalise first (Euclidean or M), so the products below are at unit scale.
-  for (Eigen::Index c = 0; c < k; ++c) {
-    double* x = X.col(c).data();
-    double norm2 = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i) norm2 += (generalised ? mass(i) : 1.0) * x[i] * x[i];
-    const double inv = norm2 > 0.0 ? 1.0 / std::sqrt(norm2) : 0.0;
-    Eigen::Index largest = 0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      x[i] *= inv;
-      if (std::abs(x[i]) > std::abs(x[largest])) largest = i;
+  // Row-major from here: every pass below reads each row once (L is read once for all k).
+  RowMatrix Y = X;
+  std::vector<double> norm2(k, 0.0), largest(k, 0.0), factor(k);
+  std::vector<Eigen::Index> where(k, 0);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double m = generalised ? mass(i) : 1.0;
+    for (int c = 0; c < k; ++c) {
+      const double x = Y(i, c);
+      norm2[c] += m * x * x;
+      if (std::abs(x) > largest[c]) {
+        largest[c] = std::abs(x);
+        where[c] = i;
+      }
     }
-    if (x[largest] < 0.0)
-      for (Eigen::Index i = 0; i < n; ++i) x[i] = -x[i];
   }
-  const Eigen::MatrixXd LX = L * X;
+  // Normalise (Euclidean or M) with the entry of largest magnitude (first such) positive.
+  for (int c = 0; c < k; ++c) {
+    factor[c] = norm2[c] > 0.0 ? 1.0 / std::sqrt(norm2[c]) : 0.0;
+    if (Y(where[c], c) < 0.0) factor[c] = -factor[c];
+  }
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (int c = 0; c < k; ++c) Y(i, c) *= factor[c];
+  // L Y by rows (L symmetric: column i lists row i), then the Rayleigh quotients and residuals.
+  RowMatrix LY(n, k);
+  std::vector<double> acc(k);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    std::fill(acc.begin(), acc.end(), 0.0);
+    for (Eigen::SparseMatrix<double>::InnerIterator it(L, i); it; ++it) {
+      const double* y = Y.data() + it.row() * k;
+      const double v = it.value();
+      for (int c = 0; c < k; ++c) acc[c] += v * y[c];
+    }
+    for (int c = 0; c < k; ++c) LY(i, c) = acc[c];
+  }
+  std::vector<double> yLy(k, 0.0), yMy(k, 0.0);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double m = generalised ? mass(i) : 1.0;
+    for (int c = 0; c < k; ++c) {
+      yLy[c] += Y(i, c) * LY(i, c);
+      yMy[c] += m * Y(i, c) * Y(i, c);
+    }
+  }
   Eigen::VectorXd lambda(k), residual(k);
-  for (Eigen::Index c = 0; c < k; ++c) {
-    const double* x = X.col(c).data();
-    const double* lx = LX.col(c).data();
-    double xLx = 0.0, xMx = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      xLx += x[i] * lx[i];
-      xMx += (generalised ? mass(i) : 1.0) * x[i] * x[i];
+  for (int c = 0; c < k; ++c) lambda(c) = yMy[c] > 0.0 ? yLy[c] / yMy[c] : 0.0;
+  std::vector<double> r2(k, 0.0), y2(k, 0.0);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double m = generalised ? mass(i) : 1.0;
+    for (int c = 0; c < k; ++c) {
+      const double r = LY(i, c) - lambda(c) * m * Y(i, c);
+      r2[c] += r * r;
+      y2[c] += Y(i, c) * Y(i, c);
     }
-    lambda(c) = xMx > 0.0 ? xLx / xMx : 0.0;
-    double r2 = 0.0, x2 = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double r = lx[i] - lambda(c) * (generalised ? mass(i) : 1.0) * x[i];
-      r2 += r * r;
-      x2 += x[i] * x[i];
-    }
-    residual(c) = x2 > 0.0 && norm_L > 0.0 ? std::sqrt(r2) / (norm_L * std::sqrt(x2)) : 1.0;
   }
+  for (int c = 0; c < k; ++c)
+    residual(c) = y2[c] > 0.0 && norm_L > 0.0 ? std::sqrt(r2[c]) / (norm_L * std::sqrt(y2[c])) : 1.0;
   // Sort by eigenvalue (the Ritz order can differ from the Rayleigh-quotient order by rounding
   // inside a cluster); ties keep the Ritz order.
-  std::vector<Eigen::Index> order(static_cast<std::size_t>(k));
-  std::iota(order.begin(), order.end(), Eigen::Index{0});
-  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) { return lambda(a) < lambda(b); });
-  Eigen::MatrixXd sorted(n, k);
+  std::vector<int> order(static_cast<std::size_t>(k));
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return lambda(a) < lambda(b); });
   eigenvalues.resize(k);
   residuals.resize(k);
   int converged = 0;
-  for (Eigen::Index c = 0; c < k; ++c) {
-    const Eigen::Index from = order[static_cast<std::size_t>(c)];
-    sorted.col(c) = X.col(from);
+  for (int c = 0; c < k; ++c) {
+    const int from = order[static_cast<std::size_t>(c)];
+    X.col(c) = Y.col(from);
     eigenvalues(c) = lambda(from);
     residuals(c) = residual(from);
     if (residuals(c) <= tolerance) ++converged;
   }
-  X = std::move(sorted);
   return converged;
 }
 
@@ -255,32 +276,12 @@ RowMatrix BlockKrylovSchur::project_out(RowMatrix& W, int first, int last) const
 
 // CholQR twice (Yamamoto et al. 2015): orthonormal to working precision when cond(W) < ~1e7.
 // Returns false when W is too ill-conditioned or rank deficient (W then spans the same space).
-// Row by row: out = in U⁻¹ (U upper triangular b by b; in place when out is null), and when
-// `gram` is given, gram += outᵀ out (lower triangle, rows in order).
-void apply_inverse_upper(RowMatrix& in, const Eigen::MatrixXd& U, RowMatrix* out, RowMatrix* gram) {
-  const Eigen::Index n = in.rows();
-  const int b = static_cast<int>(in.cols());
-  std::vector<double> u(static_cast<std::size_t>(b) * b), g(static_cast<std::size_t>(b) * b, 0.0);
-  for (int c = 0; c < b; ++c)
-    for (int d = 0; d < b; ++d) u[c * b + d] = U(d, c);  // u[c*b + d] = U(d, c): column c contiguous
-  double row[64];
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double* w = in.data() + i * b;
-    double* v = out ? out->data() + i * b : in.data() + i * b;
-    for (int c = 0; c < b; ++c) {
-      const double* uc = u.data() + c * b;
-      double x = w[c];
-      for (int d = 0; d < c; ++d) x -= row[d] * uc[d];
-      row[c] = x / uc[c];
-    }
-    for (int c = 0; c < b; ++c) v[c] = row[c];
-    if (gram)
-      for (int c = 0; c < b; ++c)
-        for (int d = 0; d <= c; ++d) g[c * b + d] += row[c] * row[d];
-  }
-  if (gram)
-    for (int c = 0; c < b; ++c)
-      for (int d = 0; d <= c; ++d) (*gram)(c, d) = g[c * b + d];
+// W ← W U⁻¹ for an upper triangular U (b by b): a product with the explicit inverse, so the rows
+// are independent (a row-by-row triangular solve is a chain of dependent divisions).
+void apply_inverse_upper(RowMatrix& W, const Eigen::MatrixXd& U) {
+  const int b = static_cast<int>(W.cols());
+  const RowMatrix inverse = U.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(b, b));
+  combine_columns(W.data(), b, b, inverse.data(), b, W.rows(), W.data(), b);
 }
 
 bool BlockKrylovSchur::cholesky_qr(RowMatrix& W, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S) const {
@@ -300,14 +301,12 @@ bool BlockKrylovSchur::cholesky_qr(RowMatrix& W, const Eigen::VectorXd& referenc
         return false;
     }
     if (pass == 1) break;
-    // One pass over the rows: W ← W U⁻¹, accumulating the Gram matrix of the result. Should the
-    // second factorisation fail, W is already transformed: the caller falls back to Gram–Schmidt,
-    // which only needs span(W).
-    gram.setZero();
-    apply_inverse_upper(W, U[0], nullptr, &gram);
+    // Should the second factorisation fail, W is already transformed (S says how).
+    apply_inverse_upper(W, U[0]);
     S = U[0];
+    project_onto_columns(W.data(), b, b, W.data(), b, n_, gram.data());
   }
-  apply_inverse_upper(W, U[1], nullptr, nullptr);
+  apply_inverse_upper(W, U[1]);
   S = U[1] * U[0];
   return true;
 }

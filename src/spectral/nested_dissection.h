@@ -19,7 +19,7 @@ namespace offsetopt {
 
 struct NestedDissectionOptions {
   // Subsets of at most this many vertices are not split further (ordered by vertex index).
-  int leaf_size = 48;
+  int leaf_size = 16;
   // Check the options; returns an empty string when they are valid, else what is wrong.
   std::string check() const;
 };

@@ -179,11 +179,8 @@ void subtract_combination(const double* Q, Eigen::Index ldq, int j, const double
 
 void combine_columns(const double* Q, Eigen::Index ldq, int j, const double* Z, int p, Eigen::Index n, double* X,
                      Eigen::Index ldx) {
-  if (X != Q) {
-    combine_any<false>(Q, ldq, j, Z, p, p, n, X, ldx);
-    return;
-  }
-  // In place: through a buffer of rows, so a row's old values are read before being replaced.
+  // By chunks of rows, so the chunk of Q stays in cache while each group of output columns
+  // (combine_any) passes over it; through a buffer, so X may be Q itself.
   constexpr Eigen::Index kRows = 64;
   std::vector<double> buffer(static_cast<std::size_t>(kRows * p));
   for (Eigen::Index i0 = 0; i0 < n; i0 += kRows) {
