@@ -18,8 +18,8 @@
 namespace offsetopt {
 
 struct NestedDissectionOptions {
-  // Subsets of at most this many vertices are not split further (they are ordered as they come).
-  int leaf_size = 48;
+  // Subsets of at most this many vertices are not split further (ordered by vertex index).
+  int leaf_size = 16;
   // Check the options; returns an empty string when they are valid, else what is wrong.
   std::string check() const;
 };

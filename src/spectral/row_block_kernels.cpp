@@ -13,47 +13,43 @@ namespace {
 // the order of the partial sums does not depend on the machine.
 constexpr Eigen::Index kChunkRows = 128;
 
-// C(a, :) = sum over rows of Q(i, a) W(i, :), two columns a per pass over a chunk, kWidth (even)
-// columns of W held in registers. Each entry sums its chunk in row order, then the chunk partials
-// in chunk order.
+// C(a, :) = sum over rows of Q(i, a) W(i, :), kTile columns a per pass over a chunk (kWidth/2
+// * kTile accumulators in registers), kWidth (even) columns of W. Each entry sums its chunk in row
+// order, then the chunk partials in chunk order.
+template <int kWidth, int kTile>
+void project_tile(const double* Q, Eigen::Index ldq, int a, const double* W, Eigen::Index i0, Eigen::Index i1,
+                  double* C) {
+  constexpr int H = kWidth / 2;
+  __m128d acc[kTile][H];
+  for (int t = 0; t < kTile; ++t)
+    for (int h = 0; h < H; ++h) acc[t][h] = _mm_setzero_pd();
+  for (Eigen::Index i = i0; i < i1; ++i) {
+    const double* q = Q + i * ldq + a;
+    const double* w = W + i * kWidth;
+    __m128d wv[H];
+    for (int h = 0; h < H; ++h) wv[h] = _mm_loadu_pd(w + 2 * h);
+    for (int t = 0; t < kTile; ++t) {
+      const __m128d qt = _mm_set1_pd(q[t]);
+      for (int h = 0; h < H; ++h) acc[t][h] = _mm_add_pd(acc[t][h], _mm_mul_pd(qt, wv[h]));
+    }
+  }
+  for (int t = 0; t < kTile; ++t) {
+    double* c = C + static_cast<std::ptrdiff_t>(a + t) * kWidth;
+    for (int h = 0; h < H; ++h) _mm_storeu_pd(c + 2 * h, _mm_add_pd(_mm_loadu_pd(c + 2 * h), acc[t][h]));
+  }
+}
+
 template <int kWidth>
 void project_even(const double* Q, Eigen::Index ldq, int j, const double* W, Eigen::Index n, double* C) {
-  constexpr int H = kWidth / 2;
+  // As many columns per pass as registers allow: 16 xmm registers hold kTile * kWidth/2
+  // accumulators plus the kWidth/2 values of the row of W.
+  constexpr int kTile = kWidth <= 4 ? 4 : (kWidth <= 6 ? 3 : 2);
   std::fill(C, C + static_cast<std::ptrdiff_t>(j) * kWidth, 0.0);
   for (Eigen::Index i0 = 0; i0 < n; i0 += kChunkRows) {
     const Eigen::Index i1 = std::min(n, i0 + kChunkRows);
     int a = 0;
-    for (; a + 1 < j; a += 2) {
-      __m128d acc0[H], acc1[H];
-      for (int h = 0; h < H; ++h) acc0[h] = acc1[h] = _mm_setzero_pd();
-      for (Eigen::Index i = i0; i < i1; ++i) {
-        const double* q = Q + i * ldq + a;
-        const double* w = W + i * kWidth;
-        const __m128d q0 = _mm_set1_pd(q[0]), q1 = _mm_set1_pd(q[1]);
-        for (int h = 0; h < H; ++h) {
-          const __m128d wv = _mm_loadu_pd(w + 2 * h);
-          acc0[h] = _mm_add_pd(acc0[h], _mm_mul_pd(q0, wv));
-          acc1[h] = _mm_add_pd(acc1[h], _mm_mul_pd(q1, wv));
-        }
-      }
-      double* c0 = C + static_cast<std::ptrdiff_t>(a) * kWidth;
-      double* c1 = c0 + kWidth;
-      for (int h = 0; h < H; ++h) {
-        _mm_storeu_pd(c0 + 2 * h, _mm_add_pd(_mm_loadu_pd(c0 + 2 * h), acc0[h]));
-        _mm_storeu_pd(c1 + 2 * h, _mm_add_pd(_mm_loadu_pd(c1 + 2 * h), acc1[h]));
-      }
-    }
-    if (a < j) {
-      __m128d acc0[H];
-      for (int h = 0; h < H; ++h) acc0[h] = _mm_setzero_pd();
-      for (Eigen::Index i = i0; i < i1; ++i) {
-        const __m128d q0 = _mm_set1_pd(Q[i * ldq + a]);
-        const double* w = W + i * kWidth;
-        for (int h = 0; h < H; ++h) acc0[h] = _mm_add_pd(acc0[h], _mm_mul_pd(q0, _mm_loadu_pd(w + 2 * h)));
-      }
-      double* c0 = C + static_cast<std::ptrdiff_t>(a) * kWidth;
-      for (int h = 0; h < H; ++h) _mm_storeu_pd(c0 + 2 * h, _mm_add_pd(_mm_loadu_pd(c0 + 2 * h), acc0[h]));
-    }
+    for (; a + kTile <= j; a += kTile) project_tile<kWidth, kTile>(Q, ldq, a, W, i0, i1, C);
+    for (; a < j; ++a) project_tile<kWidth, 1>(Q, ldq, a, W, i0, i1, C);
   }
 }
 
@@ -183,11 +179,8 @@ void subtract_combination(const double* Q, Eigen::Index ldq, int j, const double
 
 void combine_columns(const double* Q, Eigen::Index ldq, int j, const double* Z, int p, Eigen::Index n, double* X,
                      Eigen::Index ldx) {
-  if (X != Q) {
-    combine_any<false>(Q, ldq, j, Z, p, p, n, X, ldx);
-    return;
-  }
-  // In place: through a buffer of rows, so a row's old values are read before being replaced.
+  // By chunks of rows, so the chunk of Q stays in cache while each group of output columns
+  // (combine_any) passes over it; through a buffer, so X may be Q itself.
   constexpr Eigen::Index kRows = 64;
   std::vector<double> buffer(static_cast<std::size_t>(kRows * p));
   for (Eigen::Index i0 = 0; i0 < n; i0 += kRows) {

@@ -1,5 +1,9 @@
 #include "spectral/shift_invert_operator.h"
 
+#include <emmintrin.h>  // SSE2: part of the x86-64 baseline
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
 
 #include "spectral/nested_dissection.h"
@@ -8,36 +12,122 @@ namespace offsetopt {
 
 namespace {
 
-// The triangular solves of LDLᵀ on a row-major block of width kWidth (0: the run-time `width`).
-// `lower_*` is the strictly lower unit triangle by rows, `upper_*` the same triangle by columns.
-template <int kWidth>
-void solve_block(int n, int width, const int* lower_start, const int* lower_index, const double* lower_value,
-                 const int* upper_start, const int* upper_index, const double* upper_value, const double* pivots,
-                 double* x) {
+// Supernodes wider than this are split, so a supernode's rows of the block stay in L1.
+constexpr int kMaxSupernodeWidth = 96;
+
+struct SolveData {
+  int n;
+  const int* rows;
+  const double* values;
+  const double* pivots;
+};
+
+// Forward (L z = x), scaling (z / d) and backward (Lᵀ w = z / d) on a row-major block of width
+// kWidth (0: the run-time `width`, at most 64). Every sum runs in a fixed order: entry by entry
+// the terms are subtracted in increasing column (forward) or row (backward) order.
+template <int kWidth, class Supernodes>
+void solve_block(const SolveData& data, const Supernodes& supernodes, int width, double* x) {
   const int b = kWidth > 0 ? kWidth : width;
   double acc[kWidth > 0 ? kWidth : 64];
-  // Forward: z_i = x_i - sum_{j<i} L_ij z_j.
-  for (int i = 0; i < n; ++i) {
-    double* xi = x + static_cast<std::ptrdiff_t>(i) * b;
-    for (int c = 0; c < b; ++c) acc[c] = xi[c];
-    for (int p = lower_start[i]; p < lower_start[i + 1]; ++p) {
-      const double l = lower_value[p];
-      const double* xj = x + static_cast<std::ptrdiff_t>(lower_index[p]) * b;
-      for (int c = 0; c < b; ++c) acc[c] -= l * xj[c];
+  std::vector<double> buffer(static_cast<std::size_t>(kMaxSupernodeWidth) * static_cast<std::size_t>(b));
+  for (const auto& s : supernodes) {
+    double* xs = x + static_cast<std::ptrdiff_t>(s.first) * b;
+    const double* triangle = data.values + s.triangle;
+    for (int i = 1; i < s.width; ++i) {
+      const double* l = triangle + static_cast<std::ptrdiff_t>(i) * (i - 1) / 2;
+      for (int c = 0; c < b; ++c) acc[c] = xs[i * b + c];
+      for (int j = 0; j < i; ++j)
+        for (int c = 0; c < b; ++c) acc[c] -= l[j] * xs[j * b + c];
+      for (int c = 0; c < b; ++c) xs[i * b + c] = acc[c];
     }
-    for (int c = 0; c < b; ++c) xi[c] = acc[c];
+    const double* below = data.values + s.below;
+    const int* rows = data.rows + s.row_begin;
+    int r = 0;
+    if constexpr (kWidth > 0 && kWidth % 2 == 0) {
+      // Two rows at a time: independent chains, shared loads of the supernode's rows.
+      constexpr int H = kWidth / 2;
+      for (; r + 1 < s.row_count; r += 2) {
+        double* x0 = x + static_cast<std::ptrdiff_t>(rows[r]) * b;
+        double* x1 = x + static_cast<std::ptrdiff_t>(rows[r + 1]) * b;
+        const double* l0 = below + static_cast<std::ptrdiff_t>(r) * s.width;
+        const double* l1 = l0 + s.width;
+        __m128d a0[H], a1[H];
+        for (int h = 0; h < H; ++h) {
+          a0[h] = _mm_loadu_pd(x0 + 2 * h);
+          a1[h] = _mm_loadu_pd(x1 + 2 * h);
+        }
+        for (int j = 0; j < s.width; ++j) {
+          const __m128d f0 = _mm_set1_pd(l0[j]), f1 = _mm_set1_pd(l1[j]);
+          const double* xj = xs + j * kWidth;
+          for (int h = 0; h < H; ++h) {
+            const __m128d v = _mm_loadu_pd(xj + 2 * h);
+            a0[h] = _mm_sub_pd(a0[h], _mm_mul_pd(f0, v));
+            a1[h] = _mm_sub_pd(a1[h], _mm_mul_pd(f1, v));
+          }
+        }
+        for (int h = 0; h < H; ++h) {
+          _mm_storeu_pd(x0 + 2 * h, a0[h]);
+          _mm_storeu_pd(x1 + 2 * h, a1[h]);
+        }
+      }
+    }
+    for (; r < s.row_count; ++r) {
+      double* xr = x + static_cast<std::ptrdiff_t>(rows[r]) * b;
+      const double* l = below + static_cast<std::ptrdiff_t>(r) * s.width;
+      for (int c = 0; c < b; ++c) acc[c] = xr[c];
+      for (int j = 0; j < s.width; ++j)
+        for (int c = 0; c < b; ++c) acc[c] -= l[j] * xs[j * b + c];
+      for (int c = 0; c < b; ++c) xr[c] = acc[c];
+    }
   }
-  // Backward: w_j = z_j / d_j - sum_{i>j} L_ij w_i.
-  for (int j = n - 1; j >= 0; --j) {
-    double* xj = x + static_cast<std::ptrdiff_t>(j) * b;
-    const double d = pivots[j];
-    for (int c = 0; c < b; ++c) acc[c] = xj[c] / d;
-    for (int p = upper_start[j]; p < upper_start[j + 1]; ++p) {
-      const double l = upper_value[p];
-      const double* xi = x + static_cast<std::ptrdiff_t>(upper_index[p]) * b;
-      for (int c = 0; c < b; ++c) acc[c] -= l * xi[c];
+  for (int i = 0; i < data.n; ++i) {
+    const double d = data.pivots[i];
+    for (int c = 0; c < b; ++c) x[static_cast<std::ptrdiff_t>(i) * b + c] /= d;
+  }
+  for (auto it = supernodes.rbegin(); it != supernodes.rend(); ++it) {
+    const auto& s = *it;
+    double* xs = x + static_cast<std::ptrdiff_t>(s.first) * b;
+    double* a = buffer.data();
+    std::copy(xs, xs + static_cast<std::ptrdiff_t>(s.width) * b, a);
+    const double* below = data.values + s.below;
+    const int* rows = data.rows + s.row_begin;
+    int r = 0;
+    if constexpr (kWidth > 0 && kWidth % 2 == 0) {
+      // Two rows at a time: each a[j] loaded and stored once per pair, terms still in row order.
+      constexpr int H = kWidth / 2;
+      for (; r + 1 < s.row_count; r += 2) {
+        const double* x0 = x + static_cast<std::ptrdiff_t>(rows[r]) * b;
+        const double* x1 = x + static_cast<std::ptrdiff_t>(rows[r + 1]) * b;
+        const double* l0 = below + static_cast<std::ptrdiff_t>(r) * s.width;
+        const double* l1 = l0 + s.width;
+        __m128d v0[H], v1[H];
+        for (int h = 0; h < H; ++h) {
+          v0[h] = _mm_loadu_pd(x0 + 2 * h);
+          v1[h] = _mm_loadu_pd(x1 + 2 * h);
+        }
+        for (int j = 0; j < s.width; ++j) {
+          const __m128d f0 = _mm_set1_pd(l0[j]), f1 = _mm_set1_pd(l1[j]);
+          double* aj = a + j * kWidth;
+          for (int h = 0; h < H; ++h) {
+            __m128d t = _mm_sub_pd(_mm_loadu_pd(aj + 2 * h), _mm_mul_pd(f0, v0[h]));
+            _mm_storeu_pd(aj + 2 * h, _mm_sub_pd(t, _mm_mul_pd(f1, v1[h])));
+          }
+        }
+      }
     }
-    for (int c = 0; c < b; ++c) xj[c] = acc[c];
+    for (; r < s.row_count; ++r) {
+      const double* xr = x + static_cast<std::ptrdiff_t>(rows[r]) * b;
+      const double* l = below + static_cast<std::ptrdiff_t>(r) * s.width;
+      for (int j = 0; j < s.width; ++j)
+        for (int c = 0; c < b; ++c) a[j * b + c] -= l[j] * xr[c];
+    }
+    const double* triangle = data.values + s.triangle;
+    for (int j = s.width - 2; j >= 0; --j)
+      for (int i = j + 1; i < s.width; ++i) {
+        const double l = triangle[static_cast<std::ptrdiff_t>(i) * (i - 1) / 2 + j];
+        for (int c = 0; c < b; ++c) a[j * b + c] -= l * a[i * b + c];
+      }
+    std::copy(a, a + static_cast<std::ptrdiff_t>(s.width) * b, xs);
   }
 }
 
@@ -62,26 +152,27 @@ ShiftInvertOperator::ShiftInvertOperator(const Eigen::SparseMatrix<double>& L, c
   scale_.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) scale_[i] = mass.size() ? std::sqrt(mass(order_[i])) : 1.0;
 
-  // Lower triangle of P (L + sM) Pᵀ.
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<std::size_t>(L.nonZeros() / 2 + n));
-  for (int col = 0; col < n; ++col) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(L, col); it; ++it) {
-      const int r = new_index[static_cast<std::size_t>(it.row())], c = new_index[static_cast<std::size_t>(col)];
-      if (r >= c) triplets.emplace_back(r, c, it.value());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> factor;
+  {
+    // Lower triangle of P (L + sM) Pᵀ.
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(static_cast<std::size_t>(L.nonZeros() / 2 + n));
+    for (int col = 0; col < n; ++col) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(L, col); it; ++it) {
+        const int r = new_index[static_cast<std::size_t>(it.row())], c = new_index[static_cast<std::size_t>(col)];
+        if (r >= c) triplets.emplace_back(r, c, it.value());
+      }
     }
+    for (int i = 0; i < n; ++i) triplets.emplace_back(i, i, shift * (mass.size() ? mass(order_[i]) : 1.0));
+    Eigen::SparseMatrix<double> K(n, n);
+    K.setFromTriplets(triplets.begin(), triplets.end());
+    factor.compute(K);
   }
-  for (int i = 0; i < n; ++i) triplets.emplace_back(i, i, shift * (mass.size() ? mass(order_[i]) : 1.0));
-  Eigen::SparseMatrix<double> K(n, n);
-  K.setFromTriplets(triplets.begin(), triplets.end());
-  triplets = {};
-
-  factor_.compute(K);
-  if (factor_.info() != Eigen::Success) {
+  if (factor.info() != Eigen::Success) {
     status_ = Status::NotPositiveDefinite;
     return;
   }
-  const Eigen::VectorXd& pivots = factor_.vectorD();
+  const Eigen::VectorXd& pivots = factor.vectorD();
   pivot_.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     if (!(pivots(i) > 0.0) || !std::isfinite(pivots(i))) {
@@ -91,24 +182,36 @@ ShiftInvertOperator::ShiftInvertOperator(const Eigen::SparseMatrix<double>& L, c
     pivot_[i] = pivots(i);
   }
 
-  // The strictly lower triangle by rows (a transpose of Eigen's by-column storage).
-  const Eigen::SparseMatrix<double>& lower = factor_.matrixL().nestedExpression();
-  const int* col_start = lower.outerIndexPtr();
-  const int* rows = lower.innerIndexPtr();
-  const double* values = lower.valuePtr();
-  row_start_.assign(static_cast<std::size_t>(n) + 1, 0);
-  for (int j = 0; j < n; ++j)
-    for (int p = col_start[j]; p < col_start[j + 1]; ++p) ++row_start_[static_cast<std::size_t>(rows[p]) + 1];
-  for (int i = 0; i < n; ++i) row_start_[i + 1] += row_start_[i];
-  row_columns_.resize(static_cast<std::size_t>(row_start_[n]));
-  row_values_.resize(static_cast<std::size_t>(row_start_[n]));
-  std::vector<int> fill(row_start_.begin(), row_start_.end() - 1);
-  for (int j = 0; j < n; ++j) {
-    for (int p = col_start[j]; p < col_start[j + 1]; ++p) {
-      const int slot = fill[static_cast<std::size_t>(rows[p])]++;
-      row_columns_[static_cast<std::size_t>(slot)] = j;
-      row_values_[static_cast<std::size_t>(slot)] = values[p];
-    }
+  // Supernodes: column c joins the run when column c-1's pattern is {c} followed by column c's.
+  const Eigen::SparseMatrix<double>& lower = factor.matrixL().nestedExpression();
+  const int* start = lower.outerIndexPtr();
+  const int* index = lower.innerIndexPtr();
+  const double* value = lower.valuePtr();
+  factor_nonzeros_ = start[n];
+  auto continues = [&](int c) {  // does column c continue the supernode ending at c - 1?
+    const int previous = start[c] - start[c - 1];
+    if (previous < 1 || index[start[c - 1]] != c || previous - 1 != start[c + 1] - start[c]) return false;
+    return std::equal(index + start[c - 1] + 1, index + start[c], index + start[c]);
+  };
+  values_.reserve(static_cast<std::size_t>(start[n]));
+  for (int first = 0; first < n;) {
+    int width = 1;
+    while (first + width < n && width < kMaxSupernodeWidth && continues(first + width)) ++width;
+    Supernode s;
+    s.first = first;
+    s.width = width;
+    const int last = first + width - 1;
+    s.row_begin = static_cast<int>(rows_.size());
+    s.row_count = start[last + 1] - start[last];
+    rows_.insert(rows_.end(), index + start[last], index + start[last + 1]);
+    s.triangle = values_.size();
+    for (int i = 1; i < width; ++i)
+      for (int j = 0; j < i; ++j) values_.push_back(value[start[first + j] + (i - j - 1)]);
+    s.below = values_.size();
+    for (int r = 0; r < s.row_count; ++r)
+      for (int j = 0; j < width; ++j) values_.push_back(value[start[first + j] + (width - 1 - j) + r]);
+    supernodes_.push_back(s);
+    first += width;
   }
 }
 
@@ -121,28 +224,21 @@ void ShiftInvertOperator::apply(const double* in, Eigen::Index in_stride, int b,
     const double d = scale_[i];
     for (int c = 0; c < b; ++c) x[static_cast<std::ptrdiff_t>(i) * b + c] = d * src[c];
   }
-  const Eigen::SparseMatrix<double>& lower = factor_.matrixL().nestedExpression();
-  const int* ls = row_start_.data();
-  const int* li = row_columns_.data();
-  const double* lv = row_values_.data();
-  const int* us = lower.outerIndexPtr();
-  const int* ui = lower.innerIndexPtr();
-  const double* uv = lower.valuePtr();
-  const double* pv = pivot_.data();
+  const SolveData data{n, rows_.data(), values_.data(), pivot_.data()};
   switch (b) {
-    case 1: solve_block<1>(n, b, ls, li, lv, us, ui, uv, pv, x); break;
-    case 2: solve_block<2>(n, b, ls, li, lv, us, ui, uv, pv, x); break;
-    case 4: solve_block<4>(n, b, ls, li, lv, us, ui, uv, pv, x); break;
-    case 6: solve_block<6>(n, b, ls, li, lv, us, ui, uv, pv, x); break;
-    case 8: solve_block<8>(n, b, ls, li, lv, us, ui, uv, pv, x); break;
-    case 12: solve_block<12>(n, b, ls, li, lv, us, ui, uv, pv, x); break;
-    case 16: solve_block<16>(n, b, ls, li, lv, us, ui, uv, pv, x); break;
+    case 1: solve_block<1>(data, supernodes_, b, x); break;
+    case 2: solve_block<2>(data, supernodes_, b, x); break;
+    case 4: solve_block<4>(data, supernodes_, b, x); break;
+    case 6: solve_block<6>(data, supernodes_, b, x); break;
+    case 8: solve_block<8>(data, supernodes_, b, x); break;
+    case 12: solve_block<12>(data, supernodes_, b, x); break;
+    case 16: solve_block<16>(data, supernodes_, b, x); break;
     default: {
+      // Other widths in slices of at most 64 columns (each column is solved independently).
       for (int c0 = 0; c0 < b; c0 += 64) {
-        // Run-time widths above 64 are split (the accumulator is 64 wide); not a hot path.
-        const int w = b - c0 < 64 ? b - c0 : 64;
+        const int w = std::min(64, b - c0);
         RowMatrix part = work_.middleCols(c0, w);
-        solve_block<0>(n, w, ls, li, lv, us, ui, uv, pv, part.data());
+        solve_block<0>(data, supernodes_, w, part.data());
         work_.middleCols(c0, w) = part;
       }
     }

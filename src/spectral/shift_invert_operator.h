@@ -5,13 +5,14 @@
 // positive semi-definite and s > 0, so the largest θ are the smallest λ.
 //
 // L + sM is factorised once by Eigen's SimplicialLDLT after a fill-reducing permutation (nested
-// dissection on the vertex positions when given, else Eigen's AMD). Applying Op to a block of b
-// vectors runs the triangular solves on the whole block at once (row-major, one pass over the
-// factor for all b vectors), which is what makes a block Lanczos cheaper per vector than a
-// single-vector one.
+// dissection on the vertex positions when given, else Eigen's AMD). The factor is then copied
+// into supernodes (runs of columns with nested patterns, stored as dense blocks sharing one row
+// list; the separators of the dissection become large ones) and Eigen's copy is dropped. Applying
+// Op to a block of b vectors runs the triangular solves on the whole block at once (row-major,
+// one pass over the factor for all b vectors), which is what makes a block Lanczos cheaper per
+// vector than a single-vector one.
 #pragma once
 #include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 #include <vector>
 
 #include "mesh/mesh.h"
@@ -32,25 +33,31 @@ class ShiftInvertOperator {
   Status status() const { return status_; }
   Eigen::Index size() const { return n_; }
   // Nonzeros of the unit lower factor (without its diagonal).
-  Eigen::Index factor_nonzeros() const { return static_cast<Eigen::Index>(row_values_.size()); }
+  Eigen::Index factor_nonzeros() const { return factor_nonzeros_; }
 
   // out = Op * in for the first `b` columns: `in` is row-major with row stride `in_stride`,
   // `out` is row-major n by b (resized). Deterministic: fixed order of every sum.
   void apply(const double* in, Eigen::Index in_stride, int b, RowMatrix& out) const;
 
  private:
+  // A run of factor columns [first, first + width) with nested patterns: a dense unit lower
+  // triangle on those rows and a dense block on the rows below them that all its columns share.
+  struct Supernode {
+    int first = 0, width = 0;
+    int row_begin = 0, row_count = 0;  // in rows_
+    std::size_t triangle = 0, below = 0;  // offsets in values_: packed strictly lower triangle
+                                          // (row ii holds ii entries), then row_count x width
+  };
+
   Eigen::Index n_ = 0;
+  Eigen::Index factor_nonzeros_ = 0;
   Status status_ = Status::Ok;
-  std::vector<int> order_;           // order_[new] = old
-  std::vector<double> scale_;        // D in the new order
-  std::vector<double> pivot_;        // D_ii of the LDLᵀ, new order
-  // The factor of the permuted L + sM; its unit lower triangle is stored by columns, strictly
-  // lower part (Eigen's SimplicialLDLT layout), which the backward solve reads as rows of Lᵀ.
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> factor_;
-  // The same triangle stored by rows, so the forward solve also gathers (accumulates in
-  // registers) instead of scattering.
-  std::vector<int> row_start_, row_columns_;
-  std::vector<double> row_values_;
+  std::vector<int> order_;     // order_[new] = old
+  std::vector<double> scale_;  // D in the new order
+  std::vector<double> pivot_;  // D_ii of the LDLᵀ, new order
+  std::vector<Supernode> supernodes_;
+  std::vector<int> rows_;
+  std::vector<double> values_;
   mutable RowMatrix work_;
 };
 

@@ -296,3 +296,21 @@ TEST_CASE("invalid input and options are refused, not thrown") {
   const Eigen::SparseMatrix<double> negative = -L;
   CHECK(lanczos_eigensolver(negative, Eigen::VectorXd(), 5, {}, &mesh.V).status != LanczosStatus::Converged);
 }
+
+TEST_CASE("a small basis forces thick restarts and locking; the pairs are the same") {
+  const Mesh mesh = test::bumpy_icosphere(3);
+  const Eigen::SparseMatrix<double> L = cotan_laplacian(mesh.V, mesh.F);
+  const Eigen::VectorXd mass = lumped_mass(mesh.V, mesh.F);
+  for (int block : {6, 5, 1}) {
+    CAPTURE(block);
+    LanczosOptions options;
+    options.tolerance = 1e-12;
+    options.block_size = block;
+    options.max_basis = 30 + 3 * block;
+    const LanczosResult result = lanczos_eigensolver(L, mass, 24, options, &mesh.V);
+    REQUIRE(result.status == LanczosStatus::Converged);
+    CHECK(result.restarts > 0);
+    check_pairs(result, L, mass, 24, options.tolerance);
+    compare_with_dense(result, L, mass, 24);
+  }
+}
