@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <numeric>
+#include <stdexcept>
+#include <thread>
 
 namespace offsetopt {
 
@@ -191,15 +193,33 @@ CholeskyCounts cholesky_counts(const SparseMatrix& pattern, const std::vector<in
 
 FillReducingOrdering fill_reducing_ordering(const SparseMatrix& pattern, const Vertices& positions, const SparseMatrix& graph,
                                            int hops) {
-  FillReducingOrdering amd;
-  amd.method = "amd";
-  amd.new_to_old = amd_order(pattern);
-  amd.counts = cholesky_counts(pattern, amd.new_to_old);
-  if (positions.rows() != pattern.rows() || graph.rows() != pattern.rows() || hops < 1) return amd;
+  const bool try_dissection = positions.rows() == pattern.rows() && graph.rows() == pattern.rows() && hops >= 1;
+  // The two candidates are independent: nested dissection runs on a second thread.
   FillReducingOrdering nd;
-  nd.method = "nested_dissection";
-  nd.new_to_old = NestedDissection(pattern, graph, hops, positions).run();
-  nd.counts = cholesky_counts(pattern, nd.new_to_old);
+  std::thread worker;
+  bool worker_failed = false;
+  if (try_dissection)
+    worker = std::thread([&] {
+      try {
+        nd.method = "nested_dissection";
+        nd.new_to_old = NestedDissection(pattern, graph, hops, positions).run();
+        nd.counts = cholesky_counts(pattern, nd.new_to_old);
+      } catch (...) {
+        worker_failed = true;
+      }
+    });
+  FillReducingOrdering amd;
+  try {
+    amd.method = "amd";
+    amd.new_to_old = amd_order(pattern);
+    amd.counts = cholesky_counts(pattern, amd.new_to_old);
+  } catch (...) {
+    if (worker.joinable()) worker.join();
+    throw;
+  }
+  if (worker.joinable()) worker.join();
+  if (worker_failed) throw std::runtime_error("fill_reducing_ordering: nested dissection failed (out of memory?)");
+  if (!try_dissection) return amd;
   return nd.counts.flops < amd.counts.flops ? nd : amd;
 }
 

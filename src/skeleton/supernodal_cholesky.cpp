@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <stdexcept>
+#include <thread>
 
 namespace offsetopt {
 
@@ -184,6 +185,14 @@ void SupernodalCholesky::analyze(const SparseMatrix& pattern) {
     row_start_.push_back(static_cast<int>(row_indices_.size()));
   }
 
+  child_start_.assign(static_cast<std::size_t>(supernodes) + 1, 0);
+  child_list_.clear();
+  for (int s = 0; s < supernodes; ++s) {
+    child_list_.insert(child_list_.end(), children[static_cast<std::size_t>(s)].begin(), children[static_cast<std::size_t>(s)].end());
+    child_start_[static_cast<std::size_t>(s) + 1] = static_cast<int>(child_list_.size());
+  }
+  plan_threads(thread_count_);
+
   value_start_.assign(static_cast<std::size_t>(supernodes) + 1, 0);
   stored_nonzeros_ = 0.0;
   for (int s = 0; s < supernodes; ++s) {
@@ -196,82 +205,171 @@ void SupernodalCholesky::analyze(const SparseMatrix& pattern) {
   values_.assign(value_start_.back(), 0.0);
 }
 
+void SupernodalCholesky::set_thread_count(int threads) {
+  if (threads < 1) throw std::invalid_argument("SupernodalCholesky: thread count must be >= 1");
+  thread_count_ = threads;
+  if (!first_column_.empty()) plan_threads(thread_count_);
+}
+
+void SupernodalCholesky::plan_threads(int threads) {
+  const int supernodes = supernode_count();
+  thread_lists_.clear();
+  top_list_.clear();
+  // Work of a front: about k (k + r)^2 multiply-adds; summed over subtrees.
+  std::vector<double> subtree(static_cast<std::size_t>(supernodes), 0.0);
+  double total = 0.0;
+  for (int s = 0; s < supernodes; ++s) {
+    const std::size_t u = static_cast<std::size_t>(s);
+    const double k = first_column_[u + 1] - first_column_[u], r = row_start_[u + 1] - row_start_[u];
+    subtree[u] += k * (k + r) * (k + r);
+    total += k * (k + r) * (k + r);
+    if (parent_supernode_[u] != -1) subtree[static_cast<std::size_t>(parent_supernode_[u])] += subtree[u];
+  }
+  std::vector<int> owner(static_cast<std::size_t>(supernodes), -1);
+  if (threads > 1 && total > 2e7) {
+    // Open the heaviest subtree until it no longer exceeds half of the open subtrees' work.
+    std::vector<int> open;
+    for (int s = 0; s < supernodes; ++s)
+      if (parent_supernode_[static_cast<std::size_t>(s)] == -1) open.push_back(s);
+    for (int round = 0; round < 64 && !open.empty(); ++round) {
+      std::size_t heaviest = 0;
+      double sum = 0.0;
+      for (std::size_t q = 0; q < open.size(); ++q) {
+        sum += subtree[static_cast<std::size_t>(open[q])];
+        if (subtree[static_cast<std::size_t>(open[q])] > subtree[static_cast<std::size_t>(open[heaviest])]) heaviest = q;
+      }
+      if (subtree[static_cast<std::size_t>(open[heaviest])] <= 0.5 * sum) break;
+      const std::size_t h = static_cast<std::size_t>(open[heaviest]);
+      open.erase(open.begin() + static_cast<std::ptrdiff_t>(heaviest));
+      open.insert(open.end(), child_list_.begin() + child_start_[h], child_list_.begin() + child_start_[h + 1]);
+      std::sort(open.begin(), open.end());
+    }
+    // Longest-processing-time assignment of the open subtrees to the threads.
+    std::vector<int> by_work = open;
+    std::stable_sort(by_work.begin(), by_work.end(), [&](int a, int b) { return subtree[static_cast<std::size_t>(a)] > subtree[static_cast<std::size_t>(b)]; });
+    std::vector<double> load(static_cast<std::size_t>(threads), 0.0);
+    for (int root : by_work) {
+      const std::size_t t = static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
+      load[t] += subtree[static_cast<std::size_t>(root)];
+      owner[static_cast<std::size_t>(root)] = static_cast<int>(t);
+    }
+    // Descendants inherit their subtree root's thread (parents have larger indices); the opened
+    // nodes above the roots keep -1 and go to the main thread afterwards.
+    for (int s = supernodes - 1; s >= 0; --s) {
+      const int p = parent_supernode_[static_cast<std::size_t>(s)];
+      if (owner[static_cast<std::size_t>(s)] == -1 && p != -1) owner[static_cast<std::size_t>(s)] = owner[static_cast<std::size_t>(p)];
+    }
+    thread_lists_.assign(static_cast<std::size_t>(threads), {});
+  } else {
+    thread_lists_.assign(1, {});
+  }
+  for (int s = 0; s < supernodes; ++s) {
+    const int t = owner[static_cast<std::size_t>(s)];
+    if (t >= 0) thread_lists_[static_cast<std::size_t>(t)].push_back(s);
+    else top_list_.push_back(s);
+  }
+}
+
+bool SupernodalCholesky::factor_supernode(int s, const SparseMatrix& A, Workspace& work,
+                                          std::vector<std::vector<double>>& updates) {
+  const std::size_t u = static_cast<std::size_t>(s);
+  const int begin = first_column_[u], end = first_column_[u + 1];
+  const int k = end - begin;
+  const int r = row_start_[u + 1] - row_start_[u];
+  const int m = k + r;
+  const int* below = row_indices_.data() + row_start_[u];
+  std::vector<int>& local = work.local;
+  if (local.size() != static_cast<std::size_t>(n_)) local.assign(static_cast<std::size_t>(n_), -1);
+  if (work.front.size() < static_cast<std::size_t>(m) * static_cast<std::size_t>(m)) work.front.resize(static_cast<std::size_t>(m) * static_cast<std::size_t>(m));
+  Eigen::Map<Eigen::MatrixXd> F(work.front.data(), m, m);
+  for (int c = 0; c < m; ++c) F.col(c).tail(m - c).setZero();  // the lower triangle is all that is used
+  for (int c = begin; c < end; ++c) local[static_cast<std::size_t>(c)] = c - begin;
+  for (int a = 0; a < r; ++a) local[static_cast<std::size_t>(below[a])] = k + a;
+
+  for (int c = begin; c < end; ++c)
+    for (SparseMatrix::InnerIterator it(A, to_caller_[static_cast<std::size_t>(c)]); it; ++it) {
+      const int i = from_caller_[static_cast<std::size_t>(it.row())];
+      if (i >= c) F(local[static_cast<std::size_t>(i)], c - begin) += it.value();
+    }
+  // Extend-add the children's update matrices, in increasing child order (a fixed summation
+  // order whichever thread produced them).
+  for (int q = child_start_[u]; q < child_start_[u + 1]; ++q) {
+    const std::size_t child = static_cast<std::size_t>(child_list_[static_cast<std::size_t>(q)]);
+    const int rc = row_start_[child + 1] - row_start_[child];
+    const int* child_rows = row_indices_.data() + row_start_[child];
+    const double* U = updates[child].data();  // packed lower columns
+    for (int b = 0; b < rc; ++b) {
+      double* column = &F(0, local[static_cast<std::size_t>(child_rows[b])]);
+      for (int a = b; a < rc; ++a) column[local[static_cast<std::size_t>(child_rows[a])]] += *U++;
+    }
+    std::vector<double>().swap(updates[child]);
+  }
+
+  // Dense partial factorisation of the front, right-looking in panels of at most kPanelWidth
+  // columns: every kernel's inner dimension is a panel width, which keeps the summation order
+  // independent of Eigen's cache-size-dependent blocking.
+  bool ok = true;
+  for (int p = 0; p < k && ok; p += kPanelWidth) {
+    const int b = std::min(kPanelWidth, k - p);
+    const int rest = m - p - b;
+    Eigen::Ref<Eigen::MatrixXd> diagonal = F.block(p, p, b, b);
+    Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Lower> llt(diagonal);
+    if (llt.info() != Eigen::Success) ok = false;
+    if (!ok || rest == 0) continue;
+    auto panel = F.block(p + b, p, rest, b);
+    diagonal.triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(panel);
+    F.block(p + b, p + b, rest, rest).selfadjointView<Eigen::Lower>().rankUpdate(panel, -1.0);
+  }
+  if (ok && r > 0) {
+    std::vector<double>& update = updates[u];
+    update.clear();
+    update.reserve(static_cast<std::size_t>(r) * static_cast<std::size_t>(r + 1) / 2);
+    for (int b = 0; b < r; ++b) {
+      const double* column = work.front.data() + static_cast<std::size_t>(k + b) * static_cast<std::size_t>(m) + static_cast<std::size_t>(k + b);
+      update.insert(update.end(), column, column + (r - b));
+    }
+  }
+  if (ok) Eigen::Map<Eigen::MatrixXd>(values_.data() + value_start_[u], m, k) = F.leftCols(k);
+  for (int c = begin; c < end; ++c) local[static_cast<std::size_t>(c)] = -1;
+  for (int a = 0; a < r; ++a) local[static_cast<std::size_t>(below[a])] = -1;
+  return ok;
+}
+
 bool SupernodalCholesky::factorize(const SparseMatrix& A) {
   factorized_ = false;
   if (A.rows() != n_ || A.cols() != n_) throw std::invalid_argument("SupernodalCholesky: matrix size differs from the analysed one");
   const int supernodes = supernode_count();
-  std::vector<int> local(static_cast<std::size_t>(n_), -1);
-  std::vector<double> front;
-  // Update matrices of processed supernodes whose parent is not done yet, last in first out:
-  // in postorder, a supernode's children are exactly the top entries when it is reached.
-  std::vector<double> update_values;
-  std::vector<std::size_t> update_offset;
-  std::vector<int> update_owner;
-  for (int s = 0; s < supernodes; ++s) {
-    const std::size_t u = static_cast<std::size_t>(s);
-    const int begin = first_column_[u], end = first_column_[u + 1];
-    const int k = end - begin;
-    const int r = row_start_[u + 1] - row_start_[u];
-    const int m = k + r;
-    const int* below = row_indices_.data() + row_start_[u];
-    if (front.size() < static_cast<std::size_t>(m) * static_cast<std::size_t>(m)) front.resize(static_cast<std::size_t>(m) * static_cast<std::size_t>(m));
-    Eigen::Map<Eigen::MatrixXd> F(front.data(), m, m);
-    for (int c = 0; c < m; ++c) F.col(c).tail(m - c).setZero();  // the lower triangle is all that is used
-    for (int c = begin; c < end; ++c) local[static_cast<std::size_t>(c)] = c - begin;
-    for (int a = 0; a < r; ++a) local[static_cast<std::size_t>(below[a])] = k + a;
-
-    for (int c = begin; c < end; ++c)
-      for (SparseMatrix::InnerIterator it(A, to_caller_[static_cast<std::size_t>(c)]); it; ++it) {
-        const int i = from_caller_[static_cast<std::size_t>(it.row())];
-        if (i >= c) F(local[static_cast<std::size_t>(i)], c - begin) += it.value();
-      }
-    // Extend-add the children's updates (they are on top of the stack, the latest child last).
-    std::size_t children = 0;
-    while (children < update_owner.size() && parent_supernode_[static_cast<std::size_t>(update_owner[update_owner.size() - 1 - children])] == s)
-      ++children;
-    for (std::size_t q = update_owner.size() - children; q < update_owner.size(); ++q) {
-      const std::size_t child = static_cast<std::size_t>(update_owner[q]);
-      const int rc = row_start_[child + 1] - row_start_[child];
-      const int* child_rows = row_indices_.data() + row_start_[child];
-      const double* U = update_values.data() + update_offset[q];  // packed lower columns
-      for (int b = 0; b < rc; ++b) {
-        double* column = &F(0, local[static_cast<std::size_t>(child_rows[b])]);
-        for (int a = b; a < rc; ++a) column[local[static_cast<std::size_t>(child_rows[a])]] += *U++;
-      }
+  std::vector<std::vector<double>> updates(static_cast<std::size_t>(supernodes));
+  // Independent subtrees first, one list per thread (a partition fixed by analyze(); the
+  // numbers computed do not depend on it), then the remaining top of the tree.
+  const int threads = static_cast<int>(thread_lists_.size());
+  std::vector<Workspace> workspaces(static_cast<std::size_t>(std::max(threads, 1)));
+  std::vector<char> failed(static_cast<std::size_t>(std::max(threads, 1)), 0);
+  auto run_list = [&](int t) {
+    try {
+      for (int s : thread_lists_[static_cast<std::size_t>(t)])
+        if (!factor_supernode(s, A, workspaces[static_cast<std::size_t>(t)], updates)) {
+          failed[static_cast<std::size_t>(t)] = 1;
+          return;
+        }
+    } catch (...) {
+      failed[static_cast<std::size_t>(t)] = 2;
     }
-    if (children > 0) {
-      update_values.resize(update_offset[update_owner.size() - children]);
-      update_offset.resize(update_owner.size() - children);
-      update_owner.resize(update_owner.size() - children);
-    }
-
-    // Dense partial factorisation of the front, right-looking in panels of at most kPanelWidth
-    // columns: every kernel's inner dimension is a panel width, which keeps the summation order
-    // independent of Eigen's cache-size-dependent blocking.
-    for (int p = 0; p < k; p += kPanelWidth) {
-      const int b = std::min(kPanelWidth, k - p);
-      const int rest = m - p - b;
-      Eigen::Ref<Eigen::MatrixXd> diagonal = F.block(p, p, b, b);
-      Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Lower> llt(diagonal);
-      if (llt.info() != Eigen::Success) return false;
-      if (rest == 0) continue;
-      auto panel = F.block(p + b, p, rest, b);
-      diagonal.triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(panel);
-      F.block(p + b, p + b, rest, rest).selfadjointView<Eigen::Lower>().rankUpdate(panel, -1.0);
-    }
-    if (r > 0) {
-      update_owner.push_back(s);
-      update_offset.push_back(update_values.size());
-      // Only the lower triangle is ever read; store the columns' lower parts packed.
-      for (int b = 0; b < r; ++b) {
-        const double* column = front.data() + static_cast<std::size_t>(k + b) * static_cast<std::size_t>(m) + static_cast<std::size_t>(k + b);
-        update_values.insert(update_values.end(), column, column + (r - b));
-      }
-    }
-    Eigen::Map<Eigen::MatrixXd>(values_.data() + value_start_[u], m, k) = F.leftCols(k);
-    for (int c = begin; c < end; ++c) local[static_cast<std::size_t>(c)] = -1;
-    for (int a = 0; a < r; ++a) local[static_cast<std::size_t>(below[a])] = -1;
+  };
+  if (threads > 1) {
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(run_list, t);
+    run_list(0);
+    for (auto& thread : pool) thread.join();
+  } else if (threads == 1) {
+    run_list(0);
   }
+  for (char f : failed) {
+    if (f == 2) throw std::runtime_error("SupernodalCholesky: a worker thread failed (out of memory?)");
+    if (f == 1) return false;
+  }
+  for (int s : top_list_)
+    if (!factor_supernode(s, A, workspaces[0], updates)) return false;
   factorized_ = true;
   return true;
 }

@@ -24,6 +24,9 @@ namespace offsetopt {
 class SupernodalCholesky {
  public:
   static constexpr int kPanelWidth = 64;
+  // Independent subtrees of the assembly tree are factorised on this many threads by default (a
+  // partition fixed by the symbolic structure; every number computed is independent of it).
+  static constexpr int kDefaultThreads = 2;
 
   // Symbolic analysis of `pattern` (square, symmetric, both triangles stored, column-major).
   // Entries present in the pattern may be numerically zero; they are kept.
@@ -35,6 +38,9 @@ class SupernodalCholesky {
 
   // Solves A X = B for the last successful factorisation, in place (B is n by any).
   void solve_in_place(Eigen::MatrixXd& B) const;
+
+  // Threads for factorize() (>= 1); the results are bit-identical for any count.
+  void set_thread_count(int threads);
 
   Eigen::Index rows() const { return n_; }
   // Stored entries of L, explicit zeros of relaxed supernodes included.
@@ -51,10 +57,21 @@ class SupernodalCholesky {
   std::vector<int> row_start_;
   std::vector<int> row_indices_;
   std::vector<int> parent_supernode_;  // -1 at roots
+  std::vector<int> child_start_, child_list_;  // children of each supernode, increasing
+  std::vector<std::vector<int>> thread_lists_;  // supernodes per thread, increasing
+  std::vector<int> top_list_;                   // the rest, done after the threads, increasing
+
+  struct Workspace {
+    std::vector<int> local;
+    std::vector<double> front;
+  };
+  void plan_threads(int threads);
+  bool factor_supernode(int s, const Eigen::SparseMatrix<double>& A, Workspace& work, std::vector<std::vector<double>>& updates);
   // Dense column-major block of supernode s: (k + r) by k, at value_start_[s].
   std::vector<std::size_t> value_start_;
   std::vector<double> values_;
   double stored_nonzeros_ = 0.0;
+  int thread_count_ = kDefaultThreads;
   bool factorized_ = false;
 };
 

@@ -101,6 +101,32 @@ TEST_CASE("a large mesh system: the factor matches the predicted fill and solves
   CHECK(relative_error(solved, X) < 1e-8);
 }
 
+TEST_CASE("one, two and three threads give bit-identical solutions") {
+  const Mesh m = make_icosphere(1.0, 5);  // large enough for the subtrees to be split
+  const SparseMatrix L = cotan_laplacian(m.V, m.F);
+  SparseMatrix A = L * L;
+  A *= 30.0;
+  A.diagonal().array() += 1.0;
+  const FillReducingOrdering ordering = fill_reducing_ordering(A, m.V, L, 2);
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> to_new(A.rows());
+  for (Eigen::Index k = 0; k < A.rows(); ++k) to_new.indices()[ordering.new_to_old[static_cast<std::size_t>(k)]] = static_cast<int>(k);
+  SparseMatrix P;
+  P = A.selfadjointView<Eigen::Lower>().twistedBy(to_new);
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(P.rows(), 3);
+  Eigen::MatrixXd solutions[3];
+  for (int threads = 1; threads <= 3; ++threads) {
+    SupernodalCholesky solver;
+    solver.set_thread_count(threads);
+    solver.analyze(P);
+    REQUIRE(solver.factorize(P));
+    solutions[threads - 1] = B;
+    solver.solve_in_place(solutions[threads - 1]);
+  }
+  CHECK(solutions[0] == solutions[1]);
+  CHECK(solutions[0] == solutions[2]);
+  CHECK(relative_error(P * solutions[0], B) < 1e-9);
+}
+
 TEST_CASE("an indefinite matrix is reported, not factorised") {
   SparseMatrix A(3, 3);
   std::vector<Eigen::Triplet<double>> t = {{0, 0, 1.0}, {1, 1, -2.0}, {2, 2, 1.0}, {0, 1, 0.5}, {1, 0, 0.5}};
