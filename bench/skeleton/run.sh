@@ -12,6 +12,8 @@ cmake --build "$build" -j2 --target offsetopt_core >/dev/null
 exe="$build/bench_skeleton"
 g++ -std=c++17 -O3 -DNDEBUG -ffp-contract=off -fno-fast-math -I"$root/src" -isystem /usr/include/eigen3 \
   "$here/bench_skeleton.cpp" "$build/liboffsetopt_core.a" -o "$exe"
+echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "seconds = wall clock of laplacian_contraction (ordering, symbolic analysis, all steps); cpu = user time of all threads"
 "$exe" sphere 5        # 10242 vertices
 "$exe" torus 200 50    # 10000
 "$exe" sphere 6        # 40962

@@ -271,7 +271,7 @@ void SupernodalCholesky::plan_threads(int threads) {
 }
 
 bool SupernodalCholesky::factor_supernode(int s, const SparseMatrix& A, Workspace& work,
-                                          std::vector<std::vector<double>>& updates) {
+                                          std::vector<std::vector<double>>& updates, bool split_across_threads) {
   const std::size_t u = static_cast<std::size_t>(s);
   const int begin = first_column_[u], end = first_column_[u + 1];
   const int k = end - begin;
@@ -318,7 +318,30 @@ bool SupernodalCholesky::factor_supernode(int s, const SparseMatrix& A, Workspac
     if (!ok || rest == 0) continue;
     auto panel = F.block(p + b, p, rest, b);
     diagonal.triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(panel);
-    F.block(p + b, p + b, rest, rest).selfadjointView<Eigen::Lower>().rankUpdate(panel, -1.0);
+    auto trailing = F.block(p + b, p + b, rest, rest);
+    if (rest < kSplitUpdate) {
+      trailing.selfadjointView<Eigen::Lower>().rankUpdate(panel, -1.0);
+      continue;
+    }
+    // Large trailing updates are always cut in the same two parts of about equal work (columns
+    // before and after 30% of the width), whether or not a second thread takes one of them, so
+    // the result is the same for any thread count.
+    const int cut = rest * 3 / 10;
+    auto left_part = [&] {
+      trailing.topLeftCorner(cut, cut).selfadjointView<Eigen::Lower>().rankUpdate(panel.topRows(cut), -1.0);
+      trailing.bottomLeftCorner(rest - cut, cut).noalias() -= panel.bottomRows(rest - cut) * panel.topRows(cut).transpose();
+    };
+    auto right_part = [&] {
+      trailing.bottomRightCorner(rest - cut, rest - cut).selfadjointView<Eigen::Lower>().rankUpdate(panel.bottomRows(rest - cut), -1.0);
+    };
+    if (split_across_threads) {
+      std::thread helper(right_part);
+      left_part();
+      helper.join();
+    } else {
+      left_part();
+      right_part();
+    }
   }
   if (ok && r > 0) {
     std::vector<double>& update = updates[u];
@@ -348,7 +371,7 @@ bool SupernodalCholesky::factorize(const SparseMatrix& A) {
   auto run_list = [&](int t) {
     try {
       for (int s : thread_lists_[static_cast<std::size_t>(t)])
-        if (!factor_supernode(s, A, workspaces[static_cast<std::size_t>(t)], updates)) {
+        if (!factor_supernode(s, A, workspaces[static_cast<std::size_t>(t)], updates, false)) {
           failed[static_cast<std::size_t>(t)] = 1;
           return;
         }
@@ -368,8 +391,9 @@ bool SupernodalCholesky::factorize(const SparseMatrix& A) {
     if (f == 2) throw std::runtime_error("SupernodalCholesky: a worker thread failed (out of memory?)");
     if (f == 1) return false;
   }
+  // The top of the tree holds the largest fronts: their trailing updates use the second thread.
   for (int s : top_list_)
-    if (!factor_supernode(s, A, workspaces[0], updates)) return false;
+    if (!factor_supernode(s, A, workspaces[0], updates, thread_count_ > 1)) return false;
   factorized_ = true;
   return true;
 }

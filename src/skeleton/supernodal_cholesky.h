@@ -27,6 +27,9 @@ class SupernodalCholesky {
   // Independent subtrees of the assembly tree are factorised on this many threads by default (a
   // partition fixed by the symbolic structure; every number computed is independent of it).
   static constexpr int kDefaultThreads = 2;
+  // Trailing updates of at least this many rows are computed in two fixed parts (one per thread
+  // at the top of the tree).
+  static constexpr int kSplitUpdate = 256;
 
   // Symbolic analysis of `pattern` (square, symmetric, both triangles stored, column-major).
   // Entries present in the pattern may be numerically zero; they are kept.
@@ -66,7 +69,8 @@ class SupernodalCholesky {
     std::vector<double> front;
   };
   void plan_threads(int threads);
-  bool factor_supernode(int s, const Eigen::SparseMatrix<double>& A, Workspace& work, std::vector<std::vector<double>>& updates);
+  bool factor_supernode(int s, const Eigen::SparseMatrix<double>& A, Workspace& work, std::vector<std::vector<double>>& updates,
+                        bool split_across_threads);
   // Dense column-major block of supernode s: (k + r) by k, at value_start_[s].
   std::vector<std::size_t> value_start_;
   std::vector<double> values_;
