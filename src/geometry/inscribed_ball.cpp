@@ -33,7 +33,7 @@ InscribedBall inscribed_ball(const TriangleBvh& bvh, const Eigen::Vector3d& x, c
 }
 
 double inscribed_radius_by_rays(const TriangleBvh& bvh, const Eigen::Vector3d& x, const Eigen::Vector3d& d, double max_radius,
-                                const std::vector<int>& ignored_faces) {
+                                const std::vector<int>& ignored_faces, double stop_below) {
   // cos and sin of 20, 40, 60 degrees and of the eight azimuths (literal constants: no libm).
   static const double cone_cos[3] = {0.93969262078590838, 0.76604444311897804, 0.5};
   static const double cone_sin[3] = {0.34202014332566873, 0.64278760968653933, 0.86602540378443865};
@@ -54,8 +54,8 @@ double inscribed_radius_by_rays(const TriangleBvh& bvh, const Eigen::Vector3d& x
     if (hit.hit) radius = std::min(radius, hit.t / (2.0 * cosine));
   };
   probe(d, 1.0);
-  for (int c = 0; c < 3; ++c)
-    for (int k = 0; k < 8; ++k)
+  for (int c = 0; c < 3 && radius > stop_below; ++c)
+    for (int k = 0; k < 8 && radius > stop_below; ++k)
       probe(cone_cos[c] * d + cone_sin[c] * (azimuth_cos[k] * e1 + azimuth_sin[k] * e2), cone_cos[c]);
   return radius;
 }

@@ -33,8 +33,9 @@ InscribedBall inscribed_ball(const TriangleBvh& bvh, const Eigen::Vector3d& x, c
 // of 25 directions (d and three cones at 20, 40 and 60 degrees around it, eight rays each) bounds
 // the inscribed radius from above. Cost: 25 ray casts, independent of how many faces are nearly
 // equidistant from the centre (the closest-point search above visits all of them on a sphere).
-// Returns at most `max_radius` (e.g. half the chord along d).
+// Returns at most `max_radius` (e.g. half the chord along d). Stops early, returning a value at
+// most `stop_below`, once the radius is known to be that small (for callers that only compare).
 double inscribed_radius_by_rays(const TriangleBvh& bvh, const Eigen::Vector3d& x, const Eigen::Vector3d& inward_unit_normal,
-                                double max_radius, const std::vector<int>& ignored_faces = {});
+                                double max_radius, const std::vector<int>& ignored_faces = {}, double stop_below = 0.0);
 
 }  // namespace offsetopt

@@ -76,9 +76,13 @@ OffsetField offset_field(const Mesh& mesh, const Vertices& contracted, const Tri
           // within a few per cent of the part's radius.
           if (options.shallow_fraction > 0.0 && direction_enters_solid(V, F, ray.ignored_faces, vertex, -normal)) {
             const RayCastHit opposite = ray_cast_closest(bvh, x, -normal, ray);
-            // rho <= half the chord along -n, so the ball search can only succeed below this.
-            if (opposite.hit && length * cosine < options.shallow_fraction * 0.5 * opposite.t) {
-              const double rho = inscribed_radius_by_rays(bvh, x, -normal, 0.5 * opposite.t, ray.ignored_faces);
+            // rho is at most half the chord along -n and at most exit.t / (2 cos) (the ball
+            // through the exit along v), so the ray search runs only when it can succeed, and
+            // stops as soon as rho is known to be too small.
+            const double depth = length * cosine;
+            const double rho_bound = std::min(opposite.hit ? 0.5 * opposite.t : 0.0, exit.hit ? 0.5 * exit.t / cosine : 0.0);
+            if (opposite.hit && depth < options.shallow_fraction * rho_bound) {
+              const double rho = inscribed_radius_by_rays(bvh, x, -normal, rho_bound, ray.ignored_faces, depth / options.shallow_fraction);
               if (length * cosine < options.shallow_fraction * rho) {
                 source = OffsetSource::shallow;
                 v = -normal;

@@ -2,7 +2,10 @@
 
 #include <Eigen/OrderingMethods>
 #include <algorithm>
+#include <cstdint>
 #include <numeric>
+#include <stdexcept>
+#include <thread>
 
 namespace offsetopt {
 
@@ -34,14 +37,17 @@ void append_amd(const SparseMatrix& pattern, const std::vector<int>& ids, std::v
   for (int k : amd_order(sub)) order.push_back(ids[static_cast<std::size_t>(k)]);
 }
 
+// Geometric nested dissection on `graph` (the mesh's 1-ring graph) for a matrix whose pattern
+// links vertices up to `hops` apart (2 for L^T L): a separator is the band of one half within
+// `hops` steps of the other.
 class NestedDissection {
  public:
-  NestedDissection(const SparseMatrix& pattern, const Vertices& positions)
-      : pattern_(pattern), positions_(positions), side_(static_cast<std::size_t>(pattern.rows()), 0),
-        local_(static_cast<std::size_t>(pattern.rows()), -1) {}
+  NestedDissection(const SparseMatrix& pattern, const SparseMatrix& graph, int hops, const Vertices& positions)
+      : pattern_(pattern), graph_(graph), hops_(hops), positions_(positions), side_(static_cast<std::size_t>(graph.rows()), 0),
+        local_(static_cast<std::size_t>(graph.rows()), -1), key_(static_cast<std::size_t>(graph.rows()), 0.0) {}
 
   std::vector<int> run() {
-    std::vector<int> all(static_cast<std::size_t>(pattern_.rows()));
+    std::vector<int> all(static_cast<std::size_t>(graph_.rows()));
     std::iota(all.begin(), all.end(), 0);
     order_.reserve(all.size());
     dissect(all, 0);
@@ -50,6 +56,52 @@ class NestedDissection {
 
  private:
   static constexpr std::size_t kLeafSize = 256;
+  // The first cuts try 13 directions (axes, face and body diagonals), the others the 3 axes:
+  // the top separators decide most of the fill.
+  static constexpr int kManyDirectionsDepth = 3;
+  static constexpr std::size_t kManyDirectionsSize = 4096;
+
+  // Splits `ids` at the median along d and returns the separator: the vertices of the half with
+  // fewer vertices next to the other half that lie within hops_ edges of it. On return side_
+  // marks the halves 1 and 2 and the separator 3.
+  std::vector<int> split(std::vector<int>& ids, std::size_t middle, const double* d) {
+    for (int i : ids) key_[static_cast<std::size_t>(i)] = positions_(i, 0) * d[0] + positions_(i, 1) * d[1] + positions_(i, 2) * d[2];
+    std::nth_element(ids.begin(), ids.begin() + static_cast<std::ptrdiff_t>(middle), ids.end(), [&](int a, int b) {
+      const double pa = key_[static_cast<std::size_t>(a)], pb = key_[static_cast<std::size_t>(b)];
+      return pa < pb || (pa == pb && a < b);
+    });
+    for (std::size_t k = 0; k < ids.size(); ++k) side_[static_cast<std::size_t>(ids[k])] = k < middle ? 1 : 2;
+    // Vertices of each half with a neighbour in the other half: the first layer of a separator.
+    std::vector<int> boundary[3];
+    for (int i : ids) {
+      const int mine = side_[static_cast<std::size_t>(i)];
+      for (SparseMatrix::InnerIterator it(graph_, i); it; ++it) {
+        const int other = side_[static_cast<std::size_t>(it.row())];
+        if (other != 0 && other != mine) {
+          boundary[mine].push_back(i);
+          break;
+        }
+      }
+    }
+    const int separator_side = boundary[1].size() <= boundary[2].size() ? 1 : 2;
+    std::vector<int> separator = std::move(boundary[separator_side]);
+    for (int i : separator) side_[static_cast<std::size_t>(i)] = 3;
+    // Further layers, hops_ in all, grown inside the separator's half.
+    std::size_t layer_begin = 0;
+    for (int hop = 1; hop < hops_; ++hop) {
+      const std::size_t layer_end = separator.size();
+      for (std::size_t k = layer_begin; k < layer_end; ++k)
+        for (SparseMatrix::InnerIterator it(graph_, separator[k]); it; ++it) {
+          const std::size_t j = static_cast<std::size_t>(it.row());
+          if (side_[j] == separator_side) {
+            side_[j] = 3;
+            separator.push_back(static_cast<int>(j));
+          }
+        }
+      layer_begin = layer_end;
+    }
+    return separator;
+  }
 
   void dissect(std::vector<int> ids, int depth) {
     if (ids.size() <= kLeafSize || depth > 48) {
@@ -57,55 +109,44 @@ class NestedDissection {
       append_amd(pattern_, ids, local_, order_);
       return;
     }
+    static const double directions[13][3] = {{1, 0, 0},  {0, 1, 0},  {0, 0, 1},  {1, 1, 0},  {1, -1, 0},
+                                             {1, 0, 1},  {1, 0, -1}, {0, 1, 1},  {0, 1, -1}, {1, 1, 1},
+                                             {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+    const int direction_count = depth < kManyDirectionsDepth && ids.size() > kManyDirectionsSize ? 13 : 3;
     const std::size_t middle = ids.size() / 2;
-    std::vector<int> best_first, best_second, best_separator;
-    bool have_best = false;
-    for (int axis = 0; axis < 3; ++axis) {
-      std::vector<int> sorted = ids;
-      std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(middle), sorted.end(), [&](int a, int b) {
-        const double pa = positions_(a, axis), pb = positions_(b, axis);
-        return pa < pb || (pa == pb && a < b);
-      });
-      for (std::size_t k = 0; k < sorted.size(); ++k) side_[static_cast<std::size_t>(sorted[k])] = k < middle ? 1 : 2;
-      // Boundary of each half in the matrix graph; the smaller one becomes the separator.
-      std::vector<int> inner_low, boundary_low, inner_high, boundary_high;
-      for (std::size_t k = 0; k < sorted.size(); ++k) {
-        const int i = sorted[k];
-        const int other = k < middle ? 2 : 1;
-        bool on_boundary = false;
-        for (SparseMatrix::InnerIterator it(pattern_, i); it; ++it)
-          if (side_[static_cast<std::size_t>(it.row())] == other) {
-            on_boundary = true;
-            break;
-          }
-        if (k < middle) (on_boundary ? boundary_low : inner_low).push_back(i);
-        else (on_boundary ? boundary_high : inner_high).push_back(i);
+    int best_direction = 0;
+    std::size_t best_size = 0;
+    for (int direction = 0; direction < direction_count; ++direction) {
+      const std::size_t size = split(ids, middle, directions[direction]).size();
+      if (direction == 0 || size < best_size) {
+        best_size = size;
+        best_direction = direction;
       }
-      for (int i : sorted) side_[static_cast<std::size_t>(i)] = 0;
-      const bool low_is_separator = boundary_low.size() <= boundary_high.size();
-      std::vector<int>& separator = low_is_separator ? boundary_low : boundary_high;
-      if (!have_best || separator.size() < best_separator.size()) {
-        have_best = true;
-        if (low_is_separator) {
-          best_first = inner_low;
-          best_second.assign(sorted.begin() + static_cast<std::ptrdiff_t>(middle), sorted.end());
-        } else {
-          best_first.assign(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(middle));
-          best_second = inner_high;
-        }
-        best_separator = separator;
-      }
+      for (int i : ids) side_[static_cast<std::size_t>(i)] = 0;
     }
-    dissect(std::move(best_first), depth + 1);
-    dissect(std::move(best_second), depth + 1);
-    std::sort(best_separator.begin(), best_separator.end());
-    append_amd(pattern_, best_separator, local_, order_);
+    std::vector<int> separator = split(ids, middle, directions[best_direction]);
+    std::vector<int> first, second;
+    for (int i : ids) {
+      const int side = side_[static_cast<std::size_t>(i)];
+      if (side == 1) first.push_back(i);
+      else if (side == 2) second.push_back(i);
+      side_[static_cast<std::size_t>(i)] = 0;
+    }
+    ids.clear();
+    ids.shrink_to_fit();
+    dissect(std::move(first), depth + 1);
+    dissect(std::move(second), depth + 1);
+    std::sort(separator.begin(), separator.end());
+    append_amd(pattern_, separator, local_, order_);
   }
 
   const SparseMatrix& pattern_;
+  const SparseMatrix& graph_;
+  const int hops_;
   const Vertices& positions_;
-  std::vector<int> side_;
+  std::vector<std::uint8_t> side_;  // bytes: the random accesses of the cuts stay in cache
   std::vector<int> local_;
+  std::vector<double> key_;
   std::vector<int> order_;
 };
 
@@ -150,16 +191,35 @@ CholeskyCounts cholesky_counts(const SparseMatrix& pattern, const std::vector<in
   return out;
 }
 
-FillReducingOrdering fill_reducing_ordering(const SparseMatrix& pattern, const Vertices& positions) {
-  FillReducingOrdering amd;
-  amd.method = "amd";
-  amd.new_to_old = amd_order(pattern);
-  amd.counts = cholesky_counts(pattern, amd.new_to_old);
-  if (positions.rows() != pattern.rows()) return amd;
+FillReducingOrdering fill_reducing_ordering(const SparseMatrix& pattern, const Vertices& positions, const SparseMatrix& graph,
+                                           int hops) {
+  const bool try_dissection = positions.rows() == pattern.rows() && graph.rows() == pattern.rows() && hops >= 1;
+  // The two candidates are independent: nested dissection runs on a second thread.
   FillReducingOrdering nd;
-  nd.method = "nested_dissection";
-  nd.new_to_old = NestedDissection(pattern, positions).run();
-  nd.counts = cholesky_counts(pattern, nd.new_to_old);
+  std::thread worker;
+  bool worker_failed = false;
+  if (try_dissection)
+    worker = std::thread([&] {
+      try {
+        nd.method = "nested_dissection";
+        nd.new_to_old = NestedDissection(pattern, graph, hops, positions).run();
+        nd.counts = cholesky_counts(pattern, nd.new_to_old);
+      } catch (...) {
+        worker_failed = true;
+      }
+    });
+  FillReducingOrdering amd;
+  try {
+    amd.method = "amd";
+    amd.new_to_old = amd_order(pattern);
+    amd.counts = cholesky_counts(pattern, amd.new_to_old);
+  } catch (...) {
+    if (worker.joinable()) worker.join();
+    throw;
+  }
+  if (worker.joinable()) worker.join();
+  if (worker_failed) throw std::runtime_error("fill_reducing_ordering: nested dissection failed (out of memory?)");
+  if (!try_dissection) return amd;
   return nd.counts.flops < amd.counts.flops ? nd : amd;
 }
 

@@ -4,9 +4,10 @@
 //   - approximate minimum degree (Eigen's AMD, Amestoy, Davis & Duff 1996), best on real models
 //     whose limbs and ears give small natural separators;
 //   - geometric nested dissection (George 1973): recursive median splits of the vertex positions
-//     along the axis (of three tried) whose induced vertex separator in the matrix graph is
-//     smallest, separators numbered last, small parts by AMD. On sphere-like meshes it needs about
-//     a third fewer flops than AMD.
+//     along the direction (13 tried for large parts: axes, face and body diagonals; 3 axes for
+//     small ones) cutting the fewest mesh edges; the separator is the band of one half within
+//     `hops` edges of the other (2 for L^T L), numbered last; small parts by AMD. On sphere-like
+//     meshes it needs about half the flops of AMD.
 // Both are deterministic functions of the pattern and the positions.
 #pragma once
 #include <Eigen/Sparse>
@@ -34,7 +35,10 @@ struct FillReducingOrdering {
   CholeskyCounts counts;
 };
 
-// `positions` gives one point per row of `pattern` (#rows by 3), used by nested dissection.
-FillReducingOrdering fill_reducing_ordering(const Eigen::SparseMatrix<double>& pattern, const Vertices& positions);
+// `positions` gives one point per row of `pattern` (#rows by 3) and `graph` the mesh's 1-ring
+// adjacency (any symmetric pattern, e.g. the Laplacian's), such that `pattern` links exactly the
+// vertices at most `hops` edges apart; both are used by nested dissection only.
+FillReducingOrdering fill_reducing_ordering(const Eigen::SparseMatrix<double>& pattern, const Vertices& positions,
+                                           const Eigen::SparseMatrix<double>& graph, int hops);
 
 }  // namespace offsetopt

@@ -1,12 +1,13 @@
 #include "skeleton/laplacian_contraction.h"
 
 #include <Eigen/Geometry>
-#include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "skeleton/fill_reducing_ordering.h"
+#include "skeleton/supernodal_cholesky.h"
 #include "spectral/cotan_laplacian.h"
 
 namespace offsetopt {
@@ -42,6 +43,8 @@ void check_contraction_options(const ContractionOptions& o) {
   };
   require(std::isfinite(o.initial_laplacian_weight) && o.initial_laplacian_weight > 0.0,
           "initial_laplacian_weight must be finite and > 0");
+  require(std::isfinite(o.initial_laplacian_weight_per_area) && o.initial_laplacian_weight_per_area >= 0.0,
+          "initial_laplacian_weight_per_area must be finite and >= 0");
   require(std::isfinite(o.laplacian_weight_growth) && o.laplacian_weight_growth >= 1.0 && o.laplacian_weight_growth <= 100.0,
           "laplacian_weight_growth must be in [1, 100]");
   require(std::isfinite(o.attraction_weight) && o.attraction_weight > 0.0, "attraction_weight must be finite and > 0");
@@ -87,7 +90,7 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
   {
     const Eigen::SparseMatrix<double> L0 = cotan_laplacian(normalised, F, cotan_options);
     const Eigen::SparseMatrix<double> pattern = L0 * L0;
-    FillReducingOrdering ordering = fill_reducing_ordering(pattern, normalised);
+    FillReducingOrdering ordering = fill_reducing_ordering(pattern, normalised, L0, 2);
     new_to_old = std::move(ordering.new_to_old);
     result.ordering = ordering.method;
     result.predicted_factor_flops = ordering.counts.flops;
@@ -105,10 +108,12 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
   if (!(initial.area > 0.0)) return result;
   const Eigen::VectorXd initial_ring = initial.one_ring_area;
 
-  double laplacian_weight = options.initial_laplacian_weight / std::sqrt(initial.area / static_cast<double>(F.rows()));
+  const double mean_face_area = initial.area / static_cast<double>(F.rows());
+  double laplacian_weight = std::max(options.initial_laplacian_weight / std::sqrt(mean_face_area),
+                                     options.initial_laplacian_weight_per_area / mean_face_area);
   Eigen::VectorXd attraction = Eigen::VectorXd::Constant(n, options.attraction_weight);
 
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> solver;
+  SupernodalCholesky solver;
   bool analysed = false;
   result.status = ContractionStatus::step_cap;
   for (int step = 1; step <= options.max_steps; ++step) {
@@ -119,17 +124,16 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
     const Eigen::VectorXd attraction_squared = attraction.array().square();
     A.diagonal() += attraction_squared;
     if (!analysed) {
-      solver.analyzePattern(A);
+      solver.analyze(A);
       analysed = true;
     }
-    solver.factorize(A);
-    if (solver.info() != Eigen::Success) {
+    if (!solver.factorize(A)) {
       result.status = ContractionStatus::factorization_failed;
       break;
     }
-    const Eigen::MatrixXd rhs = attraction_squared.asDiagonal() * Eigen::MatrixXd(X);
-    const Eigen::MatrixXd solution = solver.solve(rhs);
-    if (solver.info() != Eigen::Success || !solution.allFinite()) {
+    Eigen::MatrixXd solution = attraction_squared.asDiagonal() * Eigen::MatrixXd(X);
+    solver.solve_in_place(solution);
+    if (!solution.allFinite()) {
       result.status = ContractionStatus::factorization_failed;
       break;
     }

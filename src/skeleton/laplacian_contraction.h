@@ -11,8 +11,9 @@
 // vertices whose neighbourhood has already collapsed are held in place. The normal equations
 //     (W_L^2 L_t^T L_t + W_H^2) X' = W_H^2 X_t
 // are symmetric positive definite (W_H > 0); their sparsity pattern (the 2-ring of the mesh) never
-// changes, so it is analysed once (AMD ordering) and refactorised numerically every step, the
-// three coordinates solved as one 3-column right-hand side.
+// changes, so it is analysed once (fill-reducing ordering, skeleton/fill_reducing_ordering.h;
+// supernodal structure, skeleton/supernodal_cholesky.h) and refactorised numerically every step,
+// the three coordinates solved as one 3-column right-hand side.
 //
 // The contraction runs in a normalised frame (bounding box centred at the origin, diagonal 1) so
 // the weights do not depend on the model's units; the result is returned in the input frame.
@@ -35,20 +36,28 @@ struct ContractionOptions {
   // 0.1 reproduces the prototype's 1/(10 sqrt(A)); Au et al. state 1e-3 sqrt(A), which in a
   // diagonal-1 frame is orders of magnitude weaker and needs many more steps.
   double initial_laplacian_weight = 0.1;
+  // ... but at least initial_laplacian_weight_per_area / (mean face area). The Laplacian term
+  // contracts a feature of size l once W_L * (face area) / l^2 is of order one, so with W_L0
+  // proportional to 1/sqrt(A) a finer mesh spends more steps before anything happens (an
+  // icosphere of 40k vertices: volume still 0.92 after 3 steps); W_L0 proportional to 1/A
+  // makes the step count independent of the resolution. 1e-3 leaves meshes up to a few
+  // thousand vertices (face area above 1e-4 of the squared diagonal) on the 1/sqrt(A) rule.
+  double initial_laplacian_weight_per_area = 1e-3;
   // s_L: W_L is multiplied by this after every step (Au et al.: 2; the prototype: 3).
   double laplacian_weight_growth = 3.0;
   // W_H0: the initial attraction weight of every vertex to its current position.
   double attraction_weight = 1.0;
   // Meso-skeleton stopping rule: stop after the first step whose enclosed volume is at most this
   // fraction of the input's. Measured on real models (armadillo, camel, elephant, dolphin,
-  // fertility, horse) and the demo meshes: the volume drops from about 0.3-0.7 to 0.003-0.07 in
-  // one step once W_L is strong enough; stopping right after that drop gave the fewest unusable
-  // directions (fallbacks 3-11%), while every further step collapsed thin parts onto curves
-  // and pulled their points off the medial axis (fallbacks 17-55% two steps later). 0 disables
-  // the rule (full contraction up to max_steps).
+  // fertility, horse, two kittens) and the demo meshes: the volume drops from about 0.2-0.7 to
+  // 0.003-0.08 in one step once W_L is strong enough; stopping right after that drop left the
+  // fewest vertices on the -n fallback of the offset field (4-12% on the real models), while
+  // every further step collapsed thin parts onto curves and pulled their points off the medial
+  // axis (17-55% two steps later). 0 disables the rule (full contraction up to max_steps; Au et
+  // al. stop a full contraction at 1e-6).
   double stop_volume_ratio = 0.1;
-  // Step cap: fine meshes contract more slowly per step (W_L0 grows only like 1/edge length), an
-  // icosphere of 10k vertices needs 5 steps, 40k about 6.
+  // Step cap. With the weights above the rule fires after 2-4 steps on every mesh tried
+  // (spheres of 2.5k to 160k vertices: 4).
   int max_steps = 8;
   // Guards (see above).
   double cotan_sine_floor = 1e-3;
