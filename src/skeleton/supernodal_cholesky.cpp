@@ -405,15 +405,26 @@ void SupernodalCholesky::solve_in_place(Eigen::MatrixXd& B) const {
   Eigen::MatrixXd X(n_, nrhs);
   for (Eigen::Index j = 0; j < n_; ++j) X.row(j) = B.row(to_caller_[static_cast<std::size_t>(j)]);
   const int supernodes = supernode_count();
-  Eigen::MatrixXd scratch;
+  // As in factorize(), every product's inner dimension is cut into chunks of at most
+  // kPanelWidth, summed in a fixed order, so no cache-dependent blocking changes the rounding.
+  Eigen::MatrixXd scratch, gathered;
   for (int s = 0; s < supernodes; ++s) {  // L y = b
     const std::size_t u = static_cast<std::size_t>(s);
     const int begin = first_column_[u], k = first_column_[u + 1] - begin, r = row_start_[u + 1] - row_start_[u];
     const Eigen::Map<const Eigen::MatrixXd> block(values_.data() + value_start_[u], k + r, k);
     auto Xs = X.middleRows(begin, k);
-    block.topRows(k).triangularView<Eigen::Lower>().solveInPlace(Xs);
+    for (int p = 0; p < k; p += kPanelWidth) {
+      const int b = std::min(kPanelWidth, k - p);
+      auto panel_rows = Xs.middleRows(p, b);
+      block.block(p, p, b, b).triangularView<Eigen::Lower>().solveInPlace(panel_rows);
+      if (p + b < k) Xs.middleRows(p + b, k - p - b).noalias() -= block.block(p + b, p, k - p - b, b) * panel_rows;
+    }
     if (r == 0) continue;
-    scratch.noalias() = block.bottomRows(r) * Xs;
+    scratch.setZero(r, nrhs);
+    for (int p = 0; p < k; p += kPanelWidth) {
+      const int b = std::min(kPanelWidth, k - p);
+      scratch.noalias() += block.block(k, p, r, b) * Xs.middleRows(p, b);
+    }
     const int* below = row_indices_.data() + row_start_[u];
     for (int a = 0; a < r; ++a) X.row(below[a]) -= scratch.row(a);
   }
@@ -424,11 +435,22 @@ void SupernodalCholesky::solve_in_place(Eigen::MatrixXd& B) const {
     auto Xs = X.middleRows(begin, k);
     if (r > 0) {
       const int* below = row_indices_.data() + row_start_[u];
-      scratch.resize(r, nrhs);
-      for (int a = 0; a < r; ++a) scratch.row(a) = X.row(below[a]);
-      Xs.noalias() -= block.bottomRows(r).transpose() * scratch;
+      gathered.resize(r, nrhs);
+      for (int a = 0; a < r; ++a) gathered.row(a) = X.row(below[a]);
+      for (int q = 0; q < r; q += kPanelWidth) {
+        const int b = std::min(kPanelWidth, r - q);
+        Xs.noalias() -= block.block(k + q, 0, b, k).transpose() * gathered.middleRows(q, b);
+      }
     }
-    block.topRows(k).triangularView<Eigen::Lower>().transpose().solveInPlace(Xs);
+    for (int p = ((k - 1) / kPanelWidth) * kPanelWidth; p >= 0; p -= kPanelWidth) {
+      const int b = std::min(kPanelWidth, k - p);
+      auto panel_rows = Xs.middleRows(p, b);
+      for (int q = p + b; q < k; q += kPanelWidth) {
+        const int c = std::min(kPanelWidth, k - q);
+        panel_rows.noalias() -= block.block(q, p, c, b).transpose() * Xs.middleRows(q, c);
+      }
+      block.block(p, p, b, b).triangularView<Eigen::Lower>().transpose().solveInPlace(panel_rows);
+    }
   }
   for (Eigen::Index j = 0; j < n_; ++j) B.row(to_caller_[static_cast<std::size_t>(j)]) = X.row(j);
 }

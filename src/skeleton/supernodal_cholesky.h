@@ -12,8 +12,10 @@
 // The matrix is used in the order given (the caller applies a fill-reducing ordering); internally
 // the columns are renumbered by a postorder of the elimination tree, which changes neither the
 // fill nor the result's meaning. Each front is factorised right-looking in panels of at most
-// kPanelWidth columns, so every dense kernel's inner dimension stays below Eigen's smallest cache
-// block: the summation order, and so every bit of the result, is the same on every machine.
+// kPanelWidth columns, and the solves cut their products the same way, so every dense kernel's
+// inner dimension stays below Eigen's smallest cache block (Eigen splits the inner dimension at
+// 120 or more for any L1 cache of 8 KB or more): the summation order, and so every bit of the
+// result, is the same on every machine.
 #pragma once
 #include <Eigen/Core>
 #include <Eigen/Sparse>

@@ -86,7 +86,7 @@ TEST_CASE("segment against triangle, including segments in the triangle's plane"
   CHECK_FALSE(segment_intersects_triangle({1, 1, 0}, {2, 1, 0}, p, q, r));    // in plane, outside
 }
 
-TEST_CASE("a closed sphere has no self-intersections; a vertex pushed through the far side has") {
+TEST_CASE("a closed sphere has no self-intersections, a vertex pushed through the far side has") {
   Mesh sphere = make_icosphere(1.0, 3);
   CHECK(self_intersections(TriangleBvh(sphere.V, sphere.F)).pairs.empty());
   // Pull vertex 0 (at some point on the sphere) through the centre to beyond the antipode.

@@ -86,7 +86,7 @@ TEST_CASE("a torus contracts to its core circle") {
   CHECK(worst < 0.1 * r_tube);
 }
 
-TEST_CASE("one step equals the dense least-squares solution of [W_L L; W_H] X = [0; W_H X]") {
+TEST_CASE("one step equals the dense least-squares solution of the stacked system (W_L L, W_H) X = (0, W_H X_t)") {
   // A lumpy sphere so the cotangent weights are not all alike.
   Mesh m = make_icosphere(1.0, 2);
   for (Eigen::Index i = 0; i < m.V.rows(); ++i) m.V.row(i) *= 1.0 + 0.2 * m.V(i, 0) * m.V(i, 1) + 0.1 * m.V(i, 2);
