@@ -9,6 +9,7 @@
 #include "cli/cli_support.h"
 #include "cli/commands.h"
 #include "mesh/load_mesh.h"
+#include "util/deterministic_eigen.h"
 
 namespace {
 
@@ -35,6 +36,7 @@ void print_usage(std::FILE* out) {
 
 int main(int argc, char** argv) {
   using namespace offsetopt::cli;
+  offsetopt::use_deterministic_eigen_blocking();
   if (argc < 2) {
     print_usage(stderr);
     return kExitBadInput;

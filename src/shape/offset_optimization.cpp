@@ -439,7 +439,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   if (thin_count > 0)
     result.warnings.push_back(std::to_string(thin_count) + " vertices lie in parts thinner than two walls; those parts stay solid");
   if (field.fallback_count > 0)
-    result.warnings.push_back(std::to_string(field.fallback_count) + " vertices move along the inward normal (no usable skeleton direction)");
+    result.warnings.push_back(std::to_string(field.fallback_count) + " vertices move along the inward normal (skeleton direction unusable or too shallow)");
   if (verification.goal_met && verification.valid) {
     result.status = OptimizeStatus::verified;
   } else {

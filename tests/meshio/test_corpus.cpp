@@ -96,7 +96,7 @@ TEST_CASE("bad corpus: strict load_mesh throws MeshInputError with the expected 
   }
 }
 
-TEST_CASE("accepted corpus: load_mesh succeeds with the expected warning; check gives the stated code") {
+TEST_CASE("accepted corpus: load_mesh succeeds with the expected warning, and check gives the stated code") {
   const auto rows = read_table(kData + "accepted/EXPECTED.txt");
   check_table_covers_folder(kData + "accepted", rows);
   TempDir dir;

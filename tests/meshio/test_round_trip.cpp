@@ -33,7 +33,7 @@ Mesh read_back(const TempDir& dir, const std::string& name, const std::string& b
 
 }  // namespace
 
-TEST_CASE("written OBJ and binary PLY read back bit-identical; binary STL as float32") {
+TEST_CASE("written OBJ and binary PLY read back bit-identical, binary STL as float32") {
   TempDir dir;
   for (const auto& [label, mesh] : test_meshes()) {
     CAPTURE(label);

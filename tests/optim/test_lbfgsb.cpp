@@ -303,7 +303,7 @@ TEST_CASE("lbfgsb: bad input is reported, not thrown") {
         LbfgsbStatus::NumericalIssue);
 }
 
-TEST_CASE("lbfgsb: non-finite trial values are backed off; early stops keep the best iterate") {
+TEST_CASE("lbfgsb: non-finite trial values are backed off, and early stops keep the best iterate") {
   // f = −log-barrier-like: defined only for x < 1 (NaN beyond), minimum at x = 0.5 in each
   // coordinate; the first long steps land in the undefined region.
   ObjectiveFunction f = [](const VectorXd& x, VectorXd& g) {

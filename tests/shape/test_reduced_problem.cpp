@@ -123,7 +123,7 @@ TEST_CASE("reduced problem gradients match finite differences in every mode") {
       }
 }
 
-TEST_CASE("clamped offsets stay in their band; fixed vertices do not move") {
+TEST_CASE("clamped offsets stay in their band and fixed vertices do not move") {
   const Setup s = sphere_setup(10);
   ReducedOptions options;
   options.outer = true;
