@@ -142,8 +142,13 @@ bool starts_with(const std::string& bytes, const char* prefix) {
 
 }  // namespace
 
-RawMesh read_raw_mesh(const std::string& path) {
-  const std::string bytes = read_file_capped(path);
+RawMesh read_raw_mesh(const std::string& path) { return read_raw_mesh_from_memory(path, read_file_capped(path)); }
+
+RawMesh read_raw_mesh_from_memory(const std::string& path, const std::string& bytes) {
+  if (bytes.size() > kMaxFileBytes) {
+    throw MeshInputError(path + ": file is " + std::to_string(bytes.size()) + " bytes; the supported maximum is " +
+                         std::to_string(kMaxFileBytes) + " (2 GiB)");
+  }
   if (bytes.empty()) throw MeshInputError(path + ": file is empty");
   const std::string ext = lower_extension(path);
   if (ext == ".obj") return read_obj(path, bytes);

@@ -51,6 +51,11 @@ const char* format_name(MeshFormat format);
 // content when the extension is unknown. Error messages start with `path` as given.
 RawMesh read_raw_mesh(const std::string& path);
 
+// The same for a file already in memory: `name` picks the format by its extension (by content
+// when it has none) and starts every error message. read_raw_mesh(path) is this applied to
+// read_file_capped(path); the fuzzers call it directly.
+RawMesh read_raw_mesh_from_memory(const std::string& name, const std::string& bytes);
+
 // Collects vertices and triangles while a reader runs, enforcing kMaxVertices and kMaxFaces and
 // fan-triangulating polygons. `text_format` keeps source line numbers.
 class RawMeshBuilder {
