@@ -48,4 +48,38 @@ Eigen::MatrixXd volume_integrals_jacobian(const Mesh& mesh, const Eigen::Vector3
   return J;
 }
 
+Eigen::Matrix<double, 10, Eigen::Dynamic> volume_integrals_directional_jacobian(const Mesh& mesh,
+                                                                                const Eigen::Vector3d& origin,
+                                                                                const Vertices& directions) {
+  Eigen::Matrix<double, 10, Eigen::Dynamic> J = Eigen::Matrix<double, 10, Eigen::Dynamic>::Zero(10, mesh.V.rows());
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const int corner_index[3] = {mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
+    const Eigen::Vector3d p[3] = {mesh.V.row(corner_index[0]).transpose() - origin,
+                                  mesh.V.row(corner_index[1]).transpose() - origin,
+                                  mesh.V.row(corner_index[2]).transpose() - origin};
+    const double D = p[0].dot(p[1].cross(p[2]));
+    const Eigen::Vector3d S = p[0] + p[1] + p[2];
+    auto G = [&](int i, int j) { return p[0](i) * p[0](j) + p[1](i) * p[1](j) + p[2](i) * p[2](j) + S(i) * S(j); };
+    const double Gxx = G(0, 0), Gyy = G(1, 1), Gzz = G(2, 2), Gxy = G(0, 1), Gyz = G(1, 2), Gzx = G(2, 0);
+    for (int corner = 0; corner < 3; ++corner) {
+      const Eigen::Vector3d d = directions.row(corner_index[corner]).transpose();
+      // ∂D/∂(this corner) is the cross product of the other two, in cyclic order.
+      const double dD = p[(corner + 1) % 3].cross(p[(corner + 2) % 3]).dot(d);
+      const Eigen::Vector3d u = p[corner] + S;  // ∂G_ij/∂corner = e_i u_j + e_j u_i
+      auto column = J.col(corner_index[corner]);
+      column(kIntVolume) += dD / 6.0;
+      column(kIntX) += (dD * S.x() + D * d.x()) / 24.0;
+      column(kIntY) += (dD * S.y() + D * d.y()) / 24.0;
+      column(kIntZ) += (dD * S.z() + D * d.z()) / 24.0;
+      column(kIntXX) += (dD * Gxx + D * 2.0 * d.x() * u.x()) / 120.0;
+      column(kIntYY) += (dD * Gyy + D * 2.0 * d.y() * u.y()) / 120.0;
+      column(kIntZZ) += (dD * Gzz + D * 2.0 * d.z() * u.z()) / 120.0;
+      column(kIntXY) += (dD * Gxy + D * (d.x() * u.y() + d.y() * u.x())) / 120.0;
+      column(kIntYZ) += (dD * Gyz + D * (d.y() * u.z() + d.z() * u.y())) / 120.0;
+      column(kIntZX) += (dD * Gzx + D * (d.z() * u.x() + d.x() * u.z())) / 120.0;
+    }
+  }
+  return J;
+}
+
 }  // namespace offsetopt

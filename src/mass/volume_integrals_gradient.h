@@ -23,4 +23,11 @@ void accumulate_volume_integrals_gradient(const Mesh& mesh, const Eigen::Vector3
 // x, y, z). For tests and small meshes.
 Eigen::MatrixXd volume_integrals_jacobian(const Mesh& mesh, const Eigen::Vector3d& origin);
 
+// The 10 by #V derivative of the integrals along one direction per vertex: column i is
+// ∂ values / ∂ x_i · directions.row(i). What moving vertex i along its offset direction does to
+// every integral at once, in one pass over the faces (the optimiser's ∂P/∂δ).
+Eigen::Matrix<double, 10, Eigen::Dynamic> volume_integrals_directional_jacobian(const Mesh& mesh,
+                                                                                const Eigen::Vector3d& origin,
+                                                                                const Vertices& directions);
+
 }  // namespace offsetopt

@@ -123,7 +123,7 @@ constexpr double kBottleLean = 0.45;
 Mesh bottle_surface(const BottleShape& s) {
   Profile p(s.bottom);
   p.line_to(s.foot_radius, s.bottom, 5);
-  p.arc(s.foot_radius, s.bottom + s.heel, s.heel, -0.5 * kPi, 0.0, 3);  // first step 0.5 above the base
+  p.arc(s.foot_radius, s.bottom + s.heel, s.heel, -0.5 * kPi, 0.0, 3);  // first ring 0.54 up: off the ground
   p.line_to(s.foot_radius + s.heel, s.body_top, 16);
   p.blend_to(s.neck_radius, s.neck_bottom, 12);
   p.line_to(s.neck_radius, s.height - s.lip, 8);

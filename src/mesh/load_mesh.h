@@ -11,8 +11,9 @@
 
 namespace offsetopt {
 
-// Thrown for input the program refuses. what() is one line: "<file>: <what is wrong>[, <where>]".
-// The CLI prints it behind "Error: " and exits with code 2.
+// Thrown for input the program refuses. what() is one line: "<file>:<line>: <what is wrong>"
+// for text formats, "<file>: <what is wrong>, face 17" (or vertex) otherwise, with the total
+// count appended when there are several. The CLI prints it behind "Error: " and exits with 2.
 class MeshInputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

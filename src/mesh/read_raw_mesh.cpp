@@ -164,6 +164,19 @@ RawMesh read_raw_mesh_from_memory(const std::string& path, const std::string& by
     if (word.size() >= 3 && word.compare(word.size() - 3, 3, "OFF") == 0) return read_off(path, bytes);
     if (equals_ignoring_case(word, "solid") || looks_like_binary_stl(bytes)) return read_stl(path, bytes);
   }
+  // OBJ has no signature: accept it when the first statement is a typical OBJ keyword.
+  {
+    LineScanner lines(bytes);
+    std::string_view line;
+    std::vector<std::string_view> tokens;
+    for (int i = 0; i < 1000 && lines.next(line); ++i) {
+      split_tokens(line, tokens);
+      if (tokens.empty() || tokens[0][0] == '#') continue;
+      for (const char* keyword : {"v", "vn", "vt", "f", "o", "g", "s", "mtllib", "usemtl"})
+        if (tokens[0] == keyword) return read_obj(path, bytes);
+      break;
+    }
+  }
   throw MeshInputError(path + ": unrecognised mesh format (expected an .obj, .stl, .off or .ply file)");
 }
 

@@ -45,47 +45,53 @@ RawMesh weld(const std::string& name, MeshFormat format, const std::vector<Real>
              const std::vector<int>& corner_line, const std::vector<int>& triangle_line,
              std::vector<std::string> warnings) {
   const std::size_t corners = corner_xyz.size() / 3;
-  std::vector<std::uint32_t> order(corners);
-  for (std::size_t i = 0; i < corners; ++i) order[i] = static_cast<std::uint32_t>(i);
-  auto finite = [&](std::size_t c) {
-    return std::isfinite(corner_xyz[3 * c]) && std::isfinite(corner_xyz[3 * c + 1]) && std::isfinite(corner_xyz[3 * c + 2]);
-  };
   using Bits = std::conditional_t<sizeof(Real) == 4, std::uint32_t, std::uint64_t>;
-  auto bits = [&](std::size_t c, int k) {
+  // Packed keys sort fast: finite corners by value, non-finite ones after them by bit pattern
+  // (NaN has no order), ties by corner number so the first corner of each group comes first.
+  struct Key {
+    Real xyz[3];
+    std::uint32_t corner;
+    bool finite;
+  };
+  std::vector<Key> keys(corners);
+  for (std::size_t c = 0; c < corners; ++c) {
+    Key& k = keys[c];
+    for (int i = 0; i < 3; ++i) k.xyz[i] = corner_xyz[3 * c + static_cast<std::size_t>(i)];
+    k.corner = static_cast<std::uint32_t>(c);
+    k.finite = std::isfinite(k.xyz[0]) && std::isfinite(k.xyz[1]) && std::isfinite(k.xyz[2]);
+  }
+  auto bits = [](Real x) {
     Bits b;
-    std::memcpy(&b, &corner_xyz[3 * c + static_cast<std::size_t>(k)], sizeof b);
+    std::memcpy(&b, &x, sizeof b);
     return b;
   };
-  // Finite corners by value; non-finite ones after them, by bit pattern (NaN has no order).
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const bool fa = finite(a), fb = finite(b);
-    if (fa != fb) return fa;
+  std::sort(keys.begin(), keys.end(), [&bits](const Key& a, const Key& b) {
+    if (a.finite != b.finite) return a.finite;
     for (int k = 0; k < 3; ++k) {
-      if (fa) {
-        const Real x = corner_xyz[3 * a + k], y = corner_xyz[3 * b + k];
-        if (x < y) return true;
-        if (y < x) return false;
-      } else if (bits(a, k) != bits(b, k)) {
-        return bits(a, k) < bits(b, k);
+      if (a.finite) {
+        if (a.xyz[k] < b.xyz[k]) return true;
+        if (b.xyz[k] < a.xyz[k]) return false;
+      } else if (bits(a.xyz[k]) != bits(b.xyz[k])) {
+        return bits(a.xyz[k]) < bits(b.xyz[k]);
       }
     }
-    return a < b;
+    return a.corner < b.corner;
   });
-  auto same_position = [&](std::size_t a, std::size_t b) {
+  auto same_position = [&bits](const Key& a, const Key& b) {
+    if (a.finite != b.finite) return false;
     for (int k = 0; k < 3; ++k)
-      if (finite(a) ? !(corner_xyz[3 * a + k] == corner_xyz[3 * b + k]) : bits(a, k) != bits(b, k)) return false;
+      if (a.finite ? !(a.xyz[k] == b.xyz[k]) : bits(a.xyz[k]) != bits(b.xyz[k])) return false;
     return true;
   };
   // representative[c] = first corner (in file order) at the same position.
   std::vector<std::uint32_t> representative(corners);
   for (std::size_t i = 0; i < corners;) {
     std::size_t j = i + 1;
-    const std::uint32_t first = order[i];
-    while (j < corners && finite(order[j]) == finite(first) && same_position(first, order[j])) ++j;
-    for (std::size_t k = i; k < j; ++k) representative[order[k]] = first;
+    while (j < corners && same_position(keys[i], keys[j])) ++j;
+    for (std::size_t k = i; k < j; ++k) representative[keys[k].corner] = keys[i].corner;
     i = j;
   }
-  std::vector<std::uint32_t>().swap(order);
+  std::vector<Key>().swap(keys);
   RawMeshBuilder builder(name, format, !corner_line.empty());
   builder.warnings() = std::move(warnings);
   std::vector<int> vertex_of(corners, -1);

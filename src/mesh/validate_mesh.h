@@ -24,7 +24,11 @@
 //   several components       more than one connected piece (faces sharing a vertex)
 // Later checks need earlier ones: nothing after an out-of-range index; no area or volume with
 // non-finite or too large coordinates; volumes only when closed, edge-manifold and consistently
-// oriented. Unreferenced vertices are not a defect (reported as a note).
+// oriented. Unreferenced vertices are not a defect (reported as a note). Nesting is found by
+// ray parity from a point on each shell (bounding boxes first), for up to 10,000 shells; beyond
+// that every shell counts as outermost.
+// Limits of the readers (mesh/read_raw_mesh.h): files up to 2 GiB, regular files only; at most
+// 2^25 (33,554,432) vertices and 2^25 triangles; OBJ polygons up to 255 corners.
 //
 // Input policy (the README copies this table).
 //   defect                        check        load_mesh (inspect, basis, skeleton, optimize)
@@ -33,7 +37,17 @@
 //   empty mesh                    exit 2       refused
 //   non-finite / too large coordinate  exit 2  refused, unless only unreferenced vertices
 //   vertex index out of range     exit 2       refused
+//   unsupported variant (binary
+//     OFF, 4OFF, PLY tristrips)   exit 2       refused
+//   OBJ polygon > 255 corners     exit 2       refused (tinyobjloader would truncate it)
 //   polygon with > 3 corners      warning      fan-triangulated, warning
+//   OBJ mtllib, l, p, vt, vn, g,
+//     o, s, usemtl statements     (ignored)    ignored; a warning for mtllib (never opened)
+//                                              and for l/p elements
+//   bytes after the data (binary
+//     STL/PLY), text after the
+//     last OFF face / PLY element warning      ignored, warning
+//   ASCII STL without endsolid    warning      accepted, warning
 //   unreferenced vertices         warning      dropped, warning
 //   STL corners at one position   (welded)     welded silently (that is how STL stores vertices)
 //   degenerate face, repeated

@@ -14,10 +14,11 @@ double ramp(double y, double tau, double& derivative) {
 
 }  // namespace
 
-double smooth_clamp(double x, double lo, double hi, double tau, double* slope) {
+double smooth_clamp(double x, double lo, double hi, double tau, double* slope, double* slope_lo) {
   double d_lo = 0.0, d_hi = 0.0;
   const double rise = ramp(x - lo, tau, d_lo) - ramp(x - hi, tau, d_hi);
   if (slope) *slope = d_lo - d_hi;
+  if (slope_lo) *slope_lo = 1.0 - d_lo;
   // Mathematically in [lo, hi]; the min/max only removes rounding that would leave the band.
   const double value = lo + rise;
   return value < lo ? lo : (value > hi ? hi : value);

@@ -12,8 +12,9 @@
 
 namespace offsetopt {
 
-// Scalar form; `slope` receives d smoothclamp / dx when non-null. Requires lo <= hi, tau > 0.
-double smooth_clamp(double x, double lo, double hi, double tau, double* slope = nullptr);
+// Scalar form; `slope` receives d smoothclamp / dx when non-null, `slope_lo` d smoothclamp / d lo
+// (in [0, 1]: how much a moving lower bound drags the result along). Requires lo <= hi, tau > 0.
+double smooth_clamp(double x, double lo, double hi, double tau, double* slope = nullptr, double* slope_lo = nullptr);
 
 // Element-wise over vectors of equal length; `slope` is resized and filled when non-null.
 Eigen::VectorXd smooth_clamp(const Eigen::VectorXd& x, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,

@@ -1,33 +1,36 @@
 #include "spectral/cotan_laplacian.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace offsetopt {
 
-namespace {
-
-// Cotangent of the angle between u and w, with |sin| floored by `sine_floor`.
-double guarded_cotangent(const Eigen::Vector3d& u, const Eigen::Vector3d& w, double sine_floor) {
-  const double cross_norm = u.cross(w).norm();
-  const double floor = sine_floor * u.norm() * w.norm();
-  const double denominator = cross_norm > floor ? cross_norm : floor;
-  if (denominator == 0.0) return 0.0;  // a zero-length edge contributes nothing
-  return u.dot(w) / denominator;
+std::string CotanOptions::check() const {
+  if (!(sine_floor >= 0.0) || !(sine_floor < 1.0)) return "sine_floor must be in [0, 1)";
+  return {};
 }
-
-}  // namespace
 
 Eigen::SparseMatrix<double> cotan_laplacian(const Vertices& V, const Faces& F, const CotanOptions& options) {
   const Eigen::Index n = V.rows();
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(static_cast<std::size_t>(F.rows()) * 12);
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d p[3] = {V.row(F(f, 0)), V.row(F(f, 1)), V.row(F(f, 2))};
+    // Edge k is opposite corner k.
+    const Eigen::Vector3d edge[3] = {p[2] - p[1], p[0] - p[2], p[1] - p[0]};
+    const double cross_norm = edge[2].cross(-edge[1]).norm();  // 2 * area
+    double longest2 = 0.0;
+    for (const auto& e : edge) longest2 = std::max(longest2, e.squaredNorm());
+    const double denominator = std::max(cross_norm, options.sine_floor * longest2);
+    if (denominator == 0.0) continue;  // every edge has zero length
     for (int corner = 0; corner < 3; ++corner) {
-      // The angle at `corner` is opposite the edge (i, j).
-      const int k = F(f, corner), i = F(f, (corner + 1) % 3), j = F(f, (corner + 2) % 3);
-      const Eigen::Vector3d pk = V.row(k), pi = V.row(i), pj = V.row(j);
-      const double half_cot = 0.5 * guarded_cotangent(pi - pk, pj - pk, options.sine_floor);
+      // cot of the angle at `corner` = (a·b) / |a×b| with a, b the edges leaving the corner.
+      const Eigen::Vector3d& to_next = edge[(corner + 2) % 3];   // p[corner+1] - p[corner]
+      const Eigen::Vector3d& from_prev = edge[(corner + 1) % 3];  // p[corner] - p[corner+2]
+      const double half_cot = 0.5 * (-to_next.dot(from_prev)) / denominator;
+      const int i = F(f, (corner + 1) % 3), j = F(f, (corner + 2) % 3);
       triplets.emplace_back(i, j, -half_cot);
       triplets.emplace_back(j, i, -half_cot);
       triplets.emplace_back(i, i, half_cot);

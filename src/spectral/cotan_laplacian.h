@@ -1,23 +1,35 @@
 // Cotangent Laplacian of a triangle mesh (Pinkall & Polthier 1993; Meyer et al. 2003), in the
-// positive semi-definite convention DESIGN.md fixes:
+// positive semi-definite convention of DESIGN.md and Musialski et al. 2015 eq. 2 (sign flipped to
+// make it PSD):
 //   L_ij = -(cot a_ij + cot b_ij) / 2 for each edge ij (a, b the angles opposite it),
 //   L_ii = -sum_j L_ij  (so L * 1 = 0 and the diagonal is >= 0 on a well-shaped mesh).
-// L is #V by #V, symmetric, sparse. Cotangents are dot/|cross| (no libm call).
+// L is #V by #V, symmetric (bit for bit), sparse, both triangles stored. It does not change when
+// the mesh is scaled (cotangents are dimensionless).
+//
+// Cotangents are dot/|cross| (no libm call). Near-degenerate triangles: each triangle uses one
+// denominator for its three corners, max(|cross|, sine_floor * (longest edge)²), so a cotangent
+// is at most about 1/sine_floor in magnitude instead of inf/NaN. Because the three corners share
+// the denominator, the triangle's 3 by 3 contribution stays positive semi-definite (the sum of its
+// weights is positive and cot·cot summed over corner pairs is (2·area / denominator)² >= 0), so L
+// is PSD on any mesh, degenerate triangles included. A triangle with all edges of zero length
+// contributes nothing.
 #pragma once
 #include <Eigen/Sparse>
+#include <string>
 
 #include "mesh/mesh.h"
 
 namespace offsetopt {
 
 struct CotanOptions {
-  // Guard for (near-)degenerate triangles: |cross| is floored at this fraction of the product of
-  // the two edge lengths, so a cotangent is at most ~1/floor in magnitude (1e-8 -> |cot| <= 1e8)
-  // instead of inf/NaN. Collapsing triangles in skeleton contraction rely on this.
+  // Floor on |sin| of a triangle's angles, relative to its longest edge: 1e-8 keeps |cot| below
+  // about 1e8. Collapsing triangles in skeleton contraction rely on this.
   double sine_floor = 1e-8;
+  // Empty when valid, else what is wrong.
+  std::string check() const;
 };
 
-// Returns L (#V by #V, PSD convention above).
+// Returns L (#V by #V, PSD convention above). F indexes rows of V.
 Eigen::SparseMatrix<double> cotan_laplacian(const Vertices& V, const Faces& F, const CotanOptions& options = {});
 
 }  // namespace offsetopt

@@ -3,6 +3,7 @@
 // solid fails it, and carving the hand-made cavity (which lies strictly inside) meets it.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -92,7 +93,7 @@ TEST_CASE("bottle: the solid falls over, the bottle hollowed above a thick botto
   CHECK(carved.stands);
 }
 
-TEST_CASE("top: a single tip at the lowest point, off-axis solid, balanced by carving the lump side") {
+TEST_CASE("top: a single tip at the lowest point, off-axis solid with tilted axes, balanced by carving the lump side") {
   const Mesh top = make_demo_mesh("top");
   CHECK(top.V.row(0) == Eigen::RowVector3d(0, 0, 0));
   for (Eigen::Index i = 1; i < top.V.rows(); ++i) CHECK(top.V(i, 2) > 0.5);
@@ -104,22 +105,46 @@ TEST_CASE("top: a single tip at the lowest point, off-axis solid, balanced by ca
   CHECK(std::fabs(solid(kIzx)) > 1e-3 * solid(kIzz));      // ...and tilted principal axes
   CHECK(std::fabs(solid(kCy)) < 1e-4 * radius);            // the lump is symmetric in y
 
-  // The lens on the lump side is inside; removing all of it overshoots (cx < 0), so by
-  // continuity some lens scaled about its centre (which stays inside, being convex) gives cx = 0.
+  // The lens on the lump side is inside; removing all of it overshoots (cx < 0 and Izx > 0).
+  // A copy scaled by s about its centre and moved up by dz is a two-parameter family: for each
+  // dz, bisection on s puts the centre of mass on the tip axis; Izx is then monotone in dz, so a
+  // second bisection zeroes it too. The result, checked to lie inside, balances the top.
   const Mesh lens = make_demo_cavity("top");
   check_cavity_inside("top", top, lens, 0.01 * bbox_diagonal(top));
-  CHECK(shell_properties(top, lens)(kCx) < 0.0);
+  const Vector10d full = shell_properties(top, lens);
+  CHECK(full(kCx) < 0.0);
+  CHECK(full(kIzx) * solid(kIzx) < 0.0);
   const Eigen::Vector3d center = mass_properties(lens).segment<3>(kCx);
-  double lo = 0.0, hi = 1.0;
+  auto moved_lens = [&](double scale, double dz) {
+    return transformed(lens, scale * Eigen::Matrix3d::Identity(), (1.0 - scale) * center + Eigen::Vector3d(0, 0, dz));
+  };
+  auto scale_for_axis = [&](double dz) {
+    double lo = 0.0, hi = 1.0;
+    for (int step = 0; step < 45; ++step) {
+      const double mid = 0.5 * (lo + hi);
+      (shell_properties(top, moved_lens(mid, dz))(kCx) > 0.0 ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  };
+  double dz_lo = -1.0, dz_hi = 1.0;
+  const double izx_lo = shell_properties(top, moved_lens(scale_for_axis(dz_lo), dz_lo))(kIzx);
+  REQUIRE(izx_lo * shell_properties(top, moved_lens(scale_for_axis(dz_hi), dz_hi))(kIzx) < 0.0);
   for (int step = 0; step < 40; ++step) {
-    const double mid = 0.5 * (lo + hi);
-    const Mesh scaled = transformed(lens, mid * Eigen::Matrix3d::Identity(), (1.0 - mid) * center);
-    (shell_properties(top, scaled)(kCx) > 0.0 ? lo : hi) = mid;
+    const double mid = 0.5 * (dz_lo + dz_hi);
+    const double izx = shell_properties(top, moved_lens(scale_for_axis(mid), mid))(kIzx);
+    ((izx < 0.0) == (izx_lo < 0.0) ? dz_lo : dz_hi) = mid;
   }
-  const Mesh balanced_lens = transformed(lens, lo * Eigen::Matrix3d::Identity(), (1.0 - lo) * center);
+  const double dz = 0.5 * (dz_lo + dz_hi), scale = scale_for_axis(dz);
+  const Mesh balanced_lens = moved_lens(scale, dz);
+  check_cavity_inside("top (balanced lens)", top, balanced_lens, 0.01 * bbox_diagonal(top));
   const Vector10d balanced = shell_properties(top, balanced_lens);
-  MESSAGE("top: lens scale " << lo << " puts the centre of mass on the tip axis, void " << 1.0 - balanced(kMass) / solid(kMass));
+  MESSAGE("top: lens scaled " << scale << " and raised " << dz << " gives c = (" << balanced(kCx) << ", " << balanced(kCy)
+                              << "), Izx/Izz " << balanced(kIzx) / balanced(kIzz) << ", Iyz/Izz " << balanced(kIyz) / balanced(kIzz)
+                              << ", void " << 1.0 - balanced(kMass) / solid(kMass));
   CHECK(std::fabs(balanced(kCx)) < 1e-6 * radius);
+  CHECK(std::fabs(balanced(kCy)) < 1e-4 * radius);                      // y-symmetric up to triangulation
+  CHECK(std::fabs(balanced(kIzx)) < 1e-6 * balanced(kIzz));
+  CHECK(std::fabs(balanced(kIyz)) < 1e-4 * balanced(kIzz));
 }
 
 TEST_CASE("rolypoly: hemisphere of radius 30 at the bottom, the solid's centre of mass above its centre, the carved one below") {

@@ -131,3 +131,23 @@ TEST_CASE("shell gradient: outer vertices with sign +1, inner vertices with sign
   MESSAGE("shell gradient: relative error " << error);
   CHECK(error < 1e-7);
 }
+
+TEST_CASE("directional Jacobian equals the dense Jacobian contracted with one direction per vertex") {
+  Mesh mesh = make_demo_mesh("top");
+  Rng rng(11);
+  Vertices directions(mesh.V.rows(), 3);
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i)
+    directions.row(i) = Eigen::RowVector3d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+  const Eigen::Vector3d origin = mean_vertex(mesh);
+  const Eigen::MatrixXd dense = volume_integrals_jacobian(mesh, origin);
+  const Eigen::Matrix<double, 10, Eigen::Dynamic> J = volume_integrals_directional_jacobian(mesh, origin, directions);
+  double worst = 0.0;
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i)
+    for (int k = 0; k < 10; ++k) {
+      const double expected = dense(k, 3 * i) * directions(i, 0) + dense(k, 3 * i + 1) * directions(i, 1) +
+                              dense(k, 3 * i + 2) * directions(i, 2);
+      const double scale = dense.row(k).cwiseAbs().maxCoeff();
+      worst = std::max(worst, std::fabs(J(k, i) - expected) / scale);
+    }
+  CHECK(worst < 1e-12);
+}

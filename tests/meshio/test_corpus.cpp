@@ -1,5 +1,5 @@
 // The bad-input corpus (tests/data/bad/) and the accepted corpus (tests/data/accepted/), each
-// with a table EXPECTED.txt (made by tests/data/make_corpus.py): the real binary must give the
+// with a table EXPECTED.txt (made by tests/meshio/make_corpus.py): the real binary must give the
 // stated exit code and message, never crash or hang; load_mesh must refuse or accept the same way.
 #include <doctest/doctest.h>
 

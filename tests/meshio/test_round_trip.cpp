@@ -230,6 +230,10 @@ TEST_CASE("binary STL is recognised by size, not by the word solid") {
   CHECK(read_raw_mesh(dir.file("mesh.dat")).format == MeshFormat::kPlyBinaryLittle);
   write_file(dir.file("mesh.txt"), off_text(mesh));
   CHECK(read_raw_mesh(dir.file("mesh.txt")).format == MeshFormat::kOff);
+  write_file(dir.file("mesh"), mesh_to_bytes(".obj", mesh));
+  CHECK(read_raw_mesh(dir.file("mesh")).format == MeshFormat::kObj);
+  write_file(dir.file("notes.txt"), "hello\n");
+  CHECK_THROWS_WITH_AS(read_raw_mesh(dir.file("notes.txt")), doctest::Contains("unrecognised mesh format"), MeshInputError);
 }
 
 TEST_CASE("real meshes in the shared folder load with the vertex and face counts their README states") {

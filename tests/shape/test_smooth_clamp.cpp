@@ -31,6 +31,12 @@ TEST_CASE("smooth clamp: identity inside, bounded, monotone, slope = finite diff
       const double h = 1e-6;
       const double fd = (smooth_clamp(x + h, lo, hi, tau) - smooth_clamp(x - h, lo, hi, tau)) / (2 * h);
       CHECK(std::fabs(fd - slope) <= 1e-6 / tau + 1e-8);
+      double slope_lo = 0.0;
+      smooth_clamp(x, lo, hi, tau, nullptr, &slope_lo);
+      if (hi - lo > 2e-6) {  // moving lo by ±h must keep lo <= hi
+        const double fd_lo = (smooth_clamp(x, lo + h, hi, tau) - smooth_clamp(x, lo - h, hi, tau)) / (2 * h);
+        CHECK(std::fabs(fd_lo - slope_lo) <= 1e-6 / tau + 1e-8);
+      }
     }
     if (hi == lo) CHECK(smooth_clamp(lo + 0.3, lo, hi, tau) == lo);
   }

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the bad-input corpus (tests/data/bad/) and the accepted-with-warning corpus
 (tests/data/accepted/) with their EXPECTED.txt tables. The files are committed; this script
-documents how each was made and can regenerate them byte for byte: python3 make_corpus.py
+documents how each was made and can regenerate them byte for byte: python3 tests/meshio/make_corpus.py
 
 bad/EXPECTED.txt:      <file> TAB <substring>
     `offsetopt check FILE` must exit 2 with the substring on stderr, and load_mesh with strict
@@ -14,9 +14,9 @@ accepted/EXPECTED.txt: <file> TAB <check exit code> TAB <load warning substring,
 import os
 import struct
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-BAD = os.path.join(HERE, "bad")
-ACCEPTED = os.path.join(HERE, "accepted")
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")
+BAD = os.path.join(DATA, "bad")
+ACCEPTED = os.path.join(DATA, "accepted")
 
 # Unit cube, faces counter-clockwise seen from outside, as quads (1-based).
 CUBE_V = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]

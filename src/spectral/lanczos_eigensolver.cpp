@@ -1,0 +1,613 @@
+#include "spectral/lanczos_eigensolver.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include "spectral/row_block_kernels.h"
+#include "spectral/shift_invert_operator.h"
+#include "util/rng.h"
+
+namespace offsetopt {
+
+std::string LanczosOptions::check() const {
+  if (!(tolerance > 0.0) || !(tolerance < 1.0)) return "tolerance must be in (0, 1)";
+  if (block_size < 1 || block_size > 64) return "block_size must be in [1, 64]";
+  if (max_basis < 0) return "max_basis must be >= 0 (0: automatic)";
+  if (max_operator_applications < 0) return "max_operator_applications must be >= 0 (0: automatic)";
+  if (!(shift_scale > 0.0) || !std::isfinite(shift_scale)) return "shift_scale must be positive";
+  if (!(cluster_tolerance >= 0.0) || !(cluster_tolerance < 1.0)) return "cluster_tolerance must be in [0, 1)";
+  if (dense_below < 0) return "dense_below must be >= 0";
+  return {};
+}
+
+const char* to_string(LanczosStatus status) {
+  switch (status) {
+    case LanczosStatus::Converged: return "converged";
+    case LanczosStatus::NotConverged: return "not_converged";
+    case LanczosStatus::InvalidInput: return "invalid_input";
+    case LanczosStatus::FactorizationFailed: return "factorization_failed";
+  }
+  return "unknown";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// ‖L‖∞ = largest absolute row sum (= column sum, L symmetric); bounds ‖L‖₂ from above.
+double infinity_norm(const Eigen::SparseMatrix<double>& L) {
+  double largest = 0.0;
+  for (Eigen::Index col = 0; col < L.outerSize(); ++col) {
+    double sum = 0.0;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(L, col); it; ++it) sum += std::abs(it.value());
+    largest = std::max(largest, sum);
+  }
+  return largest;
+}
+
+double dot(const double* a, const double* b, Eigen::Index n, Eigen::Index stride_a = 1, Eigen::Index stride_b = 1) {
+  double sum = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) sum += a[i * stride_a] * b[i * stride_b];
+  return sum;
+}
+
+// Turns approximate eigenvectors (columns of X, any scale) into the reported pairs: Rayleigh
+// quotients, normalisation, sign, sorting, true residuals. Returns the number meeting `tolerance`.
+int finalize_pairs(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass, double norm_L, double tolerance,
+                   Eigen::MatrixXd& X, Eigen::VectorXd& eigenvalues, Eigen::VectorXd& residuals) {
+  const Eigen::Index n = X.rows(), k = X.cols();
+  const bool generalised = mass.size() > 0;
+  // Normalise first (Euclidean or M), so the products below are at unit scale.
+  for (Eigen::Index c = 0; c < k; ++c) {
+    double* x = X.col(c).data();
+    double norm2 = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) norm2 += (generalised ? mass(i) : 1.0) * x[i] * x[i];
+    const double inv = norm2 > 0.0 ? 1.0 / std::sqrt(norm2) : 0.0;
+    Eigen::Index largest = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      x[i] *= inv;
+      if (std::abs(x[i]) > std::abs(x[largest])) largest = i;
+    }
+    if (x[largest] < 0.0)
+      for (Eigen::Index i = 0; i < n; ++i) x[i] = -x[i];
+  }
+  const Eigen::MatrixXd LX = L * X;
+  Eigen::VectorXd lambda(k), residual(k);
+  for (Eigen::Index c = 0; c < k; ++c) {
+    const double* x = X.col(c).data();
+    const double* lx = LX.col(c).data();
+    double xLx = 0.0, xMx = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      xLx += x[i] * lx[i];
+      xMx += (generalised ? mass(i) : 1.0) * x[i] * x[i];
+    }
+    lambda(c) = xMx > 0.0 ? xLx / xMx : 0.0;
+    double r2 = 0.0, x2 = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double r = lx[i] - lambda(c) * (generalised ? mass(i) : 1.0) * x[i];
+      r2 += r * r;
+      x2 += x[i] * x[i];
+    }
+    residual(c) = x2 > 0.0 && norm_L > 0.0 ? std::sqrt(r2) / (norm_L * std::sqrt(x2)) : 1.0;
+  }
+  // Sort by eigenvalue (the Ritz order can differ from the Rayleigh-quotient order by rounding
+  // inside a cluster); ties keep the Ritz order.
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(k));
+  std::iota(order.begin(), order.end(), Eigen::Index{0});
+  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) { return lambda(a) < lambda(b); });
+  Eigen::MatrixXd sorted(n, k);
+  eigenvalues.resize(k);
+  residuals.resize(k);
+  int converged = 0;
+  for (Eigen::Index c = 0; c < k; ++c) {
+    const Eigen::Index from = order[static_cast<std::size_t>(c)];
+    sorted.col(c) = X.col(from);
+    eigenvalues(c) = lambda(from);
+    residuals(c) = residual(from);
+    if (residuals(c) <= tolerance) ++converged;
+  }
+  X = std::move(sorted);
+  return converged;
+}
+
+// Dense fallback: eigenvectors of M^(-1/2) L M^(-1/2) (or L), mapped back by M^(-1/2).
+void solve_dense(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass, int k, Eigen::MatrixXd& X) {
+  const Eigen::Index n = L.rows();
+  Eigen::MatrixXd A = Eigen::MatrixXd(L);
+  if (mass.size()) {
+    const Eigen::VectorXd inv_sqrt = mass.cwiseSqrt().cwiseInverse();
+    A = inv_sqrt.asDiagonal() * A * inv_sqrt.asDiagonal();
+  }
+  A = 0.5 * (A + A.transpose()).eval();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(A);
+  X = eigen.eigenvectors().leftCols(k);
+  if (mass.size())
+    for (Eigen::Index i = 0; i < n; ++i) X.row(i) /= std::sqrt(mass(i));
+}
+
+// The block Krylov–Schur iteration on Op = D (L + sM)⁻¹ D. See the header for the method.
+//
+// Invariant: Op Q = Q H + R C, with Q (n by j) and R (n by b) orthonormal and mutually
+// orthogonal, H (j by j) symmetric, C (b by j). A step appends R to Q and applies Op to it; the
+// Lanczos recurrence says the new block's coefficients on the old basis are Cᵀ, so those are
+// removed first (cheap: C is nonzero only on the previous block, or on the kept vectors after a
+// restart), then one classical Gram–Schmidt pass against the whole basis removes what rounding
+// left, and a second pass runs when the first removed more than a DGKS factor (Daniel, Gragg,
+// Kaufman & Stewart 1976). The basis therefore stays orthonormal to working precision at about
+// half the cost of two full passes.
+class BlockKrylovSchur {
+ public:
+  struct Settings {
+    int k = 0, block = 0, basis = 0;
+    long max_applications = 0;
+    double tolerance = 0.0, cluster_tolerance = 0.0, shift = 0.0, norm_L = 0.0;
+    std::uint64_t seed = 0;
+  };
+
+  BlockKrylovSchur(const ShiftInvertOperator& op, const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass,
+                   const Settings& settings)
+      : op_(op), L_(L), n_(op.size()), k_(settings.k), b_(settings.block), m_(settings.basis),
+        capacity_(settings.basis), settings_(settings), rng_(settings.seed) {
+    scale_.resize(n_);
+    double largest_mass = 1.0;
+    for (Eigen::Index i = 0; i < n_; ++i) {
+      scale_(i) = mass.size() ? std::sqrt(mass(i)) : 1.0;
+      if (mass.size()) largest_mass = i == 0 ? mass(i) : std::max(largest_mass, mass(i));
+    }
+    // ‖φ‖₂ = ‖D⁻¹ y‖₂ ≥ 1 / sqrt(max M) for a unit y: the estimate below uses this bound, so
+    // it can only overstate the residual.
+    smallest_phi_norm_ = 1.0 / std::sqrt(largest_mass);
+  }
+
+  // Runs until the convergence test passes or the cap is hit. Returns true when converged.
+  bool run();
+  // Ritz vectors of the k wanted pairs in y-space (n by k), from the last Rayleigh–Ritz.
+  Eigen::MatrixXd wanted_vectors() const;
+  // After a failed verification: demand `factor` times smaller estimates and continue.
+  void tighten(double factor) { internal_scale_ *= factor; }
+
+  int iterations() const { return iterations_; }
+  int restarts() const { return restarts_; }
+  long applications() const { return applications_; }
+  int second_passes() const { return second_passes_; }
+
+ private:
+  void start();
+  void expand();
+  void rayleigh_ritz();
+  bool converged_estimate();
+  void restart();
+  void ensure_capacity(int columns);
+  void update_residual_gram();
+  // Orthonormalises the columns of W (n by b, already orthogonal to Q(:, 0:j)); S (b by b,
+  // upper triangular) gets W_in = W_out S. Dependent columns are replaced by random directions
+  // (orthogonal to everything) with a zero coefficient.
+  void orthonormalize(RowMatrix& W, int j, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S);
+  bool cholesky_qr(RowMatrix& W, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S) const;
+  void gram_schmidt_with_replacement(RowMatrix& W, int j, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S);
+  // One classical Gram–Schmidt pass of W against Q(:, first:last); returns the coefficients.
+  RowMatrix project_out(RowMatrix& W, int first, int last) const;
+  Eigen::VectorXd column_norms(const RowMatrix& W) const;
+
+  const ShiftInvertOperator& op_;
+  const Eigen::SparseMatrix<double>& L_;
+  Eigen::Index n_;
+  int k_, b_, m_, capacity_;
+  Settings settings_;
+  Rng rng_;
+  Eigen::VectorXd scale_;  // D
+  double smallest_phi_norm_ = 1.0;
+  double internal_scale_ = 1.0;
+
+  RowMatrix Q_;        // basis, n by capacity, columns 0:j_ active
+  RowMatrix R_;        // next block
+  Eigen::MatrixXd H_;  // projected operator, j_ by j_ active
+  Eigen::MatrixXd C_;  // coupling, b by j_ active; zero left of coupled_from_
+  int coupled_from_ = 0;
+  int j_ = 0;
+  Eigen::MatrixXd residual_gram_;  // (K D⁻¹ R)ᵀ (K D⁻¹ R), b by b
+
+  // Last Rayleigh–Ritz: θ descending, Z (j by j), ‖C z‖ and estimated relative residuals.
+  Eigen::VectorXd theta_;
+  Eigen::MatrixXd Z_;
+  Eigen::VectorXd rho_, estimate_;
+  int required_ = 0;  // pairs that must converge (k extended to the end of its cluster)
+
+  int iterations_ = 0, restarts_ = 0, second_passes_ = 0;
+  long applications_ = 0;
+  double largest_theta_ = 0.0;
+};
+
+Eigen::VectorXd BlockKrylovSchur::column_norms(const RowMatrix& W) const {
+  const int b = static_cast<int>(W.cols());
+  Eigen::VectorXd sums = Eigen::VectorXd::Zero(b);
+  for (Eigen::Index i = 0; i < n_; ++i)
+    for (int c = 0; c < b; ++c) sums(c) += W(i, c) * W(i, c);
+  return sums.cwiseSqrt();
+}
+
+RowMatrix BlockKrylovSchur::project_out(RowMatrix& W, int first, int last) const {
+  const int b = static_cast<int>(W.cols());
+  RowMatrix coefficients(last - first, b);
+  if (last <= first) return coefficients;
+  project_onto_columns(Q_.data() + first, Q_.cols(), last - first, W.data(), b, n_, coefficients.data());
+  subtract_combination(Q_.data() + first, Q_.cols(), last - first, coefficients.data(), b, n_, W.data());
+  return coefficients;
+}
+
+// CholQR twice (Yamamoto et al. 2015): orthonormal to working precision when cond(W) < ~1e7.
+// Returns false (W untouched) when W is too ill-conditioned or rank deficient.
+bool BlockKrylovSchur::cholesky_qr(RowMatrix& W, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S) const {
+  const int b = static_cast<int>(W.cols());
+  RowMatrix V = W;
+  S = Eigen::MatrixXd::Identity(b, b);
+  for (int pass = 0; pass < 2; ++pass) {
+    RowMatrix gram(b, b);
+    project_onto_columns(V.data(), b, b, V.data(), b, n_, gram.data());
+    Eigen::LLT<Eigen::MatrixXd> llt(Eigen::MatrixXd(gram).selfadjointView<Eigen::Lower>());
+    if (llt.info() != Eigen::Success) return false;
+    const Eigen::MatrixXd U = llt.matrixU();
+    for (int c = 0; c < b; ++c) {
+      if (!(U(c, c) > 0.0)) return false;
+      if (pass == 0 && (U(c, c) < 1e-7 * U.diagonal().maxCoeff() ||
+                        U(c, c) <= 1e-12 * std::max(reference_norms(c), largest_theta_)))
+        return false;
+    }
+    // V ← V U⁻¹ row by row.
+    for (Eigen::Index i = 0; i < n_; ++i) {
+      double* v = V.data() + i * b;
+      for (int c = 0; c < b; ++c) {
+        double x = v[c];
+        for (int d = 0; d < c; ++d) x -= v[d] * U(d, c);
+        v[c] = x / U(c, c);
+      }
+    }
+    S = (U * S).eval();
+  }
+  W = std::move(V);
+  return true;
+}
+
+void BlockKrylovSchur::gram_schmidt_with_replacement(RowMatrix& W, int j, const Eigen::VectorXd& reference_norms,
+                                                     Eigen::MatrixXd& S) {
+  const int b = static_cast<int>(W.cols());
+  S = Eigen::MatrixXd::Zero(b, b);
+  for (int c = 0; c < b; ++c) {
+    double* w = W.data() + c;
+    for (int pass = 0; pass < 2; ++pass) {
+      for (int d = 0; d < c; ++d) {
+        const double h = dot(W.data() + d, w, n_, b, b);
+        S(d, c) += h;
+        for (Eigen::Index i = 0; i < n_; ++i) w[i * b] -= h * W(i, d);
+      }
+    }
+    double norm = std::sqrt(dot(w, w, n_, b, b));
+    // Nothing (numerically) left outside the basis: the Krylov space is invariant in that
+    // direction. Continue with a random direction, coupled by 0.
+    const double floor = 1e-12 * std::max(reference_norms(c), largest_theta_);
+    if (norm > floor && norm > 0.0) {
+      S(c, c) = norm;
+      for (Eigen::Index i = 0; i < n_; ++i) w[i * b] /= norm;
+      continue;
+    }
+    for (Eigen::Index i = 0; i < n_; ++i) w[i * b] = 0.0;  // stays 0 only if the space is full
+    for (int attempt = 0; attempt < 3; ++attempt) {
+      RowMatrix fresh(n_, 1);
+      for (Eigen::Index i = 0; i < n_; ++i) fresh(i, 0) = rng_.uniform(-1.0, 1.0);
+      for (int pass = 0; pass < 2; ++pass) {
+        project_out(fresh, 0, j);
+        for (int d = 0; d < c; ++d) {
+          const double h = dot(W.data() + d, fresh.data(), n_, b, 1);
+          for (Eigen::Index i = 0; i < n_; ++i) fresh(i, 0) -= h * W(i, d);
+        }
+      }
+      norm = std::sqrt(dot(fresh.data(), fresh.data(), n_));
+      if (norm > 1e-6 * std::sqrt(static_cast<double>(n_) / 3.0)) {
+        for (Eigen::Index i = 0; i < n_; ++i) w[i * b] = fresh(i, 0) / norm;
+        break;
+      }
+    }
+  }
+}
+
+void BlockKrylovSchur::orthonormalize(RowMatrix& W, int j, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S) {
+  if (!cholesky_qr(W, reference_norms, S)) gram_schmidt_with_replacement(W, j, reference_norms, S);
+}
+
+void BlockKrylovSchur::ensure_capacity(int columns) {
+  if (columns <= capacity_) return;
+  RowMatrix grown(n_, columns);
+  grown.leftCols(capacity_) = Q_;
+  Q_ = std::move(grown);
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(columns, columns);
+  H.topLeftCorner(capacity_, capacity_) = H_;
+  H_ = std::move(H);
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(b_, columns);
+  C.leftCols(capacity_) = C_;
+  C_ = std::move(C);
+  capacity_ = columns;
+}
+
+void BlockKrylovSchur::start() {
+  Q_.resize(n_, capacity_);
+  H_ = Eigen::MatrixXd::Zero(capacity_, capacity_);
+  C_ = Eigen::MatrixXd::Zero(b_, capacity_);
+  R_.resize(n_, b_);
+  for (Eigen::Index i = 0; i < n_; ++i)
+    for (int c = 0; c < b_; ++c) R_(i, c) = rng_.uniform(-1.0, 1.0);
+  Eigen::MatrixXd S;
+  orthonormalize(R_, 0, column_norms(R_), S);
+  j_ = 0;
+  coupled_from_ = 0;
+}
+
+// residual_gram_ = Tᵀ T with T = K D⁻¹ R, K = L + sM: for a Ritz pair (θ, y = Q z) the
+// residual of φ = D⁻¹ y in the original problem is L φ - λ M φ = -K D⁻¹ R (C z) / θ.
+void BlockKrylovSchur::update_residual_gram() {
+  const int b = b_;
+  RowMatrix T = RowMatrix::Zero(n_, b);
+  for (Eigen::Index col = 0; col < L_.outerSize(); ++col) {
+    const double* r = R_.data() + col * b;
+    const double inv = 1.0 / scale_(col);
+    for (Eigen::SparseMatrix<double>::InnerIterator it(L_, col); it; ++it) {
+      double* t = T.data() + it.row() * b;
+      const double v = it.value() * inv;
+      for (int c = 0; c < b; ++c) t[c] += v * r[c];
+    }
+  }
+  for (Eigen::Index i = 0; i < n_; ++i) {
+    const double diagonal = settings_.shift * scale_(i);  // s M_ii / D_ii
+    for (int c = 0; c < b; ++c) T(i, c) += diagonal * R_(i, c);
+  }
+  RowMatrix gram(b, b);
+  project_onto_columns(T.data(), b, b, T.data(), b, n_, gram.data());
+  residual_gram_ = gram;
+}
+
+void BlockKrylovSchur::expand() {
+  const int j = j_, b = b_;
+  for (Eigen::Index i = 0; i < n_; ++i)
+    for (int c = 0; c < b; ++c) Q_(i, j + c) = R_(i, c);
+  H_.block(j, 0, b, j) = C_.leftCols(j);
+  H_.block(0, j, j, b) = C_.leftCols(j).transpose();
+
+  RowMatrix W;
+  op_.apply(Q_.data() + j, Q_.cols(), b, W);
+  applications_ += b;
+  ++iterations_;
+  const Eigen::VectorXd applied_norms = column_norms(W);
+
+  // The recurrence: coefficients Cᵀ on the old basis, A on the new block.
+  if (j > coupled_from_) {
+    const RowMatrix known = C_.block(0, coupled_from_, b, j - coupled_from_).transpose();
+    subtract_combination(Q_.data() + coupled_from_, Q_.cols(), j - coupled_from_, known.data(), b, n_, W.data());
+  }
+  Eigen::MatrixXd diagonal_block = project_out(W, j, j + b);
+  // Re-orthogonalisation against everything, repeated when it removed much (DGKS, 1/√2).
+  const Eigen::VectorXd before = column_norms(W);
+  RowMatrix correction = project_out(W, 0, j + b);
+  diagonal_block += correction.bottomRows(b);
+  Eigen::VectorXd after = column_norms(W);
+  bool again = false;
+  for (int c = 0; c < b; ++c) again = again || after(c) < 0.7071067811865476 * before(c);
+  if (again) {
+    ++second_passes_;
+    correction = project_out(W, 0, j + b);
+    diagonal_block += correction.bottomRows(b);
+  }
+  H_.block(j, j, b, b) = 0.5 * (diagonal_block + diagonal_block.transpose());
+
+  Eigen::MatrixXd S;
+  orthonormalize(W, j + b, applied_norms, S);
+  R_ = std::move(W);
+  C_.setZero();
+  C_.block(0, j, b, b) = S;
+  coupled_from_ = j;
+  j_ = j + b;
+  update_residual_gram();
+}
+
+void BlockKrylovSchur::rayleigh_ritz() {
+  const int j = j_;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(H_.topLeftCorner(j, j));
+  theta_.resize(j);
+  Z_.resize(j, j);
+  for (int i = 0; i < j; ++i) {  // descending θ = ascending λ
+    theta_(i) = eigen.eigenvalues()(j - 1 - i);
+    Z_.col(i) = eigen.eigenvectors().col(j - 1 - i);
+  }
+  largest_theta_ = std::max(largest_theta_, theta_(0));
+  const Eigen::MatrixXd coupling = C_.leftCols(j) * Z_;
+  rho_.resize(j);
+  estimate_.resize(j);
+  const double denominator = settings_.norm_L * smallest_phi_norm_;
+  for (int i = 0; i < j; ++i) {
+    rho_(i) = coupling.col(i).norm();
+    const double squared = coupling.col(i).dot(residual_gram_ * coupling.col(i));
+    estimate_(i) = std::sqrt(std::max(squared, 0.0)) / (std::abs(theta_(i)) * denominator);
+  }
+}
+
+bool BlockKrylovSchur::converged_estimate() {
+  const int j = j_;
+  const double shift = settings_.shift;
+  auto lambda = [&](int i) { return 1.0 / theta_(i) - shift; };
+  int required = std::min(k_, j);
+  while (required < j && std::abs(lambda(required) - lambda(required - 1)) <=
+                             settings_.cluster_tolerance * (std::abs(lambda(required - 1)) + shift))
+    ++required;
+  required_ = required;
+  if (required >= j) return false;  // the pair past the cluster is not in the basis yet
+  const double tol = settings_.tolerance * internal_scale_;
+  for (int i = 0; i < required; ++i)
+    if (!(estimate_(i) <= tol)) return false;
+  // The first pair past the cluster only needs its value accurate enough to show the gap.
+  const double guard = std::max(tol, 0.1 * settings_.cluster_tolerance);
+  return rho_(required) <= guard * theta_(required);
+}
+
+void BlockKrylovSchur::restart() {
+  const int j = j_;
+  // Keep the wanted pairs, the one past the cluster, and half of the rest (the thick part).
+  const int wanted = std::min(required_ + 1, j - b_);
+  int keep = wanted + (m_ - wanted) / 2;
+  keep = std::min(keep, m_ - b_);
+  keep = std::max(keep, std::min(wanted, m_ - b_));
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Zkeep = Z_.leftCols(keep);
+  combine_columns(Q_.data(), Q_.cols(), j, Zkeep.data(), keep, n_, Q_.data(), Q_.cols());
+  H_.setZero();
+  for (int i = 0; i < keep; ++i) H_(i, i) = theta_(i);
+  Eigen::MatrixXd coupling = C_.leftCols(j) * Z_.leftCols(keep);
+  // Lock: a pair whose residual is far below the tolerance is decoupled from the rest.
+  const double lock = 0.01 * settings_.tolerance * internal_scale_;
+  for (int i = 0; i < keep; ++i)
+    if (rho_(i) <= lock * theta_(i)) coupling.col(i).setZero();
+  C_.setZero();
+  C_.leftCols(keep) = coupling;
+  coupled_from_ = 0;
+  j_ = keep;
+  ++restarts_;
+}
+
+bool BlockKrylovSchur::run() {
+  if (j_ == 0 && applications_ == 0) start();
+  while (true) {
+    if (j_ + b_ > capacity_) {
+      // A cluster reaching past the basis: grow the basis instead of restarting in vain.
+      if (required_ + 1 + 2 * b_ > m_) {
+        m_ = ((required_ + 1 + 2 * b_ + b_ - 1) / b_) * b_;
+        ensure_capacity(m_);
+        if (j_ + b_ <= capacity_) continue;
+      }
+      restart();
+    }
+    if (applications_ + b_ > settings_.max_applications) {
+      if (Z_.rows() != j_) rayleigh_ritz();  // the returned vectors come from the current basis
+      return false;
+    }
+    expand();
+    if (j_ > k_) {
+      rayleigh_ritz();
+      if (converged_estimate()) return true;
+    }
+  }
+}
+
+Eigen::MatrixXd BlockKrylovSchur::wanted_vectors() const {
+  const int j = j_;
+  const int count = std::min(k_, j);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Zk = Z_.leftCols(count);
+  RowMatrix Y(n_, count);
+  combine_columns(Q_.data(), Q_.cols(), j, Zk.data(), count, n_, Y.data(), count);
+  return Eigen::MatrixXd(Y);
+}
+
+}  // namespace
+
+LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass, int k,
+                                  const LanczosOptions& options, const Vertices* positions) {
+  LanczosResult result;
+  const auto fail = [&](LanczosStatus status, std::string message) {
+    result.status = status;
+    result.message = std::move(message);
+    return result;
+  };
+  if (std::string problem = options.check(); !problem.empty()) return fail(LanczosStatus::InvalidInput, problem);
+  const Eigen::Index n = L.rows();
+  if (L.cols() != n) return fail(LanczosStatus::InvalidInput, "the matrix is not square");
+  if (mass.size() != 0 && mass.size() != n) return fail(LanczosStatus::InvalidInput, "mass has the wrong size");
+  if (positions && positions->rows() != n) return fail(LanczosStatus::InvalidInput, "positions have the wrong size");
+  if (k < 1) return fail(LanczosStatus::InvalidInput, "k must be at least 1");
+  if (k >= n)
+    return fail(LanczosStatus::InvalidInput, "k = " + std::to_string(k) + " must be below the number of rows (" +
+                                                 std::to_string(n) + ")");
+  for (Eigen::Index i = 0; i < mass.size(); ++i)
+    if (!(mass(i) > 0.0) || !std::isfinite(mass(i)))
+      return fail(LanczosStatus::InvalidInput, "mass must be positive and finite (row " + std::to_string(i) + ")");
+
+  result.matrix_norm = infinity_norm(L);
+  double trace_L = 0.0, trace_M = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    trace_L += L.coeff(i, i);
+    trace_M += mass.size() ? mass(i) : 1.0;
+  }
+  result.shift = options.shift_scale * trace_L / (static_cast<double>(n) * trace_M);
+  if (!(result.shift > 0.0) || !std::isfinite(result.shift) || !std::isfinite(result.matrix_norm))
+    return fail(LanczosStatus::InvalidInput, "the matrix has no positive finite diagonal (empty or degenerate mesh?)");
+
+  const int b = std::min<int>(options.block_size, static_cast<int>(n));
+  int basis = options.max_basis;
+  if (basis == 0) basis = k + std::max(k, 4 * b);
+  basis = std::max(basis, k + 1 + 2 * b);
+  basis = ((basis + b - 1) / b) * b;
+  const long cap = options.max_operator_applications > 0 ? options.max_operator_applications : 200L * (k + b);
+
+  const Clock::time_point start = Clock::now();
+  Eigen::MatrixXd X;
+  if (n <= options.dense_below || 3L * basis > n) {
+    result.dense = true;
+    solve_dense(L, mass, k, X);
+    result.iteration_seconds = seconds_since(start);
+    result.eigenvectors = std::move(X);
+    result.converged = finalize_pairs(L, mass, result.matrix_norm, options.tolerance, result.eigenvectors,
+                                      result.eigenvalues, result.residuals);
+    result.status = result.converged == k ? LanczosStatus::Converged : LanczosStatus::NotConverged;
+    if (result.status != LanczosStatus::Converged) result.message = "the dense solver missed the tolerance";
+    return result;
+  }
+
+  ShiftInvertOperator op(L, mass, result.shift, positions);
+  result.factor_seconds = seconds_since(start);
+  result.factor_nonzeros = static_cast<long>(op.factor_nonzeros());
+  if (op.status() != ShiftInvertOperator::Status::Ok)
+    return fail(LanczosStatus::FactorizationFailed, "L + sM is not positive definite (is L positive semi-definite?)");
+
+  const Clock::time_point iterate = Clock::now();
+  BlockKrylovSchur::Settings settings;
+  settings.k = k;
+  settings.block = b;
+  settings.basis = basis;
+  settings.max_applications = cap;
+  settings.tolerance = options.tolerance;
+  settings.cluster_tolerance = options.cluster_tolerance;
+  settings.shift = result.shift;
+  settings.norm_L = result.matrix_norm;
+  settings.seed = options.seed;
+  BlockKrylovSchur solver(op, L, mass, settings);
+  bool converged = false;
+  for (int verification = 0; verification < 6; ++verification) {
+    converged = solver.run();
+    X = solver.wanted_vectors();
+    if (mass.size())
+      for (Eigen::Index i = 0; i < n; ++i) X.row(i) /= std::sqrt(mass(i));
+    result.eigenvectors = X;
+    result.converged = finalize_pairs(L, mass, result.matrix_norm, options.tolerance, result.eigenvectors,
+                                      result.eigenvalues, result.residuals);
+    if (!converged || result.converged == k) break;
+    // The estimate said yes but a true residual says no: ask for `worst/tolerance` more.
+    const double worst = result.residuals.maxCoeff();
+    solver.tighten(std::max(0.01, std::min(0.5, options.tolerance / worst)));
+  }
+  result.iterations = solver.iterations();
+  result.restarts = solver.restarts();
+  result.operator_applications = solver.applications();
+  result.second_passes = solver.second_passes();
+  result.iteration_seconds = seconds_since(iterate);
+  if (result.converged == k) {
+    result.status = LanczosStatus::Converged;
+  } else {
+    result.status = LanczosStatus::NotConverged;
+    result.message = converged ? "residuals stayed above the tolerance" : "operator-application cap reached";
+  }
+  return result;
+}
+
+}  // namespace offsetopt

@@ -1,0 +1,35 @@
+// Manifold-harmonic basis of a mesh (Musialski et al. 2015 section 5.1; Vallet & Lévy 2008): the
+// k eigenvectors of the cotan Laplacian with the smallest eigenvalues, Γk (#V by k), used as the
+// reduced coordinates of the offsets (δ = Γk α).
+//  - BasisKind::Laplacian: L γ = λ γ, as in the paper; columns have ‖γ‖₂ = 1.
+//  - BasisKind::Mass: L γ = λ M γ with the lumped mass M; columns have γᵀMγ = 1. This is the
+//    discretisation that converges to the Laplace–Beltrami eigenfunctions under refinement
+//    (λ ≈ l(l+1)/R² on a sphere of radius R), independent of how densely a region is sampled.
+// Assembly by spectral/cotan_laplacian.h and spectral/mass_matrix.h, eigenpairs by
+// spectral/lanczos_eigensolver.h (nested-dissection ordering on the vertex positions).
+#pragma once
+#include <string>
+
+#include "mesh/mesh.h"
+#include "spectral/cotan_laplacian.h"
+#include "spectral/lanczos_eigensolver.h"
+
+namespace offsetopt {
+
+enum class BasisKind { Laplacian, Mass };
+
+const char* to_string(BasisKind kind);  // "laplacian" or "mass"
+// Parses "laplacian" or "mass"; false for anything else.
+bool parse_basis_kind(const std::string& text, BasisKind& kind);
+
+struct ManifoldHarmonicsOptions {
+  BasisKind kind = BasisKind::Mass;
+  CotanOptions cotan;
+  LanczosOptions lanczos;
+  std::string check() const;
+};
+
+// Eigenpairs of the mesh (1 <= k < #V); see LanczosResult for the fields and status.
+LanczosResult manifold_harmonics(const Mesh& mesh, int k, const ManifoldHarmonicsOptions& options = {});
+
+}  // namespace offsetopt
