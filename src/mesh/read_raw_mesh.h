@@ -9,7 +9,8 @@
 // warning. Vertex and face numbers count from 0 in file order (faces after triangulation).
 //
 // Limits, checked before anything of that size is allocated:
-//   file size            <= kMaxFileBytes (2 GiB); only regular files are read
+//   file size            <= kMaxFileBytes (2 GiB - 1, so line numbers fit in an int); only
+//                        regular files are read
 //   vertices             <= kMaxVertices (2^25 = 33,554,432)
 //   triangles            <= kMaxFaces    (2^25, after triangulation)
 //   polygon corners      <= 255 in OBJ (tinyobjloader stores the corner count in a byte)
@@ -25,7 +26,7 @@
 
 namespace offsetopt {
 
-constexpr std::uint64_t kMaxFileBytes = std::uint64_t{1} << 31;
+constexpr std::uint64_t kMaxFileBytes = (std::uint64_t{1} << 31) - 1;
 constexpr std::int64_t kMaxVertices = std::int64_t{1} << 25;
 constexpr std::int64_t kMaxFaces = std::int64_t{1} << 25;
 // Stored in F for a vertex index that does not fit in 32 bits (always out of range).
