@@ -117,8 +117,9 @@ RawMesh read_obj(const std::string& name, const std::string& text) {
         if (i <= 3) xyz[i - 1] = value;
       }
       builder.add_vertex(xyz[0], xyz[1], xyz[2], number);
-      filtered.append(line.data(), line.size());
-      filtered += '\n';
+      // tinyobjloader only cross-checks the faces and its number parser overflows an int on
+      // exponents like 1e2147483648 (undefined behaviour): it gets a placeholder vertex.
+      filtered += "v 0 0 0\n";
     } else if (keyword == "f") {
       const std::size_t n = tokens.size() - 1;
       for (std::size_t i = 1; i < tokens.size(); ++i)

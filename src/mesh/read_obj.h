@@ -7,7 +7,9 @@
 //     `v/vt/vn` of whole decimal integers, index 0 refused, negative indices resolved against
 //     the vertices seen so far; NUL bytes and malformed tokens are refused with the line number.
 //  2. tinyobjloader parses a copy in which every line other than `v` and `f` is blanked (so it
-//     never sees `mtllib`, `t`, `vw`, `l` or `p` and keeps the same line numbers), from memory,
+//     never sees `mtllib`, `t`, `vw`, `l` or `p` and keeps the same line numbers) and every `v`
+//     line is `v 0 0 0` (its number parser overflows an int on an exponent such as
+//     1e2147483648, undefined behaviour; it needs only the vertex count), from memory,
 //     with a material reader that refuses every file and triangulation off. Its face list must
 //     agree corner by corner with pass 1, or the file is refused.
 // Coordinates come from pass 1 because tinyobjloader's number parser is not correctly rounded

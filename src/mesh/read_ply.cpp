@@ -311,6 +311,9 @@ RawMesh read_ply(const std::string& name, const std::string& bytes) {
   if (!text) {
     BinaryCursor cursor(name, bytes, body, encoding == Encoding::kBig);
     for (const Element& element : elements) {
+      // An element without properties holds no bytes: its count (up to the cap, unchecked
+      // against the file size) must not cost a loop.
+      if (element.properties.empty()) continue;
       for (std::uint64_t i = 0; i < element.count; ++i) {
         const bool is_vertex = &element == vertex_element, is_face = &element == face_element;
         cursor.set_context(&element, i);
@@ -355,6 +358,7 @@ RawMesh read_ply(const std::string& name, const std::string& bytes) {
 
   TextCursor cursor(name, bytes, body, body_line);
   for (const Element& element : elements) {
+    if (element.properties.empty()) continue;  // no tokens, however large the count
     for (std::uint64_t i = 0; i < element.count; ++i) {
       const bool is_vertex = &element == vertex_element, is_face = &element == face_element;
       int instance_line = 0;

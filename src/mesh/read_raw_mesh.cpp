@@ -109,7 +109,7 @@ std::string read_file_capped(const std::string& path) {
   const std::uint64_t size = static_cast<std::uint64_t>(info.st_size);
   if (size > kMaxFileBytes) {
     throw MeshInputError(path + ": file is " + std::to_string(size) + " bytes; the supported maximum is " +
-                         std::to_string(kMaxFileBytes) + " (2 GiB)");
+                         std::to_string(kMaxFileBytes) + " (2 GiB - 1)");
   }
   std::string bytes(static_cast<std::size_t>(size), '\0');
   std::size_t done = 0;
@@ -142,8 +142,13 @@ bool starts_with(const std::string& bytes, const char* prefix) {
 
 }  // namespace
 
-RawMesh read_raw_mesh(const std::string& path) {
-  const std::string bytes = read_file_capped(path);
+RawMesh read_raw_mesh(const std::string& path) { return read_raw_mesh_from_memory(path, read_file_capped(path)); }
+
+RawMesh read_raw_mesh_from_memory(const std::string& path, const std::string& bytes) {
+  if (bytes.size() > kMaxFileBytes) {
+    throw MeshInputError(path + ": file is " + std::to_string(bytes.size()) + " bytes; the supported maximum is " +
+                         std::to_string(kMaxFileBytes) + " (2 GiB - 1)");
+  }
   if (bytes.empty()) throw MeshInputError(path + ": file is empty");
   const std::string ext = lower_extension(path);
   if (ext == ".obj") return read_obj(path, bytes);

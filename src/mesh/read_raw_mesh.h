@@ -9,7 +9,8 @@
 // warning. Vertex and face numbers count from 0 in file order (faces after triangulation).
 //
 // Limits, checked before anything of that size is allocated:
-//   file size            <= kMaxFileBytes (2 GiB); only regular files are read
+//   file size            <= kMaxFileBytes (2 GiB - 1, so line numbers fit in an int); only
+//                        regular files are read
 //   vertices             <= kMaxVertices (2^25 = 33,554,432)
 //   triangles            <= kMaxFaces    (2^25, after triangulation)
 //   polygon corners      <= 255 in OBJ (tinyobjloader stores the corner count in a byte)
@@ -25,7 +26,7 @@
 
 namespace offsetopt {
 
-constexpr std::uint64_t kMaxFileBytes = std::uint64_t{1} << 31;
+constexpr std::uint64_t kMaxFileBytes = (std::uint64_t{1} << 31) - 1;
 constexpr std::int64_t kMaxVertices = std::int64_t{1} << 25;
 constexpr std::int64_t kMaxFaces = std::int64_t{1} << 25;
 // Stored in F for a vertex index that does not fit in 32 bits (always out of range).
@@ -50,6 +51,11 @@ const char* format_name(MeshFormat format);
 // Reads the file at `path`: format chosen by extension (.obj .stl .off .ply, any case), or by
 // content when the extension is unknown. Error messages start with `path` as given.
 RawMesh read_raw_mesh(const std::string& path);
+
+// The same for a file already in memory: `name` picks the format by its extension (by content
+// when it has none) and starts every error message. read_raw_mesh(path) is this applied to
+// read_file_capped(path); the fuzzers call it directly.
+RawMesh read_raw_mesh_from_memory(const std::string& name, const std::string& bytes);
 
 // Collects vertices and triangles while a reader runs, enforcing kMaxVertices and kMaxFaces and
 // fan-triangulating polygons. `text_format` keeps source line numbers.

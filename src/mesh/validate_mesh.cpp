@@ -159,6 +159,10 @@ int nesting_depth(const Mesh& mesh, const Vec3& point, int self, const std::vect
 }
 
 constexpr int kMaxShellsForNesting = 10000;
+// Ray-triangle tests the nesting check may spend (a few seconds at most). Its cost is the sum,
+// over the shells, of the faces of every other shell whose box contains the shell's test point:
+// up to #shells x #F, so a file of 10,000 nested shells inside one large one took minutes.
+constexpr long long kMaxNestingTriangleTests = 100000000;
 
 }  // namespace
 
@@ -287,11 +291,14 @@ MeshValidation validate_mesh(const Mesh& mesh) {
       return false;
     };
     Defect duplicate{DefectKind::kDuplicateFace};
+    // `first` starts the run of equal triples (walking back from each copy was quadratic in
+    // the number of copies: minutes for 200,000 copies of one face).
+    std::size_t first = 0;
     for (std::size_t i = 1; i < keys.size(); ++i) {
-      std::size_t first = i - 1;
-      if (keys[i][0] != keys[first][0] || keys[i][1] != keys[first][1] || keys[i][2] != keys[first][2]) continue;
-      while (first > 0 && keys[first - 1][0] == keys[i][0] && keys[first - 1][1] == keys[i][1] && keys[first - 1][2] == keys[i][2])
-        --first;
+      if (keys[i][0] != keys[i - 1][0] || keys[i][1] != keys[i - 1][1] || keys[i][2] != keys[i - 1][2]) {
+        first = i;
+        continue;
+      }
       const long long original = keys[first][3], copy = keys[i][3];
       const bool same = same_cycle(original, copy);
       if (same) {
@@ -457,7 +464,9 @@ MeshValidation validate_mesh(const Mesh& mesh) {
     out.volume = total.value() / 6.0;
     out.volume_computed = true;
     out.component_depth.assign(static_cast<std::size_t>(shells), 0);
+    bool nesting_checked = shells == 1;
     if (shells > 1 && shells <= kMaxShellsForNesting) {
+      std::vector<Vec3> points(static_cast<std::size_t>(shells));
       for (int s = 0; s < shells; ++s) {
         // A point of this shell: the centroid of its largest face, safely inside that face.
         int best = faces_of[static_cast<std::size_t>(s)][0];
@@ -471,13 +480,24 @@ MeshValidation validate_mesh(const Mesh& mesh) {
             best = f;
           }
         }
-        Vec3 point{0, 0, 0};
+        Vec3& point = points[static_cast<std::size_t>(s)];
+        point = {0, 0, 0};
         for (int k = 0; k < 3; ++k) {
           const Vec3 p = row(mesh, mesh.F(best, k));
           for (int i = 0; i < 3; ++i) point[i] += p[i] / 3.0;
         }
-        out.component_depth[static_cast<std::size_t>(s)] = nesting_depth(mesh, point, s, faces_of, boxes);
       }
+      // Beyond the budget the nesting is left unchecked, as beyond kMaxShellsForNesting.
+      long long tests = 0;
+      for (int s = 0; s < shells && tests <= kMaxNestingTriangleTests; ++s)
+        for (int t = 0; t < shells; ++t)
+          if (t != s && boxes[static_cast<std::size_t>(t)].contains(points[static_cast<std::size_t>(s)]))
+            tests += static_cast<long long>(faces_of[static_cast<std::size_t>(t)].size());
+      nesting_checked = tests <= kMaxNestingTriangleTests;
+      if (nesting_checked)
+        for (int s = 0; s < shells; ++s)
+          out.component_depth[static_cast<std::size_t>(s)] =
+              nesting_depth(mesh, points[static_cast<std::size_t>(s)], s, faces_of, boxes);
     }
     Defect zero{DefectKind::kZeroVolume}, inverted{DefectKind::kInsideOut};
     for (int s = 0; s < shells; ++s) {
@@ -491,7 +511,7 @@ MeshValidation validate_mesh(const Mesh& mesh) {
       if (d.count == 0) {
         d.face = first_face;
         d.value = volume;
-        d.bound = out.component_depth[static_cast<std::size_t>(s)];
+        d.bound = nesting_checked ? out.component_depth[static_cast<std::size_t>(s)] : -1;  // -1: unknown
       }
       ++d.count;
     }
@@ -608,6 +628,10 @@ std::string describe_defect(const Defect& d, const DefectSource& s) {
         return "cavity shell has positive signed volume " + format_double(d.value) + " (a shell inside another must face inwards)";
       if (d.bound > 0)
         return "shell nested in a cavity has negative signed volume " + format_double(d.value);
+      if (d.bound < 0)
+        return "shell has negative signed volume " + format_double(d.value) +
+               " and too many shells to check which are cavities (at most " + std::to_string(kMaxShellsForNesting) +
+               " shells and " + std::to_string(kMaxNestingTriangleTests) + " ray-triangle tests)";
       return "shell is inside-out: signed volume " + format_double(d.value) + " (normals point inwards)";
     case DefectKind::kSeveralComponents:
       return "the mesh has " + format_double(d.value) + " separate components";

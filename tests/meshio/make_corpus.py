@@ -142,11 +142,19 @@ bad["ply_unknown_format.ply"] = (ply_ascii(TET_V, TET_T).replace(b"format ascii"
                                  "unknown PLY format")
 bad["ply_no_end_header.ply"] = (b"ply\nformat ascii 1.0\nelement vertex 0\n", "end_header")
 bad["ply_float_list_count.ply"] = (ply_ascii(TET_V, TET_T, count_type="float"), "not an integer type")
+# Hostile-input review (issue 7): elements without properties hold no bytes, so their counts (up to the cap)
+# pass the size check; the readers used to loop over every instance (minutes per header).
+for encoding in ("ascii", "binary_little_endian"):
+    bad["ply_empty_elements_%s.ply" % encoding.split("_")[0]] = (
+        b"ply\nformat %s 1.0\n" % encoding.encode() + b"element e 33554432\n" * 200 + b"end_header\n", "no faces")
 # --- numbers
 nan_cube = [("nan", 0, 0)] + CUBE_V[1:]
 bad["nan_coordinate.obj"] = (obj(nan_cube, CUBE_T), "not a finite number")
 bad["inf_coordinate.off"] = (off([(0, "-inf", 0)] + CUBE_V[1:], CUBE_T), "not a finite number")
 bad["huge_coordinate.ply"] = (ply_ascii([(1e300, 0, 0)] + TET_V[1:], TET_T), "exceeds the supported magnitude")
+# Hostile-input review (issue 7): tinyobjloader's parser overflowed an int on this exponent
+# (undefined behaviour, reported by UBSan) before the OBJ reader gave it placeholder vertices.
+bad["exponent_overflows_int.obj"] = (obj([("1e2147483648", 0, 0)] + CUBE_V[1:], CUBE_T), "not a finite number")
 bad["not_a_number.obj"] = (obj([("abc", 0, 0)] + CUBE_V[1:], CUBE_T), "is not a number")
 bad["missing_coordinate.obj"] = (obj([(1, 0)] + CUBE_V[1:], CUBE_T), "needs 3 coordinates")
 bad["non_utf8_coordinate.obj"] = (obj(CUBE_V, CUBE_T).replace(b"v 1 0 0\n", b"v 1 \xff\xfe 0\n", 1), "is not a number")
