@@ -5,10 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <thread>
 #include <vector>
 
 #include "spectral/row_block_kernels.h"
 #include "spectral/shift_invert_operator.h"
+#include "spectral/worker_pool.h"
 #include "util/rng.h"
 
 namespace offsetopt {
@@ -21,6 +23,7 @@ std::string LanczosOptions::check() const {
   if (!(shift_scale > 0.0) || !std::isfinite(shift_scale)) return "shift_scale must be positive";
   if (!(cluster_tolerance >= 0.0) || !(cluster_tolerance < 1.0)) return "cluster_tolerance must be in [0, 1)";
   if (dense_below < 0) return "dense_below must be >= 0";
+  if (threads < 0 || threads > 64) return "threads must be in [0, 64] (0: automatic)";
   return {};
 }
 
@@ -67,7 +70,7 @@ double dot(const double* a, const double* b, Eigen::Index n, Eigen::Index stride
 // Turns approximate eigenvectors (columns of X, any scale) into the reported pairs: Rayleigh
 // quotients, normalisation, sign, sorting, true residuals. Returns the number meeting `tolerance`.
 int finalize_pairs(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass, double norm_L, double tolerance,
-                   Eigen::MatrixXd& X, Eigen::VectorXd& eigenvalues, Eigen::VectorXd& residuals) {
+                   Eigen::MatrixXd& X, Eigen::VectorXd& eigenvalues, Eigen::VectorXd& residuals, WorkerPool& pool) {
   const Eigen::Index n = X.rows();
   const int k = static_cast<int>(X.cols());
   const bool generalised = mass.size() > 0;
@@ -95,16 +98,18 @@ int finalize_pairs(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& 
     for (int c = 0; c < k; ++c) Y(i, c) *= factor[c];
   // L Y by rows (L symmetric: column i lists row i), then the Rayleigh quotients and residuals.
   RowMatrix LY(n, k);
-  std::vector<double> acc(k);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    std::fill(acc.begin(), acc.end(), 0.0);
-    for (Eigen::SparseMatrix<double>::InnerIterator it(L, i); it; ++it) {
-      const double* y = Y.data() + it.row() * k;
-      const double v = it.value();
-      for (int c = 0; c < k; ++c) acc[c] += v * y[c];
+  pool.run([&](int part) {
+    std::vector<double> acc(k);
+    for (Eigen::Index i = split_point(n, pool.size(), part); i < split_point(n, pool.size(), part + 1); ++i) {
+      std::fill(acc.begin(), acc.end(), 0.0);
+      for (Eigen::SparseMatrix<double>::InnerIterator it(L, i); it; ++it) {
+        const double* y = Y.data() + it.row() * k;
+        const double v = it.value();
+        for (int c = 0; c < k; ++c) acc[c] += v * y[c];
+      }
+      for (int c = 0; c < k; ++c) LY(i, c) = acc[c];
     }
-    for (int c = 0; c < k; ++c) LY(i, c) = acc[c];
-  }
+  });
   std::vector<double> yLy(k, 0.0), yMy(k, 0.0);
   for (Eigen::Index i = 0; i < n; ++i) {
     const double m = generalised ? mass(i) : 1.0;
@@ -179,8 +184,8 @@ class BlockKrylovSchur {
   };
 
   BlockKrylovSchur(const ShiftInvertOperator& op, const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass,
-                   const Settings& settings)
-      : op_(op), L_(L), n_(op.size()), k_(settings.k), b_(settings.block), m_(settings.basis),
+                   const Settings& settings, WorkerPool& pool)
+      : op_(op), L_(L), pool_(&pool), n_(op.size()), k_(settings.k), b_(settings.block), m_(settings.basis),
         capacity_(std::min(settings.basis, ((settings.k + 4 * settings.block) / settings.block + 1) * settings.block)),
         settings_(settings), rng_(settings.seed) {
     scale_.resize(n_);
@@ -227,6 +232,7 @@ class BlockKrylovSchur {
 
   const ShiftInvertOperator& op_;
   const Eigen::SparseMatrix<double>& L_;
+  WorkerPool* pool_;
   Eigen::Index n_;
   int k_, b_, m_, capacity_;
   Settings settings_;
@@ -269,8 +275,8 @@ RowMatrix BlockKrylovSchur::project_out(RowMatrix& W, int first, int last) const
   const int b = static_cast<int>(W.cols());
   RowMatrix coefficients(last - first, b);
   if (last <= first) return coefficients;
-  project_onto_columns(Q_.data() + first, Q_.cols(), last - first, W.data(), b, n_, coefficients.data());
-  subtract_combination(Q_.data() + first, Q_.cols(), last - first, coefficients.data(), b, n_, W.data());
+  project_onto_columns(Q_.data() + first, Q_.cols(), last - first, W.data(), b, n_, coefficients.data(), pool_);
+  subtract_combination(Q_.data() + first, Q_.cols(), last - first, coefficients.data(), b, n_, W.data(), pool_);
   return coefficients;
 }
 
@@ -278,16 +284,16 @@ RowMatrix BlockKrylovSchur::project_out(RowMatrix& W, int first, int last) const
 // Returns false when W is too ill-conditioned or rank deficient (W then spans the same space).
 // W ← W U⁻¹ for an upper triangular U (b by b): a product with the explicit inverse, so the rows
 // are independent (a row-by-row triangular solve is a chain of dependent divisions).
-void apply_inverse_upper(RowMatrix& W, const Eigen::MatrixXd& U) {
+void apply_inverse_upper(RowMatrix& W, const Eigen::MatrixXd& U, WorkerPool* pool) {
   const int b = static_cast<int>(W.cols());
   const RowMatrix inverse = U.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(b, b));
-  combine_columns(W.data(), b, b, inverse.data(), b, W.rows(), W.data(), b);
+  combine_columns(W.data(), b, b, inverse.data(), b, W.rows(), W.data(), b, pool);
 }
 
 bool BlockKrylovSchur::cholesky_qr(RowMatrix& W, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S) const {
   const int b = static_cast<int>(W.cols());
   RowMatrix gram(b, b);
-  project_onto_columns(W.data(), b, b, W.data(), b, n_, gram.data());
+  project_onto_columns(W.data(), b, b, W.data(), b, n_, gram.data(), pool_);
   Eigen::MatrixXd U[2];
   S = Eigen::MatrixXd::Identity(b, b);  // what has been applied so far, should a pass fail
   for (int pass = 0; pass < 2; ++pass) {
@@ -302,11 +308,11 @@ bool BlockKrylovSchur::cholesky_qr(RowMatrix& W, const Eigen::VectorXd& referenc
     }
     if (pass == 1) break;
     // Should the second factorisation fail, W is already transformed (S says how).
-    apply_inverse_upper(W, U[0]);
+    apply_inverse_upper(W, U[0], pool_);
     S = U[0];
-    project_onto_columns(W.data(), b, b, W.data(), b, n_, gram.data());
+    project_onto_columns(W.data(), b, b, W.data(), b, n_, gram.data(), pool_);
   }
-  apply_inverse_upper(W, U[1]);
+  apply_inverse_upper(W, U[1], pool_);
   S = U[1] * U[0];
   return true;
 }
@@ -397,20 +403,22 @@ void BlockKrylovSchur::start() {
 void BlockKrylovSchur::update_residual_gram() {
   const int b = b_;
   RowMatrix T(n_, b);
-  std::vector<double> acc(static_cast<std::size_t>(b));
-  // L is symmetric: column `row` lists the entries of row `row`.
-  for (Eigen::Index row = 0; row < L_.outerSize(); ++row) {
-    std::fill(acc.begin(), acc.end(), 0.0);
-    for (Eigen::SparseMatrix<double>::InnerIterator it(L_, row); it; ++it) {
-      const double* r = R_.data() + it.row() * b;
-      const double v = it.value() / scale_(it.row());
-      for (int c = 0; c < b; ++c) acc[c] += v * r[c];
+  // L is symmetric: column `row` lists the entries of row `row`. Rows split among the threads.
+  pool_->run([&](int part) {
+    std::vector<double> acc(static_cast<std::size_t>(b));
+    for (Eigen::Index row = split_point(n_, pool_->size(), part); row < split_point(n_, pool_->size(), part + 1); ++row) {
+      std::fill(acc.begin(), acc.end(), 0.0);
+      for (Eigen::SparseMatrix<double>::InnerIterator it(L_, row); it; ++it) {
+        const double* r = R_.data() + it.row() * b;
+        const double v = it.value() / scale_(it.row());
+        for (int c = 0; c < b; ++c) acc[c] += v * r[c];
+      }
+      const double diagonal = settings_.shift * scale_(row);  // s M_ii / D_ii
+      for (int c = 0; c < b; ++c) T(row, c) = acc[c] + diagonal * R_(row, c);
     }
-    const double diagonal = settings_.shift * scale_(row);  // s M_ii / D_ii
-    for (int c = 0; c < b; ++c) T(row, c) = acc[c] + diagonal * R_(row, c);
-  }
+  });
   RowMatrix gram(b, b);
-  project_onto_columns(T.data(), b, b, T.data(), b, n_, gram.data());
+  project_onto_columns(T.data(), b, b, T.data(), b, n_, gram.data(), pool_);
   residual_gram_ = gram;
   gram_current_ = true;
 }
@@ -425,7 +433,7 @@ void BlockKrylovSchur::expand() {
   H_.block(0, j, j, b) = C_.leftCols(j).transpose();
 
   RowMatrix W;
-  op_.apply(R_.data(), b, b, W);
+  op_.apply(R_.data(), b, b, W, pool_);
   applications_ += b;
   ++iterations_;
 
@@ -434,13 +442,13 @@ void BlockKrylovSchur::expand() {
   if (j > coupled_from_) {
     const RowMatrix known = C_.block(0, coupled_from_, b, j - coupled_from_).transpose();
     if (coupled_from_ == j - b && previous_.rows() == n_)
-      subtract_combination(previous_.data(), b, b, known.data(), b, n_, W.data());
+      subtract_combination(previous_.data(), b, b, known.data(), b, n_, W.data(), pool_);
     else
-      subtract_combination(Q_.data() + coupled_from_, Q_.cols(), j - coupled_from_, known.data(), b, n_, W.data());
+      subtract_combination(Q_.data() + coupled_from_, Q_.cols(), j - coupled_from_, known.data(), b, n_, W.data(), pool_);
   }
   RowMatrix diagonal(b, b);
-  project_onto_columns(R_.data(), b, b, W.data(), b, n_, diagonal.data());
-  subtract_combination(R_.data(), b, b, diagonal.data(), b, n_, W.data());
+  project_onto_columns(R_.data(), b, b, W.data(), b, n_, diagonal.data(), pool_);
+  subtract_combination(R_.data(), b, b, diagonal.data(), b, n_, W.data(), pool_);
   Eigen::MatrixXd diagonal_block = diagonal;
 
   // Re-orthogonalisation against the whole basis: the coefficients are computed every step; the
@@ -449,7 +457,7 @@ void BlockKrylovSchur::expand() {
   // it removed much (DGKS, 1/√2; the norm after is |before|² - |coefficients|², Q orthonormal).
   const Eigen::VectorXd before = column_norms(W);
   RowMatrix correction(j + b, b);
-  project_onto_columns(Q_.data(), Q_.cols(), j + b, W.data(), b, n_, correction.data());
+  project_onto_columns(Q_.data(), Q_.cols(), j + b, W.data(), b, n_, correction.data(), pool_);
   bool significant = false, again = false;
   for (int c = 0; c < b; ++c) {
     const double largest = correction.col(c).cwiseAbs().maxCoeff();
@@ -458,7 +466,7 @@ void BlockKrylovSchur::expand() {
   }
   if (significant) {
     ++corrections_;
-    subtract_combination(Q_.data(), Q_.cols(), j + b, correction.data(), b, n_, W.data());
+    subtract_combination(Q_.data(), Q_.cols(), j + b, correction.data(), b, n_, W.data(), pool_);
     diagonal_block += correction.bottomRows(b);
     if (again) {
       ++second_passes_;
@@ -530,7 +538,7 @@ void BlockKrylovSchur::restart() {
   keep = std::min(keep, m_ - b_);
   keep = std::max(keep, std::min(wanted, m_ - b_));
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Zkeep = Z_.leftCols(keep);
-  combine_columns(Q_.data(), Q_.cols(), j, Zkeep.data(), keep, n_, Q_.data(), Q_.cols());
+  combine_columns(Q_.data(), Q_.cols(), j, Zkeep.data(), keep, n_, Q_.data(), Q_.cols(), pool_);
   H_.setZero();
   for (int i = 0; i < keep; ++i) H_(i, i) = theta_(i);
   Eigen::MatrixXd coupling = C_.leftCols(j) * Z_.leftCols(keep);
@@ -575,7 +583,7 @@ Eigen::MatrixXd BlockKrylovSchur::wanted_vectors() const {
   const int count = std::min(k_, j);
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Zk = Z_.leftCols(count);
   RowMatrix Y(n_, count);
-  combine_columns(Q_.data(), Q_.cols(), j, Zk.data(), count, n_, Y.data(), count);
+  combine_columns(Q_.data(), Q_.cols(), j, Zk.data(), count, n_, Y.data(), count, pool_);
   // φ = D⁻¹ y.
   for (Eigen::Index i = 0; i < n_; ++i) {
     const double d = scale_(i);
@@ -624,6 +632,11 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
   basis = ((basis + b - 1) / b) * b;
   const long cap = options.max_operator_applications > 0 ? options.max_operator_applications : 200L * (k + b);
 
+  const unsigned hardware = std::thread::hardware_concurrency();
+  const int threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::min(2u, hardware)));
+  WorkerPool pool(threads);
+  result.threads = threads;
+
   const Clock::time_point start = Clock::now();
   Eigen::MatrixXd X;
   if (n <= options.dense_below || 3L * basis > n) {
@@ -632,7 +645,7 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
     result.iteration_seconds = seconds_since(start);
     result.eigenvectors = std::move(X);
     result.converged = finalize_pairs(L, mass, result.matrix_norm, options.tolerance, result.eigenvectors,
-                                      result.eigenvalues, result.residuals);
+                                      result.eigenvalues, result.residuals, pool);
     result.status = result.converged == k ? LanczosStatus::Converged : LanczosStatus::NotConverged;
     if (result.status != LanczosStatus::Converged) result.message = "the dense solver missed the tolerance";
     return result;
@@ -655,13 +668,13 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
   settings.shift = result.shift;
   settings.norm_L = result.matrix_norm;
   settings.seed = options.seed;
-  BlockKrylovSchur solver(op, L, mass, settings);
+  BlockKrylovSchur solver(op, L, mass, settings, pool);
   bool converged = false;
   for (int verification = 0; verification < 6; ++verification) {
     converged = solver.run();
     result.eigenvectors = solver.wanted_vectors();
     result.converged = finalize_pairs(L, mass, result.matrix_norm, options.tolerance, result.eigenvectors,
-                                      result.eigenvalues, result.residuals);
+                                      result.eigenvalues, result.residuals, pool);
     if (!converged || result.converged == k) break;
     // The estimate said yes but a true residual says no: ask for `worst/tolerance` more.
     const double worst = result.residuals.maxCoeff();

@@ -57,6 +57,9 @@ struct LanczosOptions {
   std::uint64_t seed = 0x5eed2015ull;
   // Use the dense solver when #V is at most this (or when the basis would exceed #V / 3).
   int dense_below = 200;
+  // Threads for the iteration (triangular solves, projections); 0 means min(2, cores). The
+  // results are bit for bit the same for any number (fixed partitions, no shared sums).
+  int threads = 0;
 
   // Empty when valid, else what is wrong (one line).
   std::string check() const;
@@ -86,6 +89,7 @@ struct LanczosResult {
   double shift = 0.0;             // s
   double matrix_norm = 0.0;       // ‖L‖∞
   bool dense = false;             // solved by the dense fallback
+  int threads = 1;                // threads used
   long factor_nonzeros = 0;       // of the LDLᵀ factor (0 when dense)
   double factor_seconds = 0.0;    // ordering + factorisation (timing only, never fed back)
   double iteration_seconds = 0.0;  // everything after the factorisation

@@ -154,8 +154,11 @@ void combine_any(const double* Q, Eigen::Index ldq, int j, const double* Z, Eige
 
 }  // namespace
 
-void project_onto_columns(const double* Q, Eigen::Index ldq, int j, const double* W, int b, Eigen::Index n,
-                          double* C) {
+namespace {
+
+// Serial bodies: project onto columns [0, j) of the given Q pointer; subtract and combine on
+// rows [0, n) of the given pointers.
+void project_serial(const double* Q, Eigen::Index ldq, int j, const double* W, int b, Eigen::Index n, double* C) {
   switch (b) {
     case 2: project_even<2>(Q, ldq, j, W, n, C); break;
     case 4: project_even<4>(Q, ldq, j, W, n, C); break;
@@ -167,8 +170,7 @@ void project_onto_columns(const double* Q, Eigen::Index ldq, int j, const double
   }
 }
 
-void subtract_combination(const double* Q, Eigen::Index ldq, int j, const double* C, int b, Eigen::Index n,
-                          double* W) {
+void subtract_serial(const double* Q, Eigen::Index ldq, int j, const double* C, int b, Eigen::Index n, double* W) {
   switch (b) {
     case 4: combine_even<4, true>(Q, ldq, j, C, b, n, W, b); break;
     case 6: combine_even<6, true>(Q, ldq, j, C, b, n, W, b); break;
@@ -177,18 +179,61 @@ void subtract_combination(const double* Q, Eigen::Index ldq, int j, const double
   }
 }
 
-void combine_columns(const double* Q, Eigen::Index ldq, int j, const double* Z, int p, Eigen::Index n, double* X,
-                     Eigen::Index ldx) {
-  // By chunks of rows, so the chunk of Q stays in cache while each group of output columns
-  // (combine_any) passes over it; through a buffer, so X may be Q itself.
-  constexpr Eigen::Index kRows = 64;
-  std::vector<double> buffer(static_cast<std::size_t>(kRows * p));
-  for (Eigen::Index i0 = 0; i0 < n; i0 += kRows) {
-    const Eigen::Index rows = std::min(kRows, n - i0);
+// By chunks of rows, so the chunk of Q stays in cache while each group of output columns
+// (combine_any) passes over it; through a buffer, so X may be Q itself.
+constexpr Eigen::Index kCombineRows = 64;
+
+void combine_serial(const double* Q, Eigen::Index ldq, int j, const double* Z, int p, Eigen::Index n, double* X,
+                    Eigen::Index ldx) {
+  std::vector<double> buffer(static_cast<std::size_t>(kCombineRows * p));
+  for (Eigen::Index i0 = 0; i0 < n; i0 += kCombineRows) {
+    const Eigen::Index rows = std::min(kCombineRows, n - i0);
     combine_any<false>(Q + i0 * ldq, ldq, j, Z, p, p, rows, buffer.data(), p);
     for (Eigen::Index i = 0; i < rows; ++i)
       std::copy(buffer.data() + i * p, buffer.data() + (i + 1) * p, X + (i0 + i) * ldx);
   }
+}
+
+}  // namespace
+
+void project_onto_columns(const double* Q, Eigen::Index ldq, int j, const double* W, int b, Eigen::Index n,
+                          double* C, WorkerPool* pool) {
+  if (!pool || pool->size() == 1 || j < 2 * pool->size()) {
+    project_serial(Q, ldq, j, W, b, n, C);
+    return;
+  }
+  // Each part computes the rows of C for its own range of Q's columns.
+  pool->run([&](int part) {
+    const int a0 = static_cast<int>(split_point(j, pool->size(), part, 4));
+    const int a1 = static_cast<int>(split_point(j, pool->size(), part + 1, 4));
+    if (a1 > a0) project_serial(Q + a0, ldq, a1 - a0, W, b, n, C + static_cast<std::ptrdiff_t>(a0) * b);
+  });
+}
+
+void subtract_combination(const double* Q, Eigen::Index ldq, int j, const double* C, int b, Eigen::Index n,
+                          double* W, WorkerPool* pool) {
+  if (!pool || pool->size() == 1 || n < 1024) {
+    subtract_serial(Q, ldq, j, C, b, n, W);
+    return;
+  }
+  pool->run([&](int part) {
+    const Eigen::Index i0 = split_point(n, pool->size(), part, 2);
+    const Eigen::Index i1 = split_point(n, pool->size(), part + 1, 2);
+    if (i1 > i0) subtract_serial(Q + i0 * ldq, ldq, j, C, b, i1 - i0, W + i0 * b);
+  });
+}
+
+void combine_columns(const double* Q, Eigen::Index ldq, int j, const double* Z, int p, Eigen::Index n, double* X,
+                     Eigen::Index ldx, WorkerPool* pool) {
+  if (!pool || pool->size() == 1 || n < 1024) {
+    combine_serial(Q, ldq, j, Z, p, n, X, ldx);
+    return;
+  }
+  pool->run([&](int part) {
+    const Eigen::Index i0 = split_point(n, pool->size(), part, kCombineRows);
+    const Eigen::Index i1 = split_point(n, pool->size(), part + 1, kCombineRows);
+    if (i1 > i0) combine_serial(Q + i0 * ldq, ldq, j, Z, p, i1 - i0, X + i0 * ldx, ldx);
+  });
 }
 
 }  // namespace offsetopt

@@ -43,15 +43,18 @@ void solve_block(const SolveData& data, const Supernodes& supernodes, int width,
     const double* below = data.values + s.below;
     const int* rows = data.rows + s.row_begin;
     int r = 0;
-    if constexpr (kWidth > 0 && kWidth % 2 == 0) {
-      // Two rows at a time: independent chains, shared loads of the supernode's rows.
+    if constexpr (kWidth > 1) {
+      // Two rows at a time: independent chains, shared loads of the supernode's rows. Column
+      // pairs in SSE registers, an odd last column in scalars: the same operations per entry.
       constexpr int H = kWidth / 2;
+      constexpr bool kOdd = kWidth % 2 == 1;
       for (; r + 1 < s.row_count; r += 2) {
         double* x0 = x + static_cast<std::ptrdiff_t>(rows[r]) * b;
         double* x1 = x + static_cast<std::ptrdiff_t>(rows[r + 1]) * b;
         const double* l0 = below + static_cast<std::ptrdiff_t>(r) * s.width;
         const double* l1 = l0 + s.width;
         __m128d a0[H], a1[H];
+        double t0 = kOdd ? x0[kWidth - 1] : 0.0, t1 = kOdd ? x1[kWidth - 1] : 0.0;
         for (int h = 0; h < H; ++h) {
           a0[h] = _mm_loadu_pd(x0 + 2 * h);
           a1[h] = _mm_loadu_pd(x1 + 2 * h);
@@ -64,10 +67,18 @@ void solve_block(const SolveData& data, const Supernodes& supernodes, int width,
             a0[h] = _mm_sub_pd(a0[h], _mm_mul_pd(f0, v));
             a1[h] = _mm_sub_pd(a1[h], _mm_mul_pd(f1, v));
           }
+          if (kOdd) {
+            t0 -= l0[j] * xj[kWidth - 1];
+            t1 -= l1[j] * xj[kWidth - 1];
+          }
         }
         for (int h = 0; h < H; ++h) {
           _mm_storeu_pd(x0 + 2 * h, a0[h]);
           _mm_storeu_pd(x1 + 2 * h, a1[h]);
+        }
+        if (kOdd) {
+          x0[kWidth - 1] = t0;
+          x1[kWidth - 1] = t1;
         }
       }
     }
@@ -92,9 +103,10 @@ void solve_block(const SolveData& data, const Supernodes& supernodes, int width,
     const double* below = data.values + s.below;
     const int* rows = data.rows + s.row_begin;
     int r = 0;
-    if constexpr (kWidth > 0 && kWidth % 2 == 0) {
+    if constexpr (kWidth > 1) {
       // Two rows at a time: each a[j] loaded and stored once per pair, terms still in row order.
       constexpr int H = kWidth / 2;
+      constexpr bool kOdd = kWidth % 2 == 1;
       for (; r + 1 < s.row_count; r += 2) {
         const double* x0 = x + static_cast<std::ptrdiff_t>(rows[r]) * b;
         const double* x1 = x + static_cast<std::ptrdiff_t>(rows[r + 1]) * b;
@@ -111,6 +123,10 @@ void solve_block(const SolveData& data, const Supernodes& supernodes, int width,
           for (int h = 0; h < H; ++h) {
             __m128d t = _mm_sub_pd(_mm_loadu_pd(aj + 2 * h), _mm_mul_pd(f0, v0[h]));
             _mm_storeu_pd(aj + 2 * h, _mm_sub_pd(t, _mm_mul_pd(f1, v1[h])));
+          }
+          if (kOdd) {
+            const double t = aj[kWidth - 1] - l0[j] * x0[kWidth - 1];
+            aj[kWidth - 1] = t - l1[j] * x1[kWidth - 1];
           }
         }
       }
@@ -215,39 +231,58 @@ ShiftInvertOperator::ShiftInvertOperator(const Eigen::SparseMatrix<double>& L, c
   }
 }
 
-void ShiftInvertOperator::apply(const double* in, Eigen::Index in_stride, int b, RowMatrix& out) const {
+void ShiftInvertOperator::apply(const double* in, Eigen::Index in_stride, int b, RowMatrix& out,
+                                WorkerPool* pool) const {
+  out.resize(n_, b);
+  const int parts = pool ? std::min(pool->size(), b) : 1;
+  if (static_cast<int>(work_.size()) < parts) work_.resize(static_cast<std::size_t>(parts));
+  // Columns are independent: each part solves its own columns with its own buffer.
+  const auto solve_columns = [&](int part) {
+    const int c0 = static_cast<int>(split_point(b, parts, part));
+    const int c1 = static_cast<int>(split_point(b, parts, part + 1));
+    if (c1 > c0) solve_columns_into(in + c0, in_stride, c1 - c0, out.data() + c0, b, work_[part]);
+  };
+  if (parts == 1)
+    solve_columns(0);
+  else
+    pool->run([&](int part) {
+      if (part < parts) solve_columns(part);
+    });
+}
+
+void ShiftInvertOperator::solve_columns_into(const double* in, Eigen::Index in_stride, int w, double* out,
+                                             Eigen::Index out_stride, RowMatrix& work) const {
   const int n = static_cast<int>(n_);
-  work_.resize(n_, b);
-  double* x = work_.data();
+  work.resize(n_, w);
+  double* x = work.data();
   for (int i = 0; i < n; ++i) {
     const double* src = in + static_cast<std::ptrdiff_t>(order_[i]) * in_stride;
     const double d = scale_[i];
-    for (int c = 0; c < b; ++c) x[static_cast<std::ptrdiff_t>(i) * b + c] = d * src[c];
+    for (int c = 0; c < w; ++c) x[static_cast<std::ptrdiff_t>(i) * w + c] = d * src[c];
   }
   const SolveData data{n, rows_.data(), values_.data(), pivot_.data()};
-  switch (b) {
-    case 1: solve_block<1>(data, supernodes_, b, x); break;
-    case 2: solve_block<2>(data, supernodes_, b, x); break;
-    case 4: solve_block<4>(data, supernodes_, b, x); break;
-    case 6: solve_block<6>(data, supernodes_, b, x); break;
-    case 8: solve_block<8>(data, supernodes_, b, x); break;
-    case 12: solve_block<12>(data, supernodes_, b, x); break;
-    case 16: solve_block<16>(data, supernodes_, b, x); break;
+  switch (w) {
+    case 1: solve_block<1>(data, supernodes_, w, x); break;
+    case 2: solve_block<2>(data, supernodes_, w, x); break;
+    case 3: solve_block<3>(data, supernodes_, w, x); break;
+    case 4: solve_block<4>(data, supernodes_, w, x); break;
+    case 5: solve_block<5>(data, supernodes_, w, x); break;
+    case 6: solve_block<6>(data, supernodes_, w, x); break;
+    case 8: solve_block<8>(data, supernodes_, w, x); break;
     default: {
       // Other widths in slices of at most 64 columns (each column is solved independently).
-      for (int c0 = 0; c0 < b; c0 += 64) {
-        const int w = std::min(64, b - c0);
-        RowMatrix part = work_.middleCols(c0, w);
-        solve_block<0>(data, supernodes_, w, part.data());
-        work_.middleCols(c0, w) = part;
+      for (int c0 = 0; c0 < w; c0 += 64) {
+        const int slice = std::min(64, w - c0);
+        RowMatrix part = work.middleCols(c0, slice);
+        solve_block<0>(data, supernodes_, slice, part.data());
+        work.middleCols(c0, slice) = part;
       }
     }
   }
-  out.resize(n_, b);
   for (int i = 0; i < n; ++i) {
-    double* dst = out.data() + static_cast<std::ptrdiff_t>(order_[i]) * b;
+    double* dst = out + static_cast<std::ptrdiff_t>(order_[i]) * out_stride;
     const double d = scale_[i];
-    for (int c = 0; c < b; ++c) dst[c] = d * x[static_cast<std::ptrdiff_t>(i) * b + c];
+    for (int c = 0; c < w; ++c) dst[c] = d * x[static_cast<std::ptrdiff_t>(i) * w + c];
   }
 }
 

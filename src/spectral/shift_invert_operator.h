@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "mesh/mesh.h"
+#include "spectral/worker_pool.h"
 
 namespace offsetopt {
 
@@ -36,8 +37,9 @@ class ShiftInvertOperator {
   Eigen::Index factor_nonzeros() const { return factor_nonzeros_; }
 
   // out = Op * in for the first `b` columns: `in` is row-major with row stride `in_stride`,
-  // `out` is row-major n by b (resized). Deterministic: fixed order of every sum.
-  void apply(const double* in, Eigen::Index in_stride, int b, RowMatrix& out) const;
+  // `out` is row-major n by b (resized). Deterministic: fixed order of every sum; with a pool the
+  // columns are split among its threads, each solved exactly as without it.
+  void apply(const double* in, Eigen::Index in_stride, int b, RowMatrix& out, WorkerPool* pool = nullptr) const;
 
  private:
   // A run of factor columns [first, first + width) with nested patterns: a dense unit lower
@@ -58,7 +60,9 @@ class ShiftInvertOperator {
   std::vector<Supernode> supernodes_;
   std::vector<int> rows_;
   std::vector<double> values_;
-  mutable RowMatrix work_;
+  void solve_columns_into(const double* in, Eigen::Index in_stride, int w, double* out, Eigen::Index out_stride,
+                          RowMatrix& work) const;
+  mutable std::vector<RowMatrix> work_;  // one buffer per part
 };
 
 }  // namespace offsetopt

@@ -260,6 +260,17 @@ TEST_CASE("deterministic: the same input gives the same bits") {
   CHECK((first.eigenvalues.array() == second.eigenvalues.array()).all());
   CHECK((first.eigenvectors.array() == second.eigenvectors.array()).all());
   CHECK((first.residuals.array() == second.residuals.array()).all());
+  // Any number of threads gives the same bits (fixed partitions, no shared sums).
+  for (int threads : {1, 2, 3}) {
+    CAPTURE(threads);
+    LanczosOptions options;
+    options.threads = threads;
+    const LanczosResult other = lanczos_eigensolver(L, mass, 24, options, &mesh.V);
+    CHECK(other.threads == threads);
+    CHECK(other.operator_applications == first.operator_applications);
+    CHECK((other.eigenvalues.array() == first.eigenvalues.array()).all());
+    CHECK((other.eigenvectors.array() == first.eigenvectors.array()).all());
+  }
 }
 
 TEST_CASE("the cap on operator applications ends the run with NotConverged and the best pairs") {

@@ -11,6 +11,7 @@
 #include "spectral/nested_dissection.h"
 #include "spectral/row_block_kernels.h"
 #include "spectral/shift_invert_operator.h"
+#include "spectral/worker_pool.h"
 #include "test_meshes.h"
 #include "util/rng.h"
 
@@ -76,7 +77,8 @@ TEST_CASE("shift-invert operator equals D (L + sM)^-1 D on blocks of any width")
       const Eigen::VectorXd d = generalised ? Eigen::VectorXd(mass.cwiseSqrt()) : Eigen::VectorXd::Ones(n);
       const Eigen::MatrixXd K = Eigen::MatrixXd(L) + shift * Eigen::MatrixXd(d.cwiseProduct(d).asDiagonal());
       const Eigen::MatrixXd dense = d.asDiagonal() * K.inverse() * d.asDiagonal();
-      for (int b : {1, 2, 3, 6, 8, 13, 70}) {
+      WorkerPool pool(3);
+      for (int b : {1, 2, 3, 5, 6, 7, 8, 13, 70}) {
         CAPTURE(b);
         // Read the block out of a wider matrix, as the solver does (row stride > b).
         const RowMatrix wide = random_block(n, b + 3, 11 + b);
@@ -84,6 +86,10 @@ TEST_CASE("shift-invert operator equals D (L + sM)^-1 D on blocks of any width")
         op.apply(wide.data() + 1, wide.cols(), b, out);
         const Eigen::MatrixXd expected = dense * Eigen::MatrixXd(wide.middleCols(1, b));
         CHECK((Eigen::MatrixXd(out) - expected).cwiseAbs().maxCoeff() <= 1e-12 * expected.cwiseAbs().maxCoeff());
+        // Split among threads (columns in groups of other widths): the same bits.
+        RowMatrix threaded;
+        op.apply(wide.data() + 1, wide.cols(), b, threaded, &pool);
+        CHECK((threaded.array() == out.array()).all());
       }
     }
   }
@@ -113,6 +119,26 @@ TEST_CASE("row-block kernels match dense products for every width") {
       combine_columns(Q.data(), Q.cols(), j, C.data(), b, n, X.data(), b);
       CHECK((Eigen::MatrixXd(X) - Qj * Eigen::MatrixXd(C)).cwiseAbs().maxCoeff() <= 1e-11 * n);
     }
+  }
+  // With a pool (large enough to be split): the same bits as without.
+  WorkerPool pool(2);
+  const Eigen::Index rows = 5000;
+  const RowMatrix big = random_block(rows, 40, 3);
+  for (int b : {3, 6, 8}) {
+    CAPTURE(b);
+    const RowMatrix W = random_block(rows, b, 7);
+    RowMatrix C1(33, b), C2(33, b);
+    project_onto_columns(big.data(), big.cols(), 33, W.data(), b, rows, C1.data());
+    project_onto_columns(big.data(), big.cols(), 33, W.data(), b, rows, C2.data(), &pool);
+    CHECK((C1.array() == C2.array()).all());
+    RowMatrix V1 = W, V2 = W;
+    subtract_combination(big.data(), big.cols(), 33, C1.data(), b, rows, V1.data());
+    subtract_combination(big.data(), big.cols(), 33, C1.data(), b, rows, V2.data(), &pool);
+    CHECK((V1.array() == V2.array()).all());
+    RowMatrix X1(rows, b), X2(rows, b);
+    combine_columns(big.data(), big.cols(), 33, C1.data(), b, rows, X1.data(), b);
+    combine_columns(big.data(), big.cols(), 33, C1.data(), b, rows, X2.data(), b, &pool);
+    CHECK((X1.array() == X2.array()).all());
   }
   // In place: the first p columns of Q replaced by Q(:, 0:j) Z.
   RowMatrix P = Q;
