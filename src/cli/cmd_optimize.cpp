@@ -66,10 +66,6 @@ const char* const kUsage =
     "exit codes: 0 goal met and verified; 2 bad input or usage; 3 ran, but the goal is not met\n"
     "or the result is invalid (outputs are still written; the report says why).\n";
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 }  // namespace
 
 int run_optimize(const Args& args) {

@@ -37,10 +37,6 @@ const char* const kUsage =
     "  --quiet            no progress on stderr\n"
     "  --help             show this help\n";
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 }  // namespace
 
 int run_skeleton(const Args& args) {

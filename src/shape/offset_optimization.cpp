@@ -410,20 +410,17 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   solver["variables"] = variables;
   Json constraints = Json::array();
   const auto eq_names = goal_equality_names(goal), ineq_names = goal_inequality_names(goal);
-  for (std::size_t r = 0; r < eq_names.size(); ++r) {
-    Json c = Json::object();
-    c["name"] = eq_names[r];
-    c["type"] = "= 0";
-    c["value"] = final_eval.goal.equality(static_cast<Eigen::Index>(r));
-    constraints.push_back(c);
-  }
-  for (std::size_t r = 0; r < ineq_names.size(); ++r) {
-    Json c = Json::object();
-    c["name"] = ineq_names[r];
-    c["type"] = "<= 0";
-    c["value"] = final_eval.goal.inequality(static_cast<Eigen::Index>(r));
-    constraints.push_back(c);
-  }
+  auto add_rows = [&](const std::vector<std::string>& names, const Eigen::VectorXd& values, const char* type) {
+    for (std::size_t r = 0; r < names.size(); ++r) {
+      Json c = Json::object();
+      c["name"] = names[r];
+      c["type"] = type;
+      c["value"] = values(static_cast<Eigen::Index>(r));
+      constraints.push_back(c);
+    }
+  };
+  add_rows(eq_names, final_eval.goal.equality, "= 0");
+  add_rows(ineq_names, final_eval.goal.inequality, "<= 0");
   solver["constraints_in_frame"] = constraints;
   report["solver"] = solver;
   report["before"] = properties_json(before);
