@@ -290,11 +290,13 @@ RawMesh read_ply(const std::string& name, const std::string& bytes) {
   }
   const std::uint64_t remaining = bytes.size() - body;
   if (smallest > remaining + (encoding == Encoding::kAscii ? 1 : 0)) {
+    // At most 8 elements named: a header of thousands of elements must not make a huge line.
     std::string claims;
-    for (const Element& element : elements) {
+    for (std::size_t i = 0; i < elements.size() && i < 8; ++i) {
       if (!claims.empty()) claims += ", ";
-      claims += std::to_string(element.count) + " " + quote_bytes(element.name);
+      claims += std::to_string(elements[i].count) + " " + quote_bytes(elements[i].name);
     }
+    if (elements.size() > 8) claims += " and " + std::to_string(elements.size() - 8) + " more elements";
     throw MeshInputError(name + ": PLY header claims " + claims + ", more than the " + std::to_string(remaining) +
                          " bytes after the header can hold");
   }

@@ -147,6 +147,11 @@ bad["ply_float_list_count.ply"] = (ply_ascii(TET_V, TET_T, count_type="float"), 
 for encoding in ("ascii", "binary_little_endian"):
     bad["ply_empty_elements_%s.ply" % encoding.split("_")[0]] = (
         b"ply\nformat %s 1.0\n" % encoding.encode() + b"element e 33554432\n" * 200 + b"end_header\n", "no faces")
+# Found by fuzz_read_ply: the "claims more than the file can hold" message listed every element,
+# a line as long as the header (now at most 8 named, then a count).
+bad["ply_many_elements_message.ply"] = (
+    b"ply\nformat binary_little_endian 1.0\n" + b"element e 33554432\nproperty uchar a\n" * 200 + b"end_header\n",
+    "and 192 more elements")
 # --- numbers
 nan_cube = [("nan", 0, 0)] + CUBE_V[1:]
 bad["nan_coordinate.obj"] = (obj(nan_cube, CUBE_T), "not a finite number")
