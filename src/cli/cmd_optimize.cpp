@@ -61,6 +61,7 @@ const char* const kUsage =
     "                        sphere:X,Y,Z,R\n"
     "  --ground-tol T        ground contact tolerance (0.001 diag, >= 0)\n"
     "  --quiet               no progress on stderr\n"
+    "  -v                    also every outer iteration of the solver on stderr\n"
     "  --help                show this help\n"
     "\n"
     "exit codes: 0 goal met and verified; 2 bad input or usage; 3 ran, but the goal is not met\n"
@@ -134,6 +135,8 @@ int run_optimize(const Args& args) {
       settings.ground_tol = parse_double(cursor.value_of(arg), arg, 0.0, big);
     } else if (arg == "--quiet") {
       quiet = true;
+    } else if (arg == "-v" || arg == "--verbose") {
+      settings.trace_solver = true;
     } else if (arg.size() > 1 && arg[0] == '-') {
       throw UsageError("unknown option '" + arg + "' for optimize (try 'offsetopt optimize --help')");
     } else if (mesh_path.empty()) {

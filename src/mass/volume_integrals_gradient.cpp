@@ -1,6 +1,10 @@
 #include "mass/volume_integrals_gradient.h"
 
+#include <array>
+
 #include <Eigen/Geometry>
+
+#include "mass/compensated_sum.h"
 
 namespace offsetopt {
 
@@ -80,6 +84,50 @@ Eigen::Matrix<double, 10, Eigen::Dynamic> volume_integrals_directional_jacobian(
     }
   }
   return J;
+}
+
+void volume_integrals_and_directional_jacobian(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
+                                               const Vertices& directions, Vector10d& integrals,
+                                               Eigen::Matrix<double, 10, Eigen::Dynamic>& jacobian) {
+  jacobian.setZero(10, V.rows());
+  std::array<NeumaierSum, 10> sums;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const int corner_index[3] = {F(f, 0), F(f, 1), F(f, 2)};
+    const Eigen::Vector3d p[3] = {V.row(corner_index[0]).transpose() - origin, V.row(corner_index[1]).transpose() - origin,
+                                  V.row(corner_index[2]).transpose() - origin};
+    const double D = p[0].dot(p[1].cross(p[2]));
+    const Eigen::Vector3d S = p[0] + p[1] + p[2];
+    auto G = [&](int i, int j) { return p[0](i) * p[0](j) + p[1](i) * p[1](j) + p[2](i) * p[2](j) + S(i) * S(j); };
+    const double Gxx = G(0, 0), Gyy = G(1, 1), Gzz = G(2, 2), Gxy = G(0, 1), Gyz = G(1, 2), Gzx = G(2, 0);
+    // The same terms, in the same order, as volume_integrals().
+    sums[kIntVolume].add(D / 6.0);
+    sums[kIntX].add(D * S.x() / 24.0);
+    sums[kIntY].add(D * S.y() / 24.0);
+    sums[kIntZ].add(D * S.z() / 24.0);
+    sums[kIntXX].add(D * Gxx / 120.0);
+    sums[kIntYY].add(D * Gyy / 120.0);
+    sums[kIntZZ].add(D * Gzz / 120.0);
+    sums[kIntXY].add(D * Gxy / 120.0);
+    sums[kIntYZ].add(D * Gyz / 120.0);
+    sums[kIntZX].add(D * Gzx / 120.0);
+    for (int corner = 0; corner < 3; ++corner) {
+      const Eigen::Vector3d d = directions.row(corner_index[corner]).transpose();
+      const double dD = p[(corner + 1) % 3].cross(p[(corner + 2) % 3]).dot(d);
+      const Eigen::Vector3d u = p[corner] + S;
+      double* column = jacobian.col(corner_index[corner]).data();
+      column[kIntVolume] += dD / 6.0;
+      column[kIntX] += (dD * S.x() + D * d.x()) / 24.0;
+      column[kIntY] += (dD * S.y() + D * d.y()) / 24.0;
+      column[kIntZ] += (dD * S.z() + D * d.z()) / 24.0;
+      column[kIntXX] += (dD * Gxx + D * 2.0 * d.x() * u.x()) / 120.0;
+      column[kIntYY] += (dD * Gyy + D * 2.0 * d.y() * u.y()) / 120.0;
+      column[kIntZZ] += (dD * Gzz + D * 2.0 * d.z() * u.z()) / 120.0;
+      column[kIntXY] += (dD * Gxy + D * (d.x() * u.y() + d.y() * u.x())) / 120.0;
+      column[kIntYZ] += (dD * Gyz + D * (d.y() * u.z() + d.z() * u.y())) / 120.0;
+      column[kIntZX] += (dD * Gzx + D * (d.z() * u.x() + d.x() * u.z())) / 120.0;
+    }
+  }
+  for (int k = 0; k < 10; ++k) integrals(k) = sums[static_cast<std::size_t>(k)].value();
 }
 
 }  // namespace offsetopt

@@ -30,4 +30,12 @@ Eigen::Matrix<double, 10, Eigen::Dynamic> volume_integrals_directional_jacobian(
                                                                                 const Eigen::Vector3d& origin,
                                                                                 const Vertices& directions);
 
+// Both at once for the surface with vertices V and faces F, in one pass over the faces (the
+// optimiser's evaluation, without building a Mesh): `integrals` gets exactly what
+// volume_integrals({V, F}, origin).values returns (same compensated sums, same order) and
+// `jacobian` (resized to 10 by #V) what volume_integrals_directional_jacobian returns.
+void volume_integrals_and_directional_jacobian(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
+                                               const Vertices& directions, Vector10d& integrals,
+                                               Eigen::Matrix<double, 10, Eigen::Dynamic>& jacobian);
+
 }  // namespace offsetopt

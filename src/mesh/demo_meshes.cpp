@@ -153,16 +153,19 @@ Mesh bottle_cavity() {
 
 // ---- spinning top ---------------------------------------------------------------------------
 
-Mesh top() {
+// `detail` divides the vertex count of every profile piece and of the rings (1: the demo top of
+// ~3k vertices; 2: ~750 vertices, the size of paper figure 10's model).
+Mesh top(int detail) {
+  auto steps = [detail](int full) { return full / detail > 2 ? full / detail : 2; };
   Profile p(0.0);  // the tip: a single pole vertex, the unique lowest point
-  p.line_to(28.0, 16.0, 14);
-  p.arc(28.0, 19.0, 3.0, -0.5 * kPi, 0.5 * kPi, 8);
-  p.line_to(6.0, 26.0, 10);
-  p.blend_to(4.0, 30.0, 3);
-  p.line_to(4.0, 44.0, 7);
-  p.arc(2.0, 44.0, 2.0, 0.0, 0.5 * kPi, 3);
-  p.close_to_axis(46.0, 3);
-  Mesh mesh = make_revolution(p.points(), kSegments);
+  p.line_to(28.0, 16.0, steps(14));
+  p.arc(28.0, 19.0, 3.0, -0.5 * kPi, 0.5 * kPi, steps(8));
+  p.line_to(6.0, 26.0, steps(10));
+  p.blend_to(4.0, 30.0, steps(3));
+  p.line_to(4.0, 44.0, steps(7));
+  p.arc(2.0, 44.0, 2.0, 0.0, 0.5 * kPi, steps(3));
+  p.close_to_axis(46.0, steps(3));
+  Mesh mesh = make_revolution(p.points(), kSegments / detail);
   radial_lump(mesh, 0.08, 19.0, 9.0);
   return mesh;
 }
@@ -277,13 +280,14 @@ Mesh handle() {
 }  // namespace
 
 std::vector<std::string> demo_mesh_names() {
-  return {"bottle", "top", "rolypoly", "buoy", "handle", "sphere", "capsule", "torus"};
+  return {"bottle", "top", "rolypoly", "buoy", "handle", "sphere", "capsule", "torus", "top-coarse"};
 }
 
 Mesh make_demo_mesh(const std::string& name) {
   Mesh mesh;
   if (name == "bottle") mesh = bottle();
-  else if (name == "top") mesh = top();
+  else if (name == "top") mesh = top(1);
+  else if (name == "top-coarse") mesh = top(2);
   else if (name == "rolypoly") mesh = rolypoly();
   else if (name == "buoy") mesh = buoy();
   else if (name == "handle") mesh = handle();

@@ -1,6 +1,6 @@
 // Procedural demo meshes, one per optimisation goal of Musialski et al. 2015 (section 6), plus
 // plain shapes for tests. Deterministic (util/det_math only, no libm trigonometry), closed,
-// outward-oriented 2-manifolds of 2k-6k vertices, z up, resting on z = 0 where they are meant to
+// outward-oriented 2-manifolds of 2k-6k vertices (top-coarse: 770), z up, resting on z = 0 where they are meant to
 // stand. Every deformation applied is a bijection of space (a shear along x depending on z, a
 // radial scaling per horizontal slice, a swept circle in disjoint meridian half-planes), so no
 // mesh intersects itself. Units are millimetres (a printable size).
@@ -19,6 +19,8 @@
 //   sphere    icosphere of radius 30, 4 subdivisions (2562 vertices).
 //   capsule   capsule of radius 15, standing on its lower pole.
 //   torus     ring torus R = 30, r = 10, lying flat.
+//   top-coarse  the top with half the profile steps and 32 segments: 770 vertices, the size of
+//             the model of the paper's figure 10 (k against objective and time).
 #pragma once
 #include <string>
 #include <vector>

@@ -215,6 +215,15 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
     if (std::isnan(lo) || std::isnan(hi) || lo > hi || lo == kInf || hi == -kInf)
       msg = "bounds of linear row " + std::to_string(j) + " are empty or NaN";
   }
+  if (msg.empty() && params.initial_equality_multipliers.size() != 0 && params.initial_equality_multipliers.size() != ne)
+    msg = "initial_equality_multipliers has " + std::to_string(params.initial_equality_multipliers.size()) +
+          " entries for " + std::to_string(ne) + " equality constraints";
+  if (msg.empty() && params.initial_inequality_multipliers.size() != 0 &&
+      params.initial_inequality_multipliers.size() != ni)
+    msg = "initial_inequality_multipliers has " + std::to_string(params.initial_inequality_multipliers.size()) +
+          " entries for " + std::to_string(ni) + " inequality constraints";
+  if (msg.empty() && !(params.initial_equality_multipliers.allFinite() && params.initial_inequality_multipliers.allFinite()))
+    msg = "initial multipliers must be finite";
   if (!msg.empty()) {
     res.status = AlStatus::InvalidInput;
     return res;
@@ -256,6 +265,14 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
   // Multipliers (scaled), nonlinear rows then linear rows; penalty.
   Eigen::VectorXd nu_bar = Eigen::VectorXd::Zero(nn + m);
   Eigen::VectorXd nu = nu_bar;
+  // A warm start converts the unscaled multipliers (see fill_result); inequality ones are >= 0.
+  for (int i = 0; i < nn; ++i) {
+    const bool eq = i < ne;
+    const Eigen::VectorXd& given = eq ? params.initial_equality_multipliers : params.initial_inequality_multipliers;
+    if (given.size() == 0) continue;
+    const double unscaled = given(eq ? i : i - ne);
+    nu(i) = (eq ? unscaled : std::max(0.0, unscaled)) * sf / rows.scale(i);
+  }
   Eigen::VectorXd shift = Eigen::VectorXd::Zero(nn + m);  // nu_bar / rho
   Eigen::VectorXd w_nl(nn);
   double rho = 1.0;
@@ -476,7 +493,9 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
     feas_prev = feas;
     if (feas > feas_tol && (stagnant >= params.infeasibility_patience || rho >= params.max_penalty)) {
       LbfgsbParams lv = params.inner;
-      lv.gradient_tolerance = params.stationarity_tolerance * std::max(1.0, feas);
+      // Relative to the violation: at a least-violation point J^T c vanishes while c does not, so
+      // a tiny violation with a clear descent direction (|J^T c| ≫ tol |c|) is not stationary.
+      lv.gradient_tolerance = params.stationarity_tolerance * feas;
       lv.relative_gradient_tolerance = 0.0;
       lv.max_evaluations = std::max(1, std::min(lv.max_evaluations, params.max_evaluations - ev.count));
       const LbfgsbResult least = lbfgsb_minimize(violation, x, lower, upper, lv);

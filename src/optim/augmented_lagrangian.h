@@ -78,6 +78,9 @@ struct AlParams {
   int max_outer_iterations = 50;
   int max_evaluations = 200000;  // evaluations of f (and of all constraints with it), in total
   double initial_penalty = 0.0;  // 0: ALGENCAN's choice 10 max(1,|f|)/max(1, ½‖viol‖²) in [1e-8, 1e8]
+  // Warm start: multiplier estimates in AlResult's convention (unscaled), for example those of a
+  // solve of a nearby problem; empty means zero, otherwise the sizes must match the problem's.
+  Eigen::VectorXd initial_equality_multipliers, initial_inequality_multipliers;
   double penalty_increase = 10.0;
   double required_decrease = 0.5;  // V must fall below this fraction of its previous value
   double max_penalty = 1e20;

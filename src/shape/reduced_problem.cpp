@@ -53,10 +53,9 @@ Eigen::VectorXd ReducedProblem::apply_basis(const Eigen::VectorXd& coefficients)
   return out;
 }
 
-Eigen::Matrix<double, 10, Eigen::Dynamic> ReducedProblem::project(
-    const Eigen::Matrix<double, 10, Eigen::Dynamic>& per_vertex) const {
+Eigen::MatrixXd ReducedProblem::project(const Eigen::MatrixXd& per_vertex) const {
   if (!identity_basis_) return per_vertex * basis_;
-  Eigen::Matrix<double, 10, Eigen::Dynamic> out = per_vertex;
+  Eigen::MatrixXd out = per_vertex;
   for (Eigen::Index i = 0; i < out.cols(); ++i)
     if (band_.fixed[static_cast<std::size_t>(i)]) out.col(i).setZero();
   return out;
@@ -144,32 +143,38 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
     if (wanted_lo < hi) inner_by_outer(i) = -slope_lo * outer_slope(i);
   }
 
-  // Surfaces and their integrals.
-  Mesh inner = mesh_;
-  for (Eigen::Index i = 0; i < n; ++i) inner.V.row(i) += e.inner_offset(i) * band_.inner_direction.row(i);
+  // Surfaces, their integrals and ∂I/∂(offset) per vertex, one pass over the faces each.
   const Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  e.inner_integrals = volume_integrals(inner, origin).values;
-  Mesh outer;
+  inner_vertices_ = mesh_.V;
+  for (Eigen::Index i = 0; i < n; ++i) inner_vertices_.row(i) += e.inner_offset(i) * band_.inner_direction.row(i);
+  volume_integrals_and_directional_jacobian(inner_vertices_, mesh_.F, origin, band_.inner_direction, e.inner_integrals,
+                                            inner_jacobian_);
   if (options_.outer) {
-    outer = mesh_;
-    for (Eigen::Index i = 0; i < n; ++i) outer.V.row(i) += e.outer_offset(i) * band_.outer_direction.row(i);
-    e.outer_integrals = volume_integrals(outer, origin).values;
+    outer_vertices_ = mesh_.V;
+    for (Eigen::Index i = 0; i < n; ++i) outer_vertices_.row(i) += e.outer_offset(i) * band_.outer_direction.row(i);
+    volume_integrals_and_directional_jacobian(outer_vertices_, mesh_.F, origin, band_.outer_direction,
+                                              e.outer_integrals, outer_jacobian_);
   } else {
     e.outer_integrals = fixed_outer_integrals_;
   }
   e.goal = evaluate_goal(goal_, e.outer_integrals, e.inner_integrals);
 
-  // ∂I/∂(coefficients): 10 by k blocks.
-  const Eigen::Matrix<double, 10, Eigen::Dynamic> inner_per_vertex =
-      volume_integrals_directional_jacobian(inner, origin, band_.inner_direction);
-  const Eigen::Matrix<double, 10, Eigen::Dynamic> inner_by_alpha =
-      project(inner_per_vertex * e.inner_slope.asDiagonal());
+  // ∂I/∂(coefficients) through the clamp's slopes, all blocks projected onto Γ in one product:
+  // rows 0-9 inner by α; with outer offsets rows 10-19 inner by β (through lo), 20-29 outer by β.
+  per_vertex_.resize(options_.outer ? 30 : 10, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    per_vertex_.col(i).head<10>() = inner_jacobian_.col(i) * e.inner_slope(i);
+    if (options_.outer) {
+      per_vertex_.col(i).segment<10>(10) = inner_jacobian_.col(i) * inner_by_outer(i);
+      per_vertex_.col(i).segment<10>(20) = outer_jacobian_.col(i) * outer_slope(i);
+    }
+  }
+  const Eigen::MatrixXd projected = project(per_vertex_);
+  const Eigen::Matrix<double, 10, Eigen::Dynamic> inner_by_alpha = projected.topRows(10);
   Eigen::Matrix<double, 10, Eigen::Dynamic> inner_by_beta, outer_by_beta;
   if (options_.outer) {
-    inner_by_beta = project(inner_per_vertex * inner_by_outer.asDiagonal());
-    const Eigen::Matrix<double, 10, Eigen::Dynamic> outer_per_vertex =
-        volume_integrals_directional_jacobian(outer, origin, band_.outer_direction);
-    outer_by_beta = project(outer_per_vertex * outer_slope.asDiagonal());
+    inner_by_beta = projected.middleRows(10, 10);
+    outer_by_beta = projected.middleRows(20, 10);
   }
   const int nv = num_variables();
   auto chain = [&](const Eigen::Matrix<double, 1, 20>& weights) {
@@ -257,7 +262,13 @@ ConstrainedProblem ReducedProblem::constrained_problem() {
     values = e.goal.inequality;
     jacobian = e.inequality_jacobian;
   };
-  if (options_.bounds == BoundsMode::hard) {
+  if (options_.bounds == BoundsMode::hard && identity_basis_ && !options_.outer) {
+    // Per vertex (paper eq. 1) the rows δl ≤ δ ≤ hi are bounds on the variables themselves:
+    // L-BFGS-B keeps them exactly, with no multipliers to find. Where a part is thinner than two
+    // walls (δl > hi) the box is empty and the solver reports the bounds as unsatisfiable.
+    p.lower = hard_lower_;
+    p.upper = hard_upper_;
+  } else if (options_.bounds == BoundsMode::hard) {
     p.linear_matrix = &hard_matrix_;
     p.linear_lower = hard_lower_;
     p.linear_upper = hard_upper_;

@@ -91,8 +91,8 @@ class ReducedProblem {
 
  private:
   Eigen::VectorXd apply_basis(const Eigen::VectorXd& coefficients) const;  // Γ c
-  // (10 by #V) times Γ: 10 by k.
-  Eigen::Matrix<double, 10, Eigen::Dynamic> project(const Eigen::Matrix<double, 10, Eigen::Dynamic>& per_vertex) const;
+  // (rows by #V) times Γ: rows by k.
+  Eigen::MatrixXd project(const Eigen::MatrixXd& per_vertex) const;
   Eigen::VectorXd project_vector(const Eigen::VectorXd& per_vertex) const;  // Γᵀ v
   void build_hard_bounds();
 
@@ -103,11 +103,15 @@ class ReducedProblem {
   int k_;
   GoalSpec goal_;
   ReducedOptions options_;
-  Vector10d fixed_outer_integrals_;
-  Eigen::VectorXd outer_inward_limit_;  // per vertex, see the constructor  // the input's integrals, when there is no outer offset
+  Vector10d fixed_outer_integrals_;  // the input's integrals, when there is no outer offset
+  Eigen::VectorXd outer_inward_limit_;  // per vertex, see the constructor
   Eigen::MatrixXd hard_matrix_;      // hard mode: the linear block
   Eigen::VectorXd hard_lower_, hard_upper_;
   Evaluation cache_;
+  // Work space of evaluate(), kept between calls.
+  Vertices inner_vertices_, outer_vertices_;
+  Eigen::Matrix<double, 10, Eigen::Dynamic> inner_jacobian_, outer_jacobian_;
+  Eigen::MatrixXd per_vertex_;
   bool cache_valid_ = false;
 };
 

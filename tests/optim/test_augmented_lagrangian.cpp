@@ -212,6 +212,79 @@ TEST_CASE("augmented-lagrangian: a noisy gradient ends Stalled at a feasible poi
   CHECK(r.outer_iterations < 30);
 }
 
+TEST_CASE("augmented-lagrangian: a feasible problem with a flat constraint is not called Infeasible") {
+  // min (x1 − 1)² + (x2 − 1)² with 1e-4 (x1 + x2 − 1) = 0: the row's gradient (1e-4) is below
+  // the scale floor, so near the solution the violation is tiny while its gradient is tinier
+  // still. A stationarity test of the least-violation step that is not relative to the
+  // violation stops there and calls a feasible problem infeasible.
+  ConstrainedProblem p;
+  p.num_variables = 2;
+  p.objective = [](const VectorXd& x, VectorXd& g) {
+    g << 2.0 * (x(0) - 1.0), 2.0 * (x(1) - 1.0);
+    return (x(0) - 1.0) * (x(0) - 1.0) + (x(1) - 1.0) * (x(1) - 1.0);
+  };
+  p.num_equality = 1;
+  p.equality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
+    c(0) = 1e-4 * (x(0) + x(1) - 1.0);
+    j << 1e-4, 1e-4;
+  };
+  AlParams params;
+  params.feasibility_tolerance = 1e-12;
+  params.stationarity_tolerance = 1e-6;
+  const AlResult r = augmented_lagrangian_minimize(p, Eigen::Vector2d(0.0, 0.0), params);
+  MESSAGE(describe(r));
+  CHECK(r.status != AlStatus::Infeasible);
+  CHECK(r.max_violation <= 1e-12);
+  CHECK((r.x - Eigen::Vector2d(0.5, 0.5)).lpNorm<Eigen::Infinity>() < 1e-4);
+}
+
+TEST_CASE("augmented-lagrangian: a warm start with the solution's multipliers needs fewer evaluations") {
+  // The HS071-like problem above without its linear row, solved cold, then again from a nearby
+  // start with the returned multipliers and penalty: same answer, fewer evaluations. Wrong
+  // multiplier counts are refused.
+  ConstrainedProblem p;
+  p.num_variables = 4;
+  p.objective = [](const VectorXd& x, VectorXd& g) {
+    const double s = x(0) + x(1) + x(2);
+    g << x(3) * s + x(0) * x(3), x(0) * x(3), x(0) * x(3) + 1.0, x(0) * s;
+    return x(0) * x(3) * s + x(2);
+  };
+  p.num_equality = 1;
+  p.equality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
+    c(0) = x.squaredNorm() - 40.0;
+    j.row(0) = 2.0 * x.transpose();
+  };
+  p.num_inequality = 1;
+  p.inequality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
+    c(0) = 25.0 - x(0) * x(1) * x(2) * x(3);
+    j << -x(1) * x(2) * x(3), -x(0) * x(2) * x(3), -x(0) * x(1) * x(3), -x(0) * x(1) * x(2);
+  };
+  p.lower = VectorXd::Constant(4, 1.0);
+  p.upper = VectorXd::Constant(4, 5.0);
+  VectorXd x0(4);
+  x0 << 1.0, 5.0, 5.0, 1.0;
+  const AlResult cold = augmented_lagrangian_minimize(p, x0);
+  REQUIRE(cold.status == AlStatus::Converged);
+  const VectorXd nearby = cold.x + VectorXd::Constant(4, 1e-3);
+  const AlResult cold_again = augmented_lagrangian_minimize(p, nearby);
+  AlParams warm_params;
+  warm_params.initial_equality_multipliers = cold.equality_multipliers;
+  warm_params.initial_inequality_multipliers = cold.inequality_multipliers;
+  warm_params.initial_penalty = cold.penalty;
+  const AlResult warm = augmented_lagrangian_minimize(p, nearby, warm_params);
+  MESSAGE("cold " << describe(cold_again) << "; warm " << describe(warm));
+  REQUIRE(warm.status == AlStatus::Converged);
+  CHECK((warm.x - cold.x).lpNorm<Eigen::Infinity>() < 1e-6);
+  CHECK(warm.evaluations < cold_again.evaluations);
+  CHECK(warm.equality_multipliers(0) == doctest::Approx(cold.equality_multipliers(0)).epsilon(1e-4));
+
+  AlParams wrong;
+  wrong.initial_inequality_multipliers = VectorXd::Zero(2);
+  const AlResult refused = augmented_lagrangian_minimize(p, x0, wrong);
+  CHECK(refused.status == AlStatus::InvalidInput);
+  CHECK(refused.message.find("initial_inequality_multipliers") != std::string::npos);
+}
+
 TEST_CASE("augmented-lagrangian: no constraints is a plain bound-constrained solve") {
   ConstrainedProblem p;
   p.num_variables = 3;
