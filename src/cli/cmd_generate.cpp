@@ -14,7 +14,7 @@ namespace offsetopt::cli {
 namespace {
 
 const char* const kUsage =
-    "usage: offsetopt generate NAME -o FILE\n"
+    "usage: offsetopt generate NAME -o FILE [--detail D]\n"
     "       offsetopt generate --list\n"
     "\n"
     "Writes a procedural demo mesh (deterministic: the same bytes on every machine), z up,\n"
@@ -23,6 +23,8 @@ const char* const kUsage =
     "\n"
     "options:\n"
     "  -o, --output FILE  where to write the mesh (required; no default)\n"
+    "  --detail D         multiply the ring and segment counts by D (1, 0.25..16; bottle, top,\n"
+    "                     rolypoly and buoy only): about D^2 times the vertices, for benchmarks\n"
     "  --list             print the available names, one per line\n"
     "  --help             show this help\n";
 
@@ -32,6 +34,7 @@ int run_generate(const Args& args) {
   ArgCursor cursor(args);
   std::string name, output;
   bool list = false;
+  double detail = 1.0;
   while (!cursor.done()) {
     const std::string& arg = cursor.next();
     if (arg == "--help" || arg == "-h") {
@@ -41,6 +44,8 @@ int run_generate(const Args& args) {
       list = true;
     } else if (arg == "-o" || arg == "--output") {
       output = cursor.value_of(arg);
+    } else if (arg == "--detail") {
+      detail = parse_double(cursor.value_of(arg), arg, 0.25, 16.0);
     } else if (arg.size() > 1 && arg[0] == '-') {
       throw UsageError("unknown option '" + arg + "' for generate (try 'offsetopt generate --help')");
     } else if (name.empty()) {
@@ -61,7 +66,9 @@ int run_generate(const Args& args) {
   if (!known) throw UsageError("unknown demo mesh '" + name + "' (see 'offsetopt generate --list')");
   if (output.empty()) throw UsageError("generate needs an output file: -o FILE");
 
-  const Mesh mesh = make_demo_mesh(name);
+  if (detail != 1.0 && name != "bottle" && name != "top" && name != "rolypoly" && name != "buoy")
+    throw UsageError("--detail applies to bottle, top, rolypoly and buoy, not to '" + name + "'");
+  const Mesh mesh = make_demo_mesh(name, detail);
   if (output == "-") {
     write_text("-", mesh_to_bytes(".obj", mesh));
     return kExitOk;

@@ -15,12 +15,14 @@ namespace {
 // and arcs; each piece appends its points after the current one.
 class Profile {
  public:
-  explicit Profile(double z_pole) { points_.emplace_back(0.0, z_pole); }
+  // `detail` scales every piece's step count (1: the demo meshes as committed).
+  explicit Profile(double z_pole, double detail = 1.0) : detail_(detail) { points_.emplace_back(0.0, z_pole); }
 
   double r() const { return points_.back().first; }
   double z() const { return points_.back().second; }
 
   void line_to(double r1, double z1, int steps) {
+    steps = scaled(steps);
     const double r0 = r(), z0 = z();
     for (int k = 1; k <= steps; ++k) {
       const double s = static_cast<double>(k) / steps;
@@ -31,6 +33,7 @@ class Profile {
   // Arc of the circle (center_r, center_z, radius) at angles t0 -> t1 (t = 0 points to +r,
   // t = pi/2 to +z); the current point should be the arc's start.
   void arc(double center_r, double center_z, double radius, double t0, double t1, int steps) {
+    steps = scaled(steps);
     for (int k = 1; k <= steps; ++k) {
       double s, c;
       det_sincos(t0 + (t1 - t0) * k / steps, s, c);
@@ -41,6 +44,7 @@ class Profile {
   // S-shaped blend to (r1, z1): the radius follows (1 - cos(pi s)) / 2 while z moves linearly,
   // so the tangent is vertical at both ends and the profile stays smooth.
   void blend_to(double r1, double z1, int steps) {
+    steps = scaled(steps);
     const double r0 = r(), z0 = z();
     for (int k = 1; k <= steps; ++k) {
       const double s = static_cast<double>(k) / steps;
@@ -51,6 +55,7 @@ class Profile {
 
   // Straight to the axis at height z1: steps - 1 rings, then the top pole.
   void close_to_axis(double z1, int steps) {
+    steps = scaled(steps);
     const double r0 = r(), z0 = z();
     for (int k = 1; k < steps; ++k) {
       const double s = static_cast<double>(k) / steps;
@@ -61,17 +66,29 @@ class Profile {
 
   // Arc that ends on the axis at its top (angle pi/2), the last point snapped to the pole.
   void arc_to_top_pole(double center_z, double radius, double t0, int steps) {
-    arc(0.0, center_z, radius, t0, 0.5 * kPi, steps);
+    arc(0.0, center_z, radius, t0, 0.5 * kPi, steps);  // arc() scales the steps
     points_.back() = {0.0, center_z + radius};
   }
 
   const std::vector<std::pair<double, double>>& points() const { return points_; }
 
  private:
+  int scaled(int steps) const {
+    if (detail_ == 1.0) return steps;
+    const int n = static_cast<int>(steps * detail_);
+    return n > 2 ? n : 2;
+  }
+
+  double detail_;
   std::vector<std::pair<double, double>> points_;
 };
 
-constexpr int kSegments = 64;  // vertices per ring of every revolution demo
+constexpr int kSegments = 64;  // vertices per ring of every revolution demo (at detail 1)
+
+int segments(double detail) {
+  const int n = static_cast<int>(kSegments * detail);
+  return n > 8 ? n : 8;
+}
 
 double bounding_box_diagonal(const Mesh& mesh) {
   return (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
@@ -120,8 +137,8 @@ struct BottleShape {
 };
 constexpr double kBottleLean = 0.45;
 
-Mesh bottle_surface(const BottleShape& s) {
-  Profile p(s.bottom);
+Mesh bottle_surface(const BottleShape& s, double detail = 1.0) {
+  Profile p(s.bottom, detail);
   p.line_to(s.foot_radius, s.bottom, 5);
   p.arc(s.foot_radius, s.bottom + s.heel, s.heel, -0.5 * kPi, 0.0, 3);  // first ring 0.54 up: off the ground
   p.line_to(s.foot_radius + s.heel, s.body_top, 16);
@@ -129,12 +146,12 @@ Mesh bottle_surface(const BottleShape& s) {
   p.line_to(s.neck_radius, s.height - s.lip, 8);
   p.arc(s.neck_radius - s.lip, s.height - s.lip, s.lip, 0.0, 0.5 * kPi, 4);
   p.close_to_axis(s.height, 5);
-  Mesh mesh = make_revolution(p.points(), kSegments);
+  Mesh mesh = make_revolution(p.points(), segments(detail));
   lean(mesh, kBottleLean);
   return mesh;
 }
 
-Mesh bottle() { return bottle_surface(BottleShape{}); }
+Mesh bottle(double detail) { return bottle_surface(BottleShape{}, detail); }
 
 Mesh bottle_cavity() {
   const BottleShape outer;
@@ -153,19 +170,16 @@ Mesh bottle_cavity() {
 
 // ---- spinning top ---------------------------------------------------------------------------
 
-// `detail` divides the vertex count of every profile piece and of the rings (1: the demo top of
-// ~3k vertices; 2: ~750 vertices, the size of paper figure 10's model).
-Mesh top(int detail) {
-  auto steps = [detail](int full) { return full / detail > 2 ? full / detail : 2; };
-  Profile p(0.0);  // the tip: a single pole vertex, the unique lowest point
-  p.line_to(28.0, 16.0, steps(14));
-  p.arc(28.0, 19.0, 3.0, -0.5 * kPi, 0.5 * kPi, steps(8));
-  p.line_to(6.0, 26.0, steps(10));
-  p.blend_to(4.0, 30.0, steps(3));
-  p.line_to(4.0, 44.0, steps(7));
-  p.arc(2.0, 44.0, 2.0, 0.0, 0.5 * kPi, steps(3));
-  p.close_to_axis(46.0, steps(3));
-  Mesh mesh = make_revolution(p.points(), kSegments / detail);
+Mesh top(double detail) {
+  Profile p(0.0, detail);  // the tip: a single pole vertex, the unique lowest point
+  p.line_to(28.0, 16.0, 14);
+  p.arc(28.0, 19.0, 3.0, -0.5 * kPi, 0.5 * kPi, 8);
+  p.line_to(6.0, 26.0, 10);
+  p.blend_to(4.0, 30.0, 3);
+  p.line_to(4.0, 44.0, 7);
+  p.arc(2.0, 44.0, 2.0, 0.0, 0.5 * kPi, 3);
+  p.close_to_axis(46.0, 3);
+  Mesh mesh = make_revolution(p.points(), segments(detail));
   radial_lump(mesh, 0.08, 19.0, 9.0);
   return mesh;
 }
@@ -184,7 +198,7 @@ Mesh top_cavity() {
 
 constexpr double kRolyRadius = 30.0;
 
-Mesh rolypoly_surface(double wall, double void_bottom) {
+Mesh rolypoly_surface(double wall, double void_bottom, double detail = 1.0) {
   const double r = kRolyRadius;
   // Horizontal offsets thin a sloped wall by cos(slope): the neck (up to 54 degrees from
   // vertical) is offset by 1.7 walls, the torso blends from 1 to 1.7 walls.
@@ -193,7 +207,7 @@ Mesh rolypoly_surface(double wall, double void_bottom) {
   const double head_t0 = -det_acos(neck / head_radius);
   double s0, c0;
   det_sincos(head_t0, s0, c0);
-  Profile p(void_bottom);
+  Profile p(void_bottom, detail);
   if (wall == 0.0) {
     p.arc(0.0, r, r, -0.5 * kPi, 0.0, 16);  // the hemisphere
   } else {
@@ -206,17 +220,17 @@ Mesh rolypoly_surface(double wall, double void_bottom) {
   p.blend_to(20.0 - neck_wall, 56.0, 12);
   p.blend_to(neck, head_center + head_radius * s0, 5);
   p.arc_to_top_pole(head_center, head_radius, head_t0, 14);
-  return make_revolution(p.points(), kSegments);
+  return make_revolution(p.points(), segments(detail));
 }
 
-Mesh rolypoly() {
-  Mesh mesh = rolypoly_surface(0.0, 0.0);
+Mesh rolypoly(double detail) {
+  Mesh mesh = rolypoly_surface(0.0, 0.0, detail);
   radial_lump(mesh, 0.3, 80.0, 10.0);  // a nose on the +x side of the head
   return mesh;
 }
 
 Mesh rolypoly_cavity() {
-  const double wall = 0.01 * bounding_box_diagonal(rolypoly());
+  const double wall = 0.01 * bounding_box_diagonal(rolypoly(1.0));
   return rolypoly_surface(wall, 0.95 * kRolyRadius);
 }
 
@@ -227,9 +241,9 @@ constexpr double kBuoyRadius = 35.0;
 // Round hull (a hemisphere of kBuoyRadius under a short cylinder), an ogive deck, a mast and a
 // lamp. With wall > 0: the cavity, from a flat floor at void_bottom (in the cylinder) up the
 // shrunk hull and deck.
-Mesh buoy_surface(double wall, double void_bottom) {
+Mesh buoy_surface(double wall, double void_bottom, double detail = 1.0) {
   const double R = kBuoyRadius, hull_top = 55.0, mast = 4.0, deck_top = 70.0;
-  Profile p(void_bottom);
+  Profile p(void_bottom, detail);
   if (wall == 0.0) {
     p.arc(0.0, R, R, -0.5 * kPi, 0.0, 16);
   } else {
@@ -247,12 +261,12 @@ Mesh buoy_surface(double wall, double void_bottom) {
   p.line_to(mast, 88.0, 10);
   const double lamp = 6.0;
   p.arc_to_top_pole(88.0 + std::sqrt(lamp * lamp - mast * mast), lamp, -det_acos(mast / lamp), 10);
-  return make_revolution(p.points(), kSegments);
+  return make_revolution(p.points(), segments(detail));
 }
 
-Mesh buoy() { return buoy_surface(0.0, 0.0); }
+Mesh buoy(double detail) { return buoy_surface(0.0, 0.0, detail); }
 
-Mesh buoy_cavity() { return buoy_surface(0.01 * bounding_box_diagonal(buoy()), 44.0); }
+Mesh buoy_cavity() { return buoy_surface(0.01 * bounding_box_diagonal(buoy(1.0)), 44.0); }
 
 // ---- handle ---------------------------------------------------------------------------------
 
@@ -283,13 +297,17 @@ std::vector<std::string> demo_mesh_names() {
   return {"bottle", "top", "rolypoly", "buoy", "handle", "sphere", "capsule", "torus", "top-coarse"};
 }
 
-Mesh make_demo_mesh(const std::string& name) {
+Mesh make_demo_mesh(const std::string& name, double detail) {
+  const bool revolution = name == "bottle" || name == "top" || name == "rolypoly" || name == "buoy";
+  if (!(detail >= 0.25 && detail <= 16.0)) throw std::invalid_argument("detail must be in [0.25, 16]");
+  if (detail != 1.0 && !revolution)
+    throw std::invalid_argument("detail applies to bottle, top, rolypoly and buoy, not to '" + name + "'");
   Mesh mesh;
-  if (name == "bottle") mesh = bottle();
-  else if (name == "top") mesh = top(1);
-  else if (name == "top-coarse") mesh = top(2);
-  else if (name == "rolypoly") mesh = rolypoly();
-  else if (name == "buoy") mesh = buoy();
+  if (name == "bottle") mesh = bottle(detail);
+  else if (name == "top") mesh = top(detail);
+  else if (name == "top-coarse") mesh = top(0.5);
+  else if (name == "rolypoly") mesh = rolypoly(detail);
+  else if (name == "buoy") mesh = buoy(detail);
   else if (name == "handle") mesh = handle();
   else if (name == "sphere") mesh = make_icosphere(30.0, 4);
   else if (name == "capsule") mesh = make_capsule(15.0, 25.0, kSegments, 16, 16);

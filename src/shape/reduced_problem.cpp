@@ -7,6 +7,7 @@
 
 #include "mass/volume_integrals_gradient.h"
 #include "shape/smooth_clamp.h"
+#include "spectral/worker_pool.h"
 
 namespace offsetopt {
 
@@ -15,6 +16,7 @@ std::string check_reduced_options(const ReducedOptions& options) {
   if (!(options.outer_penalty >= 0.0) || !std::isfinite(options.outer_penalty)) return "penalty must be >= 0";
   if (!(options.overshoot_weight >= 0.0) || !std::isfinite(options.overshoot_weight)) return "overshoot weight must be >= 0";
   if (!(options.start_fraction >= 0.0 && options.start_fraction <= 1.0)) return "start fraction must be in [0, 1]";
+  if (options.threads < 1) return "threads must be >= 1";
   return {};
 }
 
@@ -43,7 +45,10 @@ ReducedProblem::ReducedProblem(const Mesh& mesh, const OffsetBand& band, const E
     }
   }
   if (options_.bounds == BoundsMode::hard) build_hard_bounds();
+  if (options_.outer && options_.threads > 1) pool_ = std::make_unique<WorkerPool>(2);
 }
+
+ReducedProblem::~ReducedProblem() = default;
 
 Eigen::VectorXd ReducedProblem::apply_basis(const Eigen::VectorXd& coefficients) const {
   if (!identity_basis_) return basis_ * coefficients;
@@ -143,39 +148,47 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
     if (wanted_lo < hi) inner_by_outer(i) = -slope_lo * outer_slope(i);
   }
 
-  // Surfaces, their integrals and ∂I/∂(offset) per vertex, one pass over the faces each.
+  // Per surface: its vertices, integrals and ∂I/∂(offset) per vertex in one pass over the faces,
+  // then ∂I/∂(coefficients) through the clamp's slopes, projected onto Γ. With outer offsets the
+  // two surfaces are independent and run on two threads; each computes exactly what it would
+  // alone, so the results do not depend on the threads.
   const Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  inner_vertices_ = mesh_.V;
-  for (Eigen::Index i = 0; i < n; ++i) inner_vertices_.row(i) += e.inner_offset(i) * band_.inner_direction.row(i);
-  volume_integrals_and_directional_jacobian(inner_vertices_, mesh_.F, origin, band_.inner_direction, e.inner_integrals,
-                                            inner_jacobian_);
-  if (options_.outer) {
+  Eigen::Matrix<double, 10, Eigen::Dynamic> inner_by_alpha, inner_by_beta, outer_by_beta;
+  auto inner_part = [&]() {
+    inner_vertices_ = mesh_.V;
+    for (Eigen::Index i = 0; i < n; ++i) inner_vertices_.row(i) += e.inner_offset(i) * band_.inner_direction.row(i);
+    volume_integrals_and_directional_jacobian(inner_vertices_, mesh_.F, origin, band_.inner_direction,
+                                              e.inner_integrals, inner_jacobian_);
+    // Rows 0-9: by α; with outer offsets rows 10-19: by β, through lo.
+    inner_per_vertex_.resize(options_.outer ? 20 : 10, n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      inner_per_vertex_.col(i).head<10>() = inner_jacobian_.col(i) * e.inner_slope(i);
+      if (options_.outer) inner_per_vertex_.col(i).tail<10>() = inner_jacobian_.col(i) * inner_by_outer(i);
+    }
+    const Eigen::MatrixXd projected = project(inner_per_vertex_);
+    inner_by_alpha = projected.topRows(10);
+    if (options_.outer) inner_by_beta = projected.bottomRows(10);
+  };
+  auto outer_part = [&]() {
     outer_vertices_ = mesh_.V;
     for (Eigen::Index i = 0; i < n; ++i) outer_vertices_.row(i) += e.outer_offset(i) * band_.outer_direction.row(i);
     volume_integrals_and_directional_jacobian(outer_vertices_, mesh_.F, origin, band_.outer_direction,
                                               e.outer_integrals, outer_jacobian_);
-  } else {
+    outer_per_vertex_.resize(10, n);
+    for (Eigen::Index i = 0; i < n; ++i) outer_per_vertex_.col(i) = outer_jacobian_.col(i) * outer_slope(i);
+    outer_by_beta = project(outer_per_vertex_);
+  };
+  if (!options_.outer) {
+    inner_part();
     e.outer_integrals = fixed_outer_integrals_;
+  } else if (pool_) {
+    pool_->run([&](int part) { part == 0 ? inner_part() : outer_part(); });
+  } else {
+    inner_part();
+    outer_part();
   }
   e.goal = evaluate_goal(goal_, e.outer_integrals, e.inner_integrals);
 
-  // ∂I/∂(coefficients) through the clamp's slopes, all blocks projected onto Γ in one product:
-  // rows 0-9 inner by α; with outer offsets rows 10-19 inner by β (through lo), 20-29 outer by β.
-  per_vertex_.resize(options_.outer ? 30 : 10, n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    per_vertex_.col(i).head<10>() = inner_jacobian_.col(i) * e.inner_slope(i);
-    if (options_.outer) {
-      per_vertex_.col(i).segment<10>(10) = inner_jacobian_.col(i) * inner_by_outer(i);
-      per_vertex_.col(i).segment<10>(20) = outer_jacobian_.col(i) * outer_slope(i);
-    }
-  }
-  const Eigen::MatrixXd projected = project(per_vertex_);
-  const Eigen::Matrix<double, 10, Eigen::Dynamic> inner_by_alpha = projected.topRows(10);
-  Eigen::Matrix<double, 10, Eigen::Dynamic> inner_by_beta, outer_by_beta;
-  if (options_.outer) {
-    inner_by_beta = projected.middleRows(10, 10);
-    outer_by_beta = projected.middleRows(20, 10);
-  }
   const int nv = num_variables();
   auto chain = [&](const Eigen::Matrix<double, 1, 20>& weights) {
     Eigen::RowVectorXd g(nv);

@@ -14,6 +14,7 @@
 // The outer penalty wp·β₁² (paper 5.2: the first coefficient, the DC term) and, in clamp mode,
 // the overshoot term (ReducedOptions::overshoot_weight) are added to f.
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,8 @@
 #include "shape/goal.h"
 
 namespace offsetopt {
+
+class WorkerPool;
 
 // Per-vertex offset directions and bounds in the mesh's frame.
 struct OffsetBand {
@@ -50,6 +53,9 @@ struct ReducedOptions {
   double overshoot_weight = 1.0;
   // Start: the least-squares fit of Γα to lo + start_fraction (hi − lo) (β = 0).
   double start_fraction = 0.5;
+  // With outer offsets, the two surfaces are evaluated on two threads when this is > 1 (the
+  // results are the same either way).
+  int threads = 2;
 };
 
 std::string check_reduced_options(const ReducedOptions& options);
@@ -60,6 +66,7 @@ class ReducedProblem {
   // per-vertex problem of paper eq. (1) (Γ = I, k = #V). The mesh, band and basis are copied.
   ReducedProblem(const Mesh& mesh, const OffsetBand& band, const Eigen::MatrixXd& basis, bool identity_basis,
                  const GoalSpec& goal, const ReducedOptions& options);
+  ~ReducedProblem();
 
   int basis_size() const { return k_; }
   int num_variables() const { return options_.outer ? 2 * k_ : k_; }
@@ -111,7 +118,8 @@ class ReducedProblem {
   // Work space of evaluate(), kept between calls.
   Vertices inner_vertices_, outer_vertices_;
   Eigen::Matrix<double, 10, Eigen::Dynamic> inner_jacobian_, outer_jacobian_;
-  Eigen::MatrixXd per_vertex_;
+  Eigen::MatrixXd inner_per_vertex_, outer_per_vertex_;
+  std::unique_ptr<WorkerPool> pool_;
   bool cache_valid_ = false;
 };
 

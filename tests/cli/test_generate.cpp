@@ -123,6 +123,24 @@ TEST_CASE("inspect reports the library's numbers and that the leaning bottle fal
   CHECK(torus.at("stability").at("stands").as_bool());
 }
 
+TEST_CASE("generate --detail scales the vertex count by about detail squared and keeps the mass properties") {
+  // The same profile sampled finer: the volume and centre of mass converge to the coarse mesh's
+  // (both approximate one smooth solid), the vertex count grows as detail².
+  for (const char* name : {"bottle", "buoy"}) {
+    CAPTURE(name);
+    const Mesh coarse = make_demo_mesh(name), fine = make_demo_mesh(name, 2.0);
+    const double ratio = static_cast<double>(fine.V.rows()) / static_cast<double>(coarse.V.rows());
+    CHECK(ratio > 3.5);
+    CHECK(ratio < 4.5);
+    const Vector10d P = mass_properties(coarse), Q = mass_properties(fine);
+    CHECK(Q(kMass) == doctest::Approx(P(kMass)).epsilon(0.01));
+    CHECK(Q(kCz) == doctest::Approx(P(kCz)).epsilon(0.01));
+  }
+  const RunResult r = run("generate bottle --detail 0.5 -o '" + temp_path("half.obj").string() + "'");
+  CHECK(r.exit_code == 0);
+  CHECK(run("check '" + temp_path("half.obj").string() + "' --quiet").exit_code == 0);
+}
+
 TEST_CASE("bad usage: exit code 2 and one Error line") {
   const std::string bottle = "'" + kSource + "/meshes/bottle.obj'";
   for (const std::string& arguments :
@@ -130,7 +148,8 @@ TEST_CASE("bad usage: exit code 2 and one Error line") {
         std::string("generate bottle -o '") + temp_path("no/such/dir/x.obj").string() + "'", std::string("generate bottle -o x.xyz"),
         std::string("inspect"), std::string("inspect /no/such/file.obj"), "inspect " + bottle + " --ground-tol -1",
         "inspect " + bottle + " --ground-tol abc", "inspect " + bottle + " --bogus", "inspect " + bottle + " --json",
-        "inspect " + bottle + " " + bottle}) {
+        "inspect " + bottle + " " + bottle, std::string("generate sphere --detail 2 -o x.obj"),
+        std::string("generate bottle --detail 100 -o x.obj")}) {
     CAPTURE(arguments);
     const RunResult r = run(arguments);
     CHECK(r.exit_code == 2);

@@ -168,3 +168,27 @@ TEST_CASE("identity basis (per-vertex problem) has the same gradient structure")
     CHECK(std::fabs(fd - at.objective_gradient(j)) <= 1e-5 * (1e-3 + at.objective_gradient.cwiseAbs().maxCoeff()));
   }
 }
+
+TEST_CASE("with outer offsets, one and two threads give bit-identical evaluations") {
+  const Setup s = sphere_setup(8);
+  ReducedOptions serial_options;
+  serial_options.outer = true;
+  serial_options.outer_penalty = 0.5;
+  serial_options.threads = 1;
+  ReducedOptions threaded_options = serial_options;
+  threaded_options.threads = 2;
+  ReducedProblem serial(s.mesh, s.band, s.basis, false, filled_goal(), serial_options);
+  ReducedProblem threaded(s.mesh, s.band, s.basis, false, filled_goal(), threaded_options);
+  Rng rng(9);
+  for (int trial = 0; trial < 3; ++trial) {
+    Eigen::VectorXd x = serial.start_point();
+    for (Eigen::Index j = 0; j < x.size(); ++j) x(j) += 0.05 * rng.uniform(-1.0, 1.0);
+    const ReducedProblem::Evaluation a = serial.evaluate(x);
+    const ReducedProblem::Evaluation& b = threaded.evaluate(x);
+    CHECK(a.objective == b.objective);
+    CHECK((a.objective_gradient.array() == b.objective_gradient.array()).all());
+    CHECK((a.inner_integrals.array() == b.inner_integrals.array()).all());
+    CHECK((a.outer_integrals.array() == b.outer_integrals.array()).all());
+    CHECK((a.inequality_jacobian.array() == b.inequality_jacobian.array()).all());
+  }
+}
