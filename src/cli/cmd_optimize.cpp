@@ -60,6 +60,7 @@ const char* const kUsage =
     "  --fix REGION          keep the surface (an opening) where REGION holds: x>V, z<V, ... or\n"
     "                        sphere:X,Y,Z,R\n"
     "  --ground-tol T        ground contact tolerance (0.001 diag, >= 0)\n"
+    "  --no-repair-ring      repairs tighten only the vertices on folds, not their one-ring too\n"
     "  --quiet               no progress on stderr\n"
     "  -v                    also every outer iteration of the solver on stderr\n"
     "  --help                show this help\n"
@@ -135,6 +136,8 @@ int run_optimize(const Args& args) {
       settings.ground_tol = parse_double(cursor.value_of(arg), arg, 0.0, big);
     } else if (arg == "--quiet") {
       quiet = true;
+    } else if (arg == "--no-repair-ring") {
+      settings.repair_ring = false;
     } else if (arg == "-v" || arg == "--verbose") {
       settings.trace_solver = true;
     } else if (arg.size() > 1 && arg[0] == '-') {

@@ -287,6 +287,8 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   Eigen::VectorXd x;
   int variables = 0, repair_rounds = 0, total_evaluations = 0;
   Json repairs = Json::array();
+  SurfaceDefects final_defects;  // of the final surfaces, when the last round looked for them
+  bool final_defects_known = false;
   for (int round = 0;; ++round) {
     ReducedProblem problem(normalized, band, basis, k == 0, goal, reduced_options);
     variables = problem.num_variables();
@@ -326,7 +328,11 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
                                  solved.max_violation <= 100.0 * settings.solver.feasibility_tolerance;
     if (round == settings.max_repair_rounds || !constraints_met) break;
     const SurfaceDefects defects = find_surface_defects(result.outer, result.inner, band.fixed, thin, wall);
-    if (defects.empty()) break;
+    if (defects.empty()) {
+      final_defects = defects;
+      final_defects_known = true;
+      break;
+    }
     ++repair_rounds;
     Json entry = Json::object();
     entry["intersecting_vertices"] = static_cast<long long>(defects.intersecting_vertices.size());
@@ -334,7 +340,22 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
     repairs.push_back(entry);
     say("repair " + std::to_string(repair_rounds) + ": " + std::to_string(defects.intersecting_vertices.size()) +
         " vertices on folds, " + std::to_string(defects.thin_wall_vertices.size()) + " on thin walls");
-    for (int v : defects.intersecting_vertices) band.upper(v) *= settings.repair_shrink;
+    // A fold spans the faces around its vertices: their one-ring neighbours are tightened too,
+    // or the fold moves next door and needs another round.
+    std::vector<char> tighten(static_cast<std::size_t>(n), 0);
+    for (int v : defects.intersecting_vertices) tighten[static_cast<std::size_t>(v)] = 1;
+    if (settings.repair_ring)
+      for (Eigen::Index f = 0; f < input.F.rows(); ++f) {
+        bool touched = false;
+        for (int c = 0; c < 3; ++c) touched = touched || tighten[static_cast<std::size_t>(input.F(f, c))] == 1;
+        if (touched)
+          for (int c = 0; c < 3; ++c) {
+            char& mark = tighten[static_cast<std::size_t>(input.F(f, c))];
+            if (mark == 0) mark = 2;
+          }
+      }
+    for (Eigen::Index v = 0; v < n; ++v)
+      if (tighten[static_cast<std::size_t>(v)]) band.upper(v) *= settings.repair_shrink;
     band.upper = lipschitz_envelope(normalized, band.upper, settings.bound_slope);
     for (int v : defects.thin_wall_vertices) band.lower(v) += 0.5 * wall * scale;
     mark_thin();
@@ -364,6 +385,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   verify_input.fixed = band.fixed;
   verify_input.thin = thin;
   verify_input.bound_violation = bound_violation;
+  verify_input.defects = final_defects_known ? &final_defects : nullptr;
   const Verification verification = verify_offsets(verify_input);
   timings["verify"] = seconds_since(stage_start);
   timings["total"] = seconds_since(total_start);
@@ -389,6 +411,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   params["gap"] = settings.gap;
   params["ramp"] = settings.ramp;
   params["start_fraction"] = settings.start_fraction;
+  params["repair_ring"] = settings.repair_ring;
   report["parameters"] = params;
   report["goal"] = goal_json;
   Json frame = Json::object();

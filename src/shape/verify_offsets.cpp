@@ -194,7 +194,8 @@ Verification verify_offsets(const VerifyInput& in) {
 
   // Validity of the solid.
   const std::size_t goal_failures = out.failures.size();
-  const SurfaceDefects defects = find_surface_defects(outer, inner, in.fixed, in.thin, in.wall);
+  const SurfaceDefects defects =
+      in.defects ? *in.defects : find_surface_defects(outer, inner, in.fixed, in.thin, in.wall);
   m["inner_self_intersections"] = static_cast<long long>(defects.self_intersection_pairs);
   m["inner_outer_crossings"] = static_cast<long long>(defects.crossing_pairs);
   const std::string more = defects.truncated ? "+" : "";

@@ -12,25 +12,6 @@
 
 namespace offsetopt {
 
-struct VerifyInput {
-  const Mesh* outer = nullptr;  // outer surface (the input itself without outer offsets)
-  const Mesh* inner = nullptr;  // inner surface, same connectivity
-  GoalSpec goal;                // in input units (support polygon, axis point, target volume, ε)
-  double diagonal = 1.0;        // input bounding-box diagonal
-  double ground_tol = 0.0;      // input units
-  double wall = 0.0;            // requested wall, input units
-  std::vector<char> fixed;      // per vertex
-  std::vector<char> thin;       // per vertex: band collapsed (a part thinner than two walls)
-  double bound_violation = 0.0; // largest violation of the enforced band, input units
-};
-
-struct Verification {
-  bool goal_met = false;
-  bool valid = false;
-  std::vector<std::string> failures;  // one line each, empty when goal_met && valid
-  Json metrics;                       // goal metrics and validity figures
-};
-
 // Where the surfaces are not printable as they are: vertices of inner faces that intersect other
 // inner faces or cross the outer surface, and inner vertices closer to the outer surface than
 // half the wall (away from fixed vertices and parts left solid). The optimiser tightens the
@@ -46,6 +27,27 @@ struct SurfaceDefects {
 };
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
                                     const std::vector<char>& thin, double wall);
+
+struct VerifyInput {
+  const Mesh* outer = nullptr;  // outer surface (the input itself without outer offsets)
+  const Mesh* inner = nullptr;  // inner surface, same connectivity
+  GoalSpec goal;                // in input units (support polygon, axis point, target volume, ε)
+  double diagonal = 1.0;        // input bounding-box diagonal
+  double ground_tol = 0.0;      // input units
+  double wall = 0.0;            // requested wall, input units
+  std::vector<char> fixed;      // per vertex
+  std::vector<char> thin;       // per vertex: band collapsed (a part thinner than two walls)
+  double bound_violation = 0.0; // largest violation of the enforced band, input units
+  const SurfaceDefects* defects = nullptr;  // optional: find_surface_defects already run on
+                                           // exactly these meshes and settings
+};
+
+struct Verification {
+  bool goal_met = false;
+  bool valid = false;
+  std::vector<std::string> failures;  // one line each, empty when goal_met && valid
+  Json metrics;                       // goal metrics and validity figures
+};
 
 // Tolerances (relative to the diagonal unless stated): centre-of-mass positions 1e-4,
 // inertia products 1e-4 of Izz, principal-axis tilt 0.5°, volume 1e-4 relative, buoyancy
