@@ -45,7 +45,22 @@ ReducedProblem::ReducedProblem(const Mesh& mesh, const OffsetBand& band, const E
     }
   }
   if (options_.bounds == BoundsMode::hard) build_hard_bounds();
-  if (options_.outer && options_.threads > 1) pool_ = std::make_unique<WorkerPool>(2);
+  const Eigen::Index faces = mesh_.F.rows(), half = faces / 2;
+  face_parts_[0] = mesh_.F.topRows(half);
+  face_parts_[1] = mesh_.F.bottomRows(faces - half);
+  vertex_split_[0] = 0;
+  vertex_split_[1] = mesh_.V.rows() / 2;
+  vertex_split_[2] = mesh_.V.rows();
+  if (options_.threads > 1) pool_ = std::make_unique<WorkerPool>(2);
+}
+
+void ReducedProblem::run_parts(const std::function<void(int)>& part) {
+  if (pool_) {
+    pool_->run(part);
+  } else {
+    part(0);
+    part(1);
+  }
 }
 
 ReducedProblem::~ReducedProblem() = default;
@@ -58,11 +73,14 @@ Eigen::VectorXd ReducedProblem::apply_basis(const Eigen::VectorXd& coefficients)
   return out;
 }
 
-Eigen::MatrixXd ReducedProblem::project(const Eigen::MatrixXd& per_vertex) const {
-  if (!identity_basis_) return per_vertex * basis_;
-  Eigen::MatrixXd out = per_vertex;
-  for (Eigen::Index i = 0; i < out.cols(); ++i)
-    if (band_.fixed[static_cast<std::size_t>(i)]) out.col(i).setZero();
+Eigen::MatrixXd ReducedProblem::project_rows(const Eigen::MatrixXd& per_vertex, Eigen::Index begin,
+                                             Eigen::Index end) const {
+  const Eigen::Index count = end - begin;
+  if (!identity_basis_) return per_vertex.middleCols(begin, count) * basis_.middleRows(begin, count);
+  // Γ = I: the columns of this part go to the same columns of the result, fixed ones zeroed.
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(per_vertex.rows(), per_vertex.cols());
+  for (Eigen::Index i = begin; i < end; ++i)
+    if (!band_.fixed[static_cast<std::size_t>(i)]) out.col(i) = per_vertex.col(i);
   return out;
 }
 
@@ -148,44 +166,52 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
     if (wanted_lo < hi) inner_by_outer(i) = -slope_lo * outer_slope(i);
   }
 
-  // Per surface: its vertices, integrals and ∂I/∂(offset) per vertex in one pass over the faces,
-  // then ∂I/∂(coefficients) through the clamp's slopes, projected onto Γ. With outer offsets the
-  // two surfaces are independent and run on two threads; each computes exactly what it would
-  // alone, so the results do not depend on the threads.
+  // The surfaces, their integrals and ∂I/∂(offset) per vertex (one pass over the faces), then
+  // ∂I/∂(coefficients) through the clamp's slopes projected onto Γ. The work is always cut into
+  // the same two parts (halves of the faces, then halves of the vertices), summed in a fixed
+  // order, so the result is the same whether the parts run on one thread or two.
   const Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  Eigen::Matrix<double, 10, Eigen::Dynamic> inner_by_alpha, inner_by_beta, outer_by_beta;
-  auto inner_part = [&]() {
-    inner_vertices_ = mesh_.V;
-    for (Eigen::Index i = 0; i < n; ++i) inner_vertices_.row(i) += e.inner_offset(i) * band_.inner_direction.row(i);
-    volume_integrals_and_directional_jacobian(inner_vertices_, mesh_.F, origin, band_.inner_direction,
-                                              e.inner_integrals, inner_jacobian_);
-    // Rows 0-9: by α; with outer offsets rows 10-19: by β, through lo.
-    inner_per_vertex_.resize(options_.outer ? 20 : 10, n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      inner_per_vertex_.col(i).head<10>() = inner_jacobian_.col(i) * e.inner_slope(i);
-      if (options_.outer) inner_per_vertex_.col(i).tail<10>() = inner_jacobian_.col(i) * inner_by_outer(i);
-    }
-    const Eigen::MatrixXd projected = project(inner_per_vertex_);
-    inner_by_alpha = projected.topRows(10);
-    if (options_.outer) inner_by_beta = projected.bottomRows(10);
-  };
-  auto outer_part = [&]() {
+  inner_vertices_ = mesh_.V;
+  for (Eigen::Index i = 0; i < n; ++i) inner_vertices_.row(i) += e.inner_offset(i) * band_.inner_direction.row(i);
+  if (options_.outer) {
     outer_vertices_ = mesh_.V;
     for (Eigen::Index i = 0; i < n; ++i) outer_vertices_.row(i) += e.outer_offset(i) * band_.outer_direction.row(i);
-    volume_integrals_and_directional_jacobian(outer_vertices_, mesh_.F, origin, band_.outer_direction,
-                                              e.outer_integrals, outer_jacobian_);
-    outer_per_vertex_.resize(10, n);
-    for (Eigen::Index i = 0; i < n; ++i) outer_per_vertex_.col(i) = outer_jacobian_.col(i) * outer_slope(i);
-    outer_by_beta = project(outer_per_vertex_);
+  }
+  Vector10d inner_part_integrals[2], outer_part_integrals[2];
+  auto surface_part = [&](int part) {
+    volume_integrals_and_directional_jacobian(inner_vertices_, face_parts_[part], origin, band_.inner_direction,
+                                              inner_part_integrals[part], inner_jacobian_[part]);
+    if (options_.outer)
+      volume_integrals_and_directional_jacobian(outer_vertices_, face_parts_[part], origin, band_.outer_direction,
+                                                outer_part_integrals[part], outer_jacobian_[part]);
   };
-  if (!options_.outer) {
-    inner_part();
-    e.outer_integrals = fixed_outer_integrals_;
-  } else if (pool_) {
-    pool_->run([&](int part) { part == 0 ? inner_part() : outer_part(); });
-  } else {
-    inner_part();
-    outer_part();
+  run_parts(surface_part);
+  e.inner_integrals = inner_part_integrals[0] + inner_part_integrals[1];
+  e.outer_integrals = options_.outer ? Vector10d(outer_part_integrals[0] + outer_part_integrals[1]) : fixed_outer_integrals_;
+
+  // Rows 0-9: inner by α; with outer offsets rows 10-19: inner by β (through lo), 20-29: outer by β.
+  const Eigen::Index rows = options_.outer ? 30 : 10;
+  per_vertex_.resize(rows, n);
+  Eigen::MatrixXd projected_part[2];
+  auto projection_part = [&](int part) {
+    const Eigen::Index begin = vertex_split_[part], end = vertex_split_[part + 1];
+    for (Eigen::Index i = begin; i < end; ++i) {
+      const auto inner_column = inner_jacobian_[0].col(i) + inner_jacobian_[1].col(i);
+      per_vertex_.col(i).head<10>() = inner_column * e.inner_slope(i);
+      if (options_.outer) {
+        per_vertex_.col(i).segment<10>(10) = inner_column * inner_by_outer(i);
+        per_vertex_.col(i).segment<10>(20) = (outer_jacobian_[0].col(i) + outer_jacobian_[1].col(i)) * outer_slope(i);
+      }
+    }
+    projected_part[part] = project_rows(per_vertex_, begin, end);
+  };
+  run_parts(projection_part);
+  const Eigen::MatrixXd projected = projected_part[0] + projected_part[1];
+  const Eigen::Matrix<double, 10, Eigen::Dynamic> inner_by_alpha = projected.topRows(10);
+  Eigen::Matrix<double, 10, Eigen::Dynamic> inner_by_beta, outer_by_beta;
+  if (options_.outer) {
+    inner_by_beta = projected.middleRows(10, 10);
+    outer_by_beta = projected.middleRows(20, 10);
   }
   e.goal = evaluate_goal(goal_, e.outer_integrals, e.inner_integrals);
 

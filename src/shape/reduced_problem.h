@@ -14,6 +14,7 @@
 // The outer penalty wp·β₁² (paper 5.2: the first coefficient, the DC term) and, in clamp mode,
 // the overshoot term (ReducedOptions::overshoot_weight) are added to f.
 #pragma once
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -53,7 +54,7 @@ struct ReducedOptions {
   double overshoot_weight = 1.0;
   // Start: the least-squares fit of Γα to lo + start_fraction (hi − lo) (β = 0).
   double start_fraction = 0.5;
-  // With outer offsets, the two surfaces are evaluated on two threads when this is > 1 (the
+  // Each evaluation is cut into two fixed parts, run on two threads when this is > 1 (the
   // results are the same either way).
   int threads = 2;
 };
@@ -98,8 +99,10 @@ class ReducedProblem {
 
  private:
   Eigen::VectorXd apply_basis(const Eigen::VectorXd& coefficients) const;  // Γ c
-  // (rows by #V) times Γ: rows by k.
-  Eigen::MatrixXd project(const Eigen::MatrixXd& per_vertex) const;
+  // Columns [begin, end) of a (rows by #V) matrix times the same rows of Γ: rows by k, one
+  // part of the product (the parts add up to the whole).
+  Eigen::MatrixXd project_rows(const Eigen::MatrixXd& per_vertex, Eigen::Index begin, Eigen::Index end) const;
+  void run_parts(const std::function<void(int)>& part);  // part(0) and part(1), maybe on two threads
   Eigen::VectorXd project_vector(const Eigen::VectorXd& per_vertex) const;  // Γᵀ v
   void build_hard_bounds();
 
@@ -117,8 +120,10 @@ class ReducedProblem {
   Evaluation cache_;
   // Work space of evaluate(), kept between calls.
   Vertices inner_vertices_, outer_vertices_;
-  Eigen::Matrix<double, 10, Eigen::Dynamic> inner_jacobian_, outer_jacobian_;
-  Eigen::MatrixXd inner_per_vertex_, outer_per_vertex_;
+  Faces face_parts_[2];              // the faces cut in two fixed halves
+  Eigen::Index vertex_split_[3] = {0, 0, 0};  // vertex halves [split[p], split[p + 1])
+  Eigen::Matrix<double, 10, Eigen::Dynamic> inner_jacobian_[2], outer_jacobian_[2];  // per face half
+  Eigen::MatrixXd per_vertex_;
   std::unique_ptr<WorkerPool> pool_;
   bool cache_valid_ = false;
 };
