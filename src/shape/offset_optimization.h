@@ -48,6 +48,7 @@ struct OptimizeSettings {
   double bound_slope = 0.5;
   double repair_shrink = 0.6;
   bool repair_ring = true;  // also tighten the one-ring of every vertex on a fold
+  double warm_penalty_cap = 1e3;  // a repair round starts from min(last penalty, this)
   // Tolerances and caps of the augmented Lagrangian. The goal's constraints are met to 1e-8 of
   // the diagonal (the margins carry 1e-7 extra, so the user's margin holds exactly); stationarity
   // to 1e-4, scaled (the objective is a preference, not a requirement: on the demo meshes 1e-6
