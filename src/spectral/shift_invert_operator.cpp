@@ -137,12 +137,15 @@ void solve_block(const SolveData& data, const Supernodes& supernodes, int width,
       for (int j = 0; j < s.width; ++j)
         for (int c = 0; c < b; ++c) a[j * b + c] -= l[j] * xr[c];
     }
+    // The triangle by rows, last first: row i is final when it is read (contiguous reads of the
+    // packed rows; each a[j] receives its terms in decreasing i).
     const double* triangle = data.values + s.triangle;
-    for (int j = s.width - 2; j >= 0; --j)
-      for (int i = j + 1; i < s.width; ++i) {
-        const double l = triangle[static_cast<std::ptrdiff_t>(i) * (i - 1) / 2 + j];
-        for (int c = 0; c < b; ++c) a[j * b + c] -= l * a[i * b + c];
-      }
+    for (int i = s.width - 1; i >= 1; --i) {
+      const double* l = triangle + static_cast<std::ptrdiff_t>(i) * (i - 1) / 2;
+      const double* ai = a + i * b;
+      for (int j = 0; j < i; ++j)
+        for (int c = 0; c < b; ++c) a[j * b + c] -= l[j] * ai[c];
+    }
     std::copy(a, a + static_cast<std::ptrdiff_t>(s.width) * b, xs);
   }
 }
