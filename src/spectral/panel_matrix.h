@@ -16,7 +16,7 @@
 
 namespace offsetopt {
 
-constexpr Eigen::Index kPanelRows = 64;
+constexpr Eigen::Index kPanelRows = 128;
 
 class PanelMatrix {
  public:
