@@ -661,7 +661,7 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
     return result;
   }
 
-  ShiftInvertOperator op(L, mass, result.shift, positions);
+  ShiftInvertOperator op(L, mass, result.shift, positions, &pool);
   result.factor_seconds = seconds_since(start);
   result.factor_nonzeros = static_cast<long>(op.factor_nonzeros());
   if (op.status() != ShiftInvertOperator::Status::Ok)
