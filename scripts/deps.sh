@@ -1,7 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the build needs, only those missing (root or sudo).
+#   scripts/deps.sh          the normal and the sanitizer build (g++: ASan and UBSan come with it)
+#   scripts/deps.sh fuzz     also clang and its runtime libraries (libFuzzer), and python3 for
+#                            the hostile-scale inputs (fuzz/make_hostile.py)
 set -euo pipefail
 packages=(g++ cmake make libeigen3-dev libtinyobjloader-dev doctest-dev)
+if [[ ${1:-} == fuzz ]]; then
+  packages+=(clang libclang-rt-14-dev python3)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,5 +1,7 @@
 #include "cli/cli_support.h"
 
+#include "util/format_double.h"
+
 #include <sys/stat.h>
 
 #include <cerrno>
@@ -22,7 +24,7 @@ double parse_double(const std::string& text, const std::string& option, double l
   if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(value))
     throw UsageError(option + " expects a number, got '" + text + "'");
   if (value < lo || value > hi)
-    throw UsageError(option + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
+    throw UsageError(option + " must be in [" + format_double(lo) + ", " + format_double(hi) + "], got " + text);
   return value;
 }
 

@@ -1,6 +1,7 @@
 // Shared pieces of the command-line layer: option-value parsing with ranges, the usage-error
 // exception every command maps to exit code 2, and writing a result to a file or stdout.
 #pragma once
+#include <chrono>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -39,6 +40,11 @@ void write_text(const std::string& path, const std::string& text, const std::vec
 
 // Same protection for mesh outputs: UsageError when `output` names one of `inputs`.
 void refuse_overwriting_input(const std::string& output, const std::vector<std::string>& inputs);
+
+// Wall-clock seconds since `start` (stage timings for progress lines and reports).
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 // Prints each warning as "Warning: <text>" on stderr unless quiet.
 void print_warnings(const std::vector<std::string>& warnings, bool quiet = false);

@@ -1,13 +1,79 @@
-// offsetopt generate: placeholder until its issue lands; replace this file.
+// offsetopt generate: write one of the procedural demo meshes (mesh/demo_meshes.h).
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 
+#include "cli/cli_support.h"
 #include "cli/commands.h"
+#include "mesh/demo_meshes.h"
+#include "mesh/load_mesh.h"
+#include "mesh/write_mesh.h"
 
 namespace offsetopt::cli {
 
-int run_generate(const Args&) {
-  std::fprintf(stderr, "Error: 'generate' is not built yet\n");
-  return kExitInternal;
+namespace {
+
+const char* const kUsage =
+    "usage: offsetopt generate NAME -o FILE\n"
+    "       offsetopt generate --list\n"
+    "\n"
+    "Writes a procedural demo mesh (deterministic: the same bytes on every machine), z up,\n"
+    "resting on z = 0, in millimetres. The format follows FILE's extension; '-o -' writes OBJ\n"
+    "to stdout.\n"
+    "\n"
+    "options:\n"
+    "  -o, --output FILE  where to write the mesh (required; no default)\n"
+    "  --list             print the available names, one per line\n"
+    "  --help             show this help\n";
+
+}  // namespace
+
+int run_generate(const Args& args) {
+  ArgCursor cursor(args);
+  std::string name, output;
+  bool list = false;
+  while (!cursor.done()) {
+    const std::string& arg = cursor.next();
+    if (arg == "--help" || arg == "-h") {
+      std::fputs(kUsage, stdout);
+      return kExitOk;
+    } else if (arg == "--list") {
+      list = true;
+    } else if (arg == "-o" || arg == "--output") {
+      output = cursor.value_of(arg);
+    } else if (arg.size() > 1 && arg[0] == '-') {
+      throw UsageError("unknown option '" + arg + "' for generate (try 'offsetopt generate --help')");
+    } else if (name.empty()) {
+      name = arg;
+    } else {
+      throw UsageError("generate takes one name, got a second one '" + arg + "'");
+    }
+  }
+  if (list) {
+    std::string out;
+    for (const auto& n : demo_mesh_names()) out += n + "\n";
+    write_text("-", out);
+    return kExitOk;
+  }
+  if (name.empty()) throw UsageError("generate needs a mesh name (see 'offsetopt generate --list')");
+  bool known = false;
+  for (const auto& n : demo_mesh_names()) known = known || n == name;
+  if (!known) throw UsageError("unknown demo mesh '" + name + "' (see 'offsetopt generate --list')");
+  if (output.empty()) throw UsageError("generate needs an output file: -o FILE");
+
+  const Mesh mesh = make_demo_mesh(name);
+  if (output == "-") {
+    write_text("-", mesh_to_bytes(".obj", mesh));
+    return kExitOk;
+  }
+  try {
+    write_mesh(output, mesh);
+  } catch (const MeshInputError&) {
+    throw;  // unsupported extension: already one line naming the problem
+  } catch (const std::runtime_error& e) {
+    throw UsageError(e.what());
+  }
+  return kExitOk;
 }
 
 }  // namespace offsetopt::cli

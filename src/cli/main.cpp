@@ -6,9 +6,12 @@
 #include <exception>
 #include <new>
 
+#include <Eigen/Core>
+
 #include "cli/cli_support.h"
 #include "cli/commands.h"
 #include "mesh/load_mesh.h"
+#include "util/deterministic_eigen.h"
 
 namespace {
 
@@ -35,6 +38,7 @@ void print_usage(std::FILE* out) {
 
 int main(int argc, char** argv) {
   using namespace offsetopt::cli;
+  offsetopt::use_deterministic_eigen_blocking();
   if (argc < 2) {
     print_usage(stderr);
     return kExitBadInput;
@@ -45,7 +49,8 @@ int main(int argc, char** argv) {
     return kExitOk;
   }
   if (!std::strcmp(command, "--version")) {
-    std::puts("offsetopt " OFFSETOPT_VERSION);
+    std::printf("offsetopt %s\nbuild: %s, Eigen %d.%d.%d\n", OFFSETOPT_VERSION, OFFSETOPT_BUILD_ID, EIGEN_WORLD_VERSION,
+                EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION);
     return kExitOk;
   }
   Args args(argv + 2, argv + argc);

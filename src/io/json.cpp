@@ -130,10 +130,10 @@ void Json::dump_to(std::string& out, int indent, int depth) const {
       out += '[';
       for (std::size_t i = 0; i < array_.size(); ++i) {
         if (i) out += flat && indent >= 0 ? ", " : ",";
-        if (!flat) newline(out, indent, depth + 1);
+        if (!flat && indent >= 0) newline(out, indent, depth + 1);
         array_[i].dump_to(out, indent, depth + 1);
       }
-      if (!flat) newline(out, indent, depth);
+      if (!flat && indent >= 0) newline(out, indent, depth);
       out += ']';
       return;
     }

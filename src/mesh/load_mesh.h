@@ -7,11 +7,13 @@
 #include <vector>
 
 #include "mesh/mesh.h"
+#include "mesh/read_raw_mesh.h"
 
 namespace offsetopt {
 
-// Thrown for input the program refuses. what() is one line: "<file>: <what is wrong>[, <where>]".
-// The CLI prints it behind "Error: " and exits with code 2.
+// Thrown for input the program refuses. what() is one line: "<file>:<line>: <what is wrong>"
+// for text formats, "<file>: <what is wrong>, face 17" (or vertex) otherwise, with the total
+// count appended when there are several. The CLI prints it behind "Error: " and exits with 2.
 class MeshInputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -20,14 +22,25 @@ class MeshInputError : public std::runtime_error {
 struct LoadOptions {
   // Accept a consistently oriented mesh of negative volume by flipping every face (a warning).
   bool flip_inside_out = true;
+  // Refuse a mesh of several components (separate shells, or a solid with cavities). Off by
+  // default: such a mesh is accepted with a warning when every shell is closed and nested with
+  // the right orientation (see the policy table in mesh/validate_mesh.h).
+  bool single_component = false;
 };
 
 struct LoadedMesh {
-  Mesh mesh;
+  Mesh mesh;  // a closed, consistently oriented 2-manifold of positive volume
   std::vector<std::string> warnings;  // one line each, without the "Warning: " prefix
+  std::string format;                 // "OBJ", "binary STL", "ASCII PLY", ...
+  int components = 1;                 // closed shells (more than one only if allowed)
 };
 
-// Reads OBJ, STL (ascii/binary), OFF or PLY (ascii/binary), chosen by content and extension.
+// Reads OBJ, STL (ascii/binary), OFF or PLY (ascii/binary), chosen by extension (by content when
+// the extension is unknown), repairs what is safe and refuses the rest: the policy table is in
+// mesh/validate_mesh.h. Warnings name what was repaired and where.
 LoadedMesh load_mesh(const std::string& path, const LoadOptions& options = {});
+
+// The same repair-or-refuse step for a mesh already read (`name` is used in messages).
+LoadedMesh load_raw_mesh(const std::string& name, RawMesh raw, const LoadOptions& options = {});
 
 }  // namespace offsetopt

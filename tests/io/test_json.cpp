@@ -41,3 +41,15 @@ TEST_CASE("dump keeps insertion order, maps non-finite to null and parses back")
   CHECK_THROWS(Json::parse("{\"a\":1,}"));
   CHECK_THROWS(Json::parse("[1 2]"));
 }
+
+TEST_CASE("compact dump of arrays of objects stays on one line") {
+  Json j = Json::array();
+  j.push_back(Json::object());
+  j.push_back(Json::object());
+  j.elements();
+  Json inner = Json::object();
+  inner["a"] = 1;
+  j.push_back(inner);
+  CHECK(j.dump(-1) == "[{},{},{\"a\":1}]");
+  CHECK(Json::parse(j.dump(2)).dump(-1) == j.dump(-1));
+}

@@ -76,7 +76,7 @@ Json without_timings(const Json& report) {
 
 }  // namespace
 
-TEST_CASE("basis CLI: report, vectors and PLY; two runs write the same bytes apart from timings") {
+TEST_CASE("basis CLI: report, vectors and PLY, and two runs write the same bytes apart from timings") {
   TempDir dir;
   const Mesh mesh = test::bumpy_icosphere(3);
   const std::string obj = dir / "bumpy.obj";

@@ -308,7 +308,7 @@ TEST_CASE("invalid input and options are refused, not thrown") {
   CHECK(lanczos_eigensolver(negative, Eigen::VectorXd(), 5, {}, &mesh.V).status != LanczosStatus::Converged);
 }
 
-TEST_CASE("a small basis forces thick restarts and locking; the pairs are the same") {
+TEST_CASE("a small basis forces thick restarts and locking, and the pairs are the same") {
   const Mesh mesh = test::bumpy_icosphere(3);
   const Eigen::SparseMatrix<double> L = cotan_laplacian(mesh.V, mesh.F);
   const Eigen::VectorXd mass = lumped_mass(mesh.V, mesh.F);

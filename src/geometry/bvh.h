@@ -1,0 +1,86 @@
+// Bounding-volume hierarchy over the triangles of a mesh: the spatial index behind ray casting,
+// point-in-solid, segment tests and triangle-triangle intersection searches (geometry/ray_cast.h,
+// geometry/point_in_solid.h, geometry/intersecting_faces.h). Queries are written as traversals
+// over the public node array, so a new query needs no change here.
+//
+// Build: top-down median split of the face centroids along the longest axis of their bounds,
+// ties broken by face index, leaves sorted by face index. The tree is therefore a function of
+// the mesh alone (no dependence on the standard library's partial-sort order), and every query
+// result is reproducible bit for bit.
+#pragma once
+#include <vector>
+
+#include "geometry/aabb.h"
+#include "mesh/mesh.h"
+
+namespace offsetopt {
+
+struct BvhOptions {
+  int leaf_size = 4;  // at most this many faces per leaf; >= 1
+};
+
+// Throws std::invalid_argument when the options are out of range.
+void check_bvh_options(const BvhOptions& options);
+
+struct BvhNode {
+  Aabb box;         // bounds of every face below, inflated by TriangleBvh::box_margin()
+  int left = -1;    // internal node: children indices; leaf: -1
+  int right = -1;
+  int first = 0;    // leaf: faces leaf_faces()[first, first + count)
+  int count = 0;    // 0 for internal nodes
+  bool is_leaf() const { return count > 0; }
+};
+
+class TriangleBvh {
+ public:
+  TriangleBvh() = default;
+  // Copies V and F (the index owns its geometry, so it stays valid whatever the caller does).
+  // Face indices must lie in [0, #V); a mesh without faces gives an empty tree.
+  TriangleBvh(const Vertices& V, const Faces& F, const BvhOptions& options = {});
+
+  const Vertices& vertices() const { return V_; }
+  const Faces& faces() const { return F_; }
+  const std::vector<BvhNode>& nodes() const { return nodes_; }  // root is nodes()[0]
+  const std::vector<int>& leaf_faces() const { return leaf_faces_; }
+  bool empty() const { return nodes_.empty(); }
+
+  Eigen::Vector3d corner(int face, int k) const { return V_.row(F_(face, k)).transpose(); }
+  // Diagonal of the bounding box of all vertices (the length every tolerance is relative to).
+  double diagonal() const { return diagonal_; }
+  // How much every node box is grown so that rounding in the slab test never loses a hit that the
+  // tolerance-enlarged triangle test would accept.
+  double box_margin() const { return 1e-9 * diagonal_; }
+
+  // Calls leaf_visitor(face) for every face whose node boxes pass box_test(const Aabb&), depth
+  // first, left before right. The visitor returns false to stop the traversal early.
+  template <class BoxTest, class FaceVisitor>
+  void traverse(BoxTest&& box_test, FaceVisitor&& face_visitor) const {
+    if (nodes_.empty()) return;
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const BvhNode& node = nodes_[static_cast<std::size_t>(stack[--top])];
+      if (!box_test(node.box)) continue;
+      if (node.is_leaf()) {
+        for (int k = node.first; k < node.first + node.count; ++k)
+          if (!face_visitor(leaf_faces_[static_cast<std::size_t>(k)])) return;
+      } else {
+        stack[top++] = node.right;
+        stack[top++] = node.left;
+      }
+    }
+  }
+
+ private:
+  int build(std::vector<int>& order, std::vector<Eigen::Vector3d>& centroids, int begin, int end, int depth);
+
+  Vertices V_;
+  Faces F_;
+  std::vector<BvhNode> nodes_;
+  std::vector<int> leaf_faces_;
+  double diagonal_ = 0.0;
+  int leaf_size_ = 4;
+};
+
+}  // namespace offsetopt

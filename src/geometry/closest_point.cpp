@@ -1,0 +1,87 @@
+#include "geometry/closest_point.h"
+
+#include <algorithm>
+
+namespace offsetopt {
+
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                          const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denominator = va + vb + vc;
+  if (!(denominator > 0.0)) {  // degenerate triangle: the best of its three edges' endpoints
+    const double la = (p - a).squaredNorm(), lb = (p - b).squaredNorm(), lc = (p - c).squaredNorm();
+    return la <= lb ? (la <= lc ? a : c) : (lb <= lc ? b : c);
+  }
+  return a + ab * (vb / denominator) + ac * (vc / denominator);
+}
+
+namespace {
+
+double squared_box_distance(const Aabb& box, const Eigen::Vector3d& p) {
+  double d = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double excess = p[k] < box.lo[k] ? box.lo[k] - p[k] : (p[k] > box.hi[k] ? p[k] - box.hi[k] : 0.0);
+    d += excess * excess;
+  }
+  return d;
+}
+
+}  // namespace
+
+ClosestPoint closest_point(const TriangleBvh& bvh, const Eigen::Vector3d& p, double max_distance,
+                           const std::vector<int>& ignored_faces) {
+  ClosestPoint best;
+  if (bvh.empty()) return best;
+  double best_squared = max_distance * max_distance;
+  const auto& nodes = bvh.nodes();
+  int stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const BvhNode& node = nodes[static_cast<std::size_t>(stack[--top])];
+    if (squared_box_distance(node.box, p) > best_squared) continue;
+    if (node.is_leaf()) {
+      for (int k = node.first; k < node.first + node.count; ++k) {
+        const int face = bvh.leaf_faces()[static_cast<std::size_t>(k)];
+        if (!ignored_faces.empty() && std::find(ignored_faces.begin(), ignored_faces.end(), face) != ignored_faces.end()) continue;
+        const Eigen::Vector3d q = closest_point_on_triangle(p, bvh.corner(face, 0), bvh.corner(face, 1), bvh.corner(face, 2));
+        const double d = (q - p).squaredNorm();
+        if (d < best_squared || (d == best_squared && best.found && face < best.face)) {
+          best_squared = d;
+          best.found = true;
+          best.face = face;
+          best.point = q;
+        }
+      }
+      continue;
+    }
+    // Nearer child last on the stack, so it is searched first and tightens the bound.
+    const double dl = squared_box_distance(nodes[static_cast<std::size_t>(node.left)].box, p);
+    const double dr = squared_box_distance(nodes[static_cast<std::size_t>(node.right)].box, p);
+    if (dl <= dr) {
+      stack[top++] = node.right;
+      stack[top++] = node.left;
+    } else {
+      stack[top++] = node.left;
+      stack[top++] = node.right;
+    }
+  }
+  if (best.found) best.distance = (best.point - p).norm();
+  return best;
+}
+
+}  // namespace offsetopt

@@ -1,0 +1,109 @@
+#include "geometry/convex_hull_2d.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace offsetopt {
+
+namespace {
+
+// Error-free transformations (Knuth's TwoSum, Dekker's TwoProduct with Veltkamp's split); exact
+// because -ffp-contract=off keeps every operation separately rounded.
+inline void two_sum(double a, double b, double& sum, double& error) {
+  sum = a + b;
+  const double b_virtual = sum - a;
+  const double a_virtual = sum - b_virtual;
+  error = (a - a_virtual) + (b - b_virtual);
+}
+
+inline void split(double a, double& hi, double& lo) {
+  const double c = 134217729.0 * a;  // 2^27 + 1
+  const double a_big = c - a;
+  hi = c - a_big;
+  lo = a - hi;
+}
+
+inline void two_product(double a, double b, double& product, double& error) {
+  product = a * b;
+  double ahi, alo, bhi, blo;
+  split(a, ahi, alo);
+  split(b, bhi, blo);
+  error = ((ahi * bhi - product) + ahi * blo + alo * bhi) + alo * blo;
+}
+
+// Adds `term` to a nonoverlapping expansion sorted by increasing magnitude (Shewchuk's
+// Grow-Expansion); the expansion stays exact and nonoverlapping.
+template <std::size_t N>
+void grow_expansion(std::array<double, N>& e, std::size_t& length, double term) {
+  double q = term;
+  for (std::size_t i = 0; i < length; ++i) {
+    double sum, error;
+    two_sum(q, e[i], sum, error);
+    e[i] = error;
+    q = sum;
+  }
+  e[length++] = q;
+}
+
+double orient2d_exact(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  // (ax − cx)(by − cy) − (ay − cy)(bx − cx) with each difference kept as an exact pair.
+  double acx, acx_e, bcy, bcy_e, acy, acy_e, bcx, bcx_e;
+  two_sum(a.x(), -c.x(), acx, acx_e);
+  two_sum(b.y(), -c.y(), bcy, bcy_e);
+  two_sum(a.y(), -c.y(), acy, acy_e);
+  two_sum(b.x(), -c.x(), bcx, bcx_e);
+  const double left[2] = {acx, acx_e}, right_left[2] = {bcy, bcy_e};
+  const double up[2] = {acy, acy_e}, right_up[2] = {bcx, bcx_e};
+  std::array<double, 40> expansion{};
+  std::size_t length = 0;
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      double p, e;
+      two_product(left[i], right_left[j], p, e);
+      grow_expansion(expansion, length, e);
+      grow_expansion(expansion, length, p);
+      two_product(up[i], right_up[j], p, e);
+      grow_expansion(expansion, length, -e);
+      grow_expansion(expansion, length, -p);
+    }
+  for (std::size_t i = length; i-- > 0;)
+    if (expansion[i] != 0.0) return expansion[i];
+  return 0.0;
+}
+
+}  // namespace
+
+double orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const double left = (a.x() - c.x()) * (b.y() - c.y());
+  const double right = (a.y() - c.y()) * (b.x() - c.x());
+  const double det = left - right;
+  // Shewchuk's bound for the plain evaluation: (3 + 16 eps) eps (|left| + |right|), eps = 2^-53.
+  const double bound = 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right));
+  if (std::fabs(det) > bound) return det;
+  return orient2d_exact(a, b, c);
+}
+
+std::vector<Eigen::Vector2d> convex_hull_2d(std::vector<Eigen::Vector2d> points) {
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+    return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y());
+  });
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  if (points.size() <= 2) return points;
+  std::vector<Eigen::Vector2d> hull;
+  hull.reserve(2 * points.size());
+  // Lower chain left to right, then upper chain right to left; pop on clockwise or collinear.
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    while (hull.size() >= 2 && orient2d(hull[hull.size() - 2], hull.back(), points[i]) <= 0.0) hull.pop_back();
+    hull.push_back(points[i]);
+  }
+  const std::size_t lower_size = hull.size() + 1;
+  for (std::size_t i = points.size() - 1; i-- > 0;) {
+    while (hull.size() >= lower_size && orient2d(hull[hull.size() - 2], hull.back(), points[i]) <= 0.0) hull.pop_back();
+    hull.push_back(points[i]);
+  }
+  hull.pop_back();  // the first point again
+  return hull;
+}
+
+}  // namespace offsetopt

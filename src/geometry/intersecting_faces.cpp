@@ -1,0 +1,131 @@
+#include "geometry/intersecting_faces.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+
+#include "geometry/triangle_triangle.h"
+
+namespace offsetopt {
+
+namespace {
+
+struct NodePair {
+  int a, b;
+};
+
+// Visits every (leaf face of a, leaf face of b) pair whose node boxes overlap; when `same` the
+// pair (i, j) and (j, i) are visited once. Visitor returns false to stop.
+template <class Visitor>
+void traverse_pairs(const TriangleBvh& a, const TriangleBvh& b, bool same, Visitor&& visit) {
+  if (a.empty() || b.empty()) return;
+  const auto& na = a.nodes();
+  const auto& nb = b.nodes();
+  std::vector<NodePair> stack;
+  stack.push_back({0, 0});
+  while (!stack.empty()) {
+    const NodePair p = stack.back();
+    stack.pop_back();
+    const BvhNode& x = na[static_cast<std::size_t>(p.a)];
+    const BvhNode& y = nb[static_cast<std::size_t>(p.b)];
+    if (!x.box.overlaps(y.box)) continue;
+    if (same && p.a == p.b) {
+      if (x.is_leaf()) {
+        for (int i = x.first; i < x.first + x.count; ++i)
+          for (int j = i + 1; j < x.first + x.count; ++j)
+            if (!visit(a.leaf_faces()[static_cast<std::size_t>(i)], a.leaf_faces()[static_cast<std::size_t>(j)])) return;
+      } else {
+        stack.push_back({x.right, x.right});
+        stack.push_back({x.left, x.right});
+        stack.push_back({x.left, x.left});
+      }
+      continue;
+    }
+    if (x.is_leaf() && y.is_leaf()) {
+      for (int i = x.first; i < x.first + x.count; ++i)
+        for (int j = y.first; j < y.first + y.count; ++j)
+          if (!visit(a.leaf_faces()[static_cast<std::size_t>(i)], b.leaf_faces()[static_cast<std::size_t>(j)])) return;
+      continue;
+    }
+    // Descend into the larger box (or the only internal node).
+    const bool split_a = !x.is_leaf() && (y.is_leaf() || (x.box.hi - x.box.lo).squaredNorm() >= (y.box.hi - y.box.lo).squaredNorm());
+    if (split_a) {
+      stack.push_back({x.right, p.b});
+      stack.push_back({x.left, p.b});
+    } else {
+      stack.push_back({p.a, y.right});
+      stack.push_back({p.a, y.left});
+    }
+  }
+}
+
+Aabb face_box(const TriangleBvh& bvh, int f) {
+  Aabb box;
+  for (int k = 0; k < 3; ++k) box.extend(bvh.corner(f, k));
+  return box;
+}
+
+}  // namespace
+
+bool mesh_faces_intersect(const TriangleBvh& bvh, int f, int g) {
+  const auto& F = bvh.faces();
+  std::array<int, 3> shared_in_f{}, shared_in_g{};
+  int shared = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (F(f, i) == F(g, j)) {
+        shared_in_f[static_cast<std::size_t>(shared)] = i;
+        shared_in_g[static_cast<std::size_t>(shared)] = j;
+        ++shared;
+      }
+  const Eigen::Vector3d p1 = bvh.corner(f, 0), q1 = bvh.corner(f, 1), r1 = bvh.corner(f, 2);
+  const Eigen::Vector3d p2 = bvh.corner(g, 0), q2 = bvh.corner(g, 1), r2 = bvh.corner(g, 2);
+  if (shared == 0) return triangles_intersect(p1, q1, r1, p2, q2, r2);
+  if (shared >= 3) return true;
+  if (shared == 2) {
+    const Eigen::Vector3d nf = (q1 - p1).cross(r1 - p1), ng = (q2 - p2).cross(r2 - p2);
+    const double sine = nf.cross(ng).norm(), scale = nf.norm() * ng.norm();
+    return nf.dot(ng) < 0.0 && sine <= 1e-9 * scale;
+  }
+  // One shared vertex: test the opposite edge of each face against the other face.
+  const int sf = shared_in_f[0], sg = shared_in_g[0];
+  const Eigen::Vector3d fa = bvh.corner(f, (sf + 1) % 3), fb = bvh.corner(f, (sf + 2) % 3);
+  const Eigen::Vector3d ga = bvh.corner(g, (sg + 1) % 3), gb = bvh.corner(g, (sg + 2) % 3);
+  return segment_intersects_triangle(fa, fb, p2, q2, r2) || segment_intersects_triangle(ga, gb, p1, q1, r1);
+}
+
+IntersectingFaces self_intersections(const TriangleBvh& bvh, std::size_t max_pairs) {
+  IntersectingFaces out;
+  traverse_pairs(bvh, bvh, true, [&](int f, int g) {
+    if (!face_box(bvh, f).overlaps(face_box(bvh, g))) return true;
+    if (mesh_faces_intersect(bvh, f, g)) {
+      out.pairs.emplace_back(std::min(f, g), std::max(f, g));
+      if (out.pairs.size() >= max_pairs) {
+        out.truncated = true;
+        return false;
+      }
+    }
+    return true;
+  });
+  std::sort(out.pairs.begin(), out.pairs.end());
+  return out;
+}
+
+IntersectingFaces intersecting_faces(const TriangleBvh& a, const TriangleBvh& b, std::size_t max_pairs) {
+  IntersectingFaces out;
+  traverse_pairs(a, b, false, [&](int f, int g) {
+    if (!face_box(a, f).overlaps(face_box(b, g))) return true;
+    if (triangles_intersect(a.corner(f, 0), a.corner(f, 1), a.corner(f, 2), b.corner(g, 0), b.corner(g, 1), b.corner(g, 2))) {
+      out.pairs.emplace_back(f, g);
+      if (out.pairs.size() >= max_pairs) {
+        out.truncated = true;
+        return false;
+      }
+    }
+    return true;
+  });
+  std::sort(out.pairs.begin(), out.pairs.end());
+  return out;
+}
+
+}  // namespace offsetopt

@@ -1,0 +1,159 @@
+#include "geometry/triangle_triangle.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+namespace offsetopt {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using Vec2 = Eigen::Vector2d;
+
+// Sign-carrying 2-D orientation: > 0 when a, b, c turn counter-clockwise.
+double orient2d(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (a.x() - c.x()) * (b.y() - c.y()) - (a.y() - c.y()) * (b.x() - c.x());
+}
+
+bool on_segment_2d(const Vec2& a, const Vec2& b, const Vec2& p) {
+  return std::min(a.x(), b.x()) <= p.x() && p.x() <= std::max(a.x(), b.x()) && std::min(a.y(), b.y()) <= p.y() &&
+         p.y() <= std::max(a.y(), b.y());
+}
+
+bool segments_intersect_2d(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const double o1 = orient2d(a, b, c), o2 = orient2d(a, b, d), o3 = orient2d(c, d, a), o4 = orient2d(c, d, b);
+  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) return true;
+  if (o1 == 0 && on_segment_2d(a, b, c)) return true;
+  if (o2 == 0 && on_segment_2d(a, b, d)) return true;
+  if (o3 == 0 && on_segment_2d(c, d, a)) return true;
+  if (o4 == 0 && on_segment_2d(c, d, b)) return true;
+  return false;
+}
+
+bool point_in_triangle_2d(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
+  const double d1 = orient2d(a, b, p), d2 = orient2d(b, c, p), d3 = orient2d(c, a, p);
+  const bool has_negative = d1 < 0 || d2 < 0 || d3 < 0;
+  const bool has_positive = d1 > 0 || d2 > 0 || d3 > 0;
+  return !(has_negative && has_positive);
+}
+
+// Drops the coordinate along which `normal` is largest (lowest index on ties).
+Vec2 project(const Vec3& p, int dropped_axis) {
+  switch (dropped_axis) {
+    case 0: return {p.y(), p.z()};
+    case 1: return {p.z(), p.x()};
+    default: return {p.x(), p.y()};
+  }
+}
+
+int dominant_axis(const Vec3& normal) {
+  const Vec3 a = normal.cwiseAbs();
+  return a.x() >= a.y() ? (a.x() >= a.z() ? 0 : 2) : (a.y() >= a.z() ? 1 : 2);
+}
+
+bool coplanar_triangles_intersect(const Vec3& p1, const Vec3& q1, const Vec3& r1, const Vec3& p2, const Vec3& q2,
+                                  const Vec3& r2, const Vec3& normal) {
+  const int axis = dominant_axis(normal);
+  const Vec2 a[3] = {project(p1, axis), project(q1, axis), project(r1, axis)};
+  const Vec2 b[3] = {project(p2, axis), project(q2, axis), project(r2, axis)};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (segments_intersect_2d(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3])) return true;
+  return point_in_triangle_2d(a[0], b[0], b[1], b[2]) || point_in_triangle_2d(b[0], a[0], a[1], a[2]);
+}
+
+// The decisive step of Guigue-Devillers: p1 is alone on its side of plane 2 and p2 alone on its
+// side of plane 1 (both permuted so those sides are positive); the triangles meet iff the two
+// intervals on the planes' intersection line overlap, which two orientation signs decide.
+bool intervals_overlap(const Vec3& p1, const Vec3& q1, const Vec3& r1, const Vec3& p2, const Vec3& q2, const Vec3& r2) {
+  if ((q2 - q1).dot((p2 - q1).cross(p1 - q1)) > 0.0) return false;
+  if ((r2 - p1).dot((p2 - p1).cross(r1 - p1)) > 0.0) return false;
+  return true;
+}
+
+// Brings triangle 2 into the canonical form (p2 alone on the positive side of plane 1), given
+// triangle 1 already canonical with respect to plane 2.
+bool canonical_second(const Vec3& p1, const Vec3& q1, const Vec3& r1, const Vec3& p2, const Vec3& q2, const Vec3& r2,
+                      double dp2, double dq2, double dr2, const Vec3& normal1) {
+  if (dp2 > 0.0) {
+    if (dq2 > 0.0) return intervals_overlap(p1, r1, q1, r2, p2, q2);
+    if (dr2 > 0.0) return intervals_overlap(p1, r1, q1, q2, r2, p2);
+    return intervals_overlap(p1, q1, r1, p2, q2, r2);
+  }
+  if (dp2 < 0.0) {
+    if (dq2 < 0.0) return intervals_overlap(p1, q1, r1, r2, p2, q2);
+    if (dr2 < 0.0) return intervals_overlap(p1, q1, r1, q2, r2, p2);
+    return intervals_overlap(p1, r1, q1, p2, q2, r2);
+  }
+  if (dq2 < 0.0) {
+    if (dr2 >= 0.0) return intervals_overlap(p1, r1, q1, q2, r2, p2);
+    return intervals_overlap(p1, q1, r1, p2, q2, r2);
+  }
+  if (dq2 > 0.0) {
+    if (dr2 > 0.0) return intervals_overlap(p1, r1, q1, p2, q2, r2);
+    return intervals_overlap(p1, q1, r1, q2, r2, p2);
+  }
+  if (dr2 > 0.0) return intervals_overlap(p1, q1, r1, r2, p2, q2);
+  if (dr2 < 0.0) return intervals_overlap(p1, r1, q1, r2, p2, q2);
+  return coplanar_triangles_intersect(p1, q1, r1, p2, q2, r2, normal1);
+}
+
+}  // namespace
+
+bool triangles_intersect(const Vec3& p1, const Vec3& q1, const Vec3& r1, const Vec3& p2, const Vec3& q2, const Vec3& r2) {
+  const Vec3 normal2 = (p2 - r2).cross(q2 - r2);
+  const double dp1 = (p1 - r2).dot(normal2), dq1 = (q1 - r2).dot(normal2), dr1 = (r1 - r2).dot(normal2);
+  if (dp1 * dq1 > 0.0 && dp1 * dr1 > 0.0) return false;
+  const Vec3 normal1 = (q1 - p1).cross(r1 - p1);
+  const double dp2 = (p2 - r1).dot(normal1), dq2 = (q2 - r1).dot(normal1), dr2 = (r2 - r1).dot(normal1);
+  if (dp2 * dq2 > 0.0 && dp2 * dr2 > 0.0) return false;
+  // Permute triangle 1 so p1 is alone on its side of plane 2, flipping triangle 2's orientation
+  // (q2 <-> r2) when that side is the negative one.
+  if (dp1 > 0.0) {
+    if (dq1 > 0.0) return canonical_second(r1, p1, q1, p2, r2, q2, dp2, dr2, dq2, normal1);
+    if (dr1 > 0.0) return canonical_second(q1, r1, p1, p2, r2, q2, dp2, dr2, dq2, normal1);
+    return canonical_second(p1, q1, r1, p2, q2, r2, dp2, dq2, dr2, normal1);
+  }
+  if (dp1 < 0.0) {
+    if (dq1 < 0.0) return canonical_second(r1, p1, q1, p2, q2, r2, dp2, dq2, dr2, normal1);
+    if (dr1 < 0.0) return canonical_second(q1, r1, p1, p2, q2, r2, dp2, dq2, dr2, normal1);
+    return canonical_second(p1, q1, r1, p2, r2, q2, dp2, dr2, dq2, normal1);
+  }
+  if (dq1 < 0.0) {
+    if (dr1 >= 0.0) return canonical_second(q1, r1, p1, p2, r2, q2, dp2, dr2, dq2, normal1);
+    return canonical_second(p1, q1, r1, p2, q2, r2, dp2, dq2, dr2, normal1);
+  }
+  if (dq1 > 0.0) {
+    if (dr1 > 0.0) return canonical_second(p1, q1, r1, p2, r2, q2, dp2, dr2, dq2, normal1);
+    return canonical_second(q1, r1, p1, p2, q2, r2, dp2, dq2, dr2, normal1);
+  }
+  if (dr1 > 0.0) return canonical_second(r1, p1, q1, p2, q2, r2, dp2, dq2, dr2, normal1);
+  if (dr1 < 0.0) return canonical_second(r1, p1, q1, p2, r2, q2, dp2, dr2, dq2, normal1);
+  return coplanar_triangles_intersect(p1, q1, r1, p2, q2, r2, normal1);
+}
+
+bool segment_intersects_triangle(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r) {
+  const Vec3 normal = (q - p).cross(r - p);
+  const double da = (a - p).dot(normal), db = (b - p).dot(normal);
+  if ((da > 0.0 && db > 0.0) || (da < 0.0 && db < 0.0)) return false;
+  if (da == 0.0 && db == 0.0) {
+    const int axis = dominant_axis(normal);
+    const Vec2 a2 = project(a, axis), b2 = project(b, axis);
+    const Vec2 t[3] = {project(p, axis), project(q, axis), project(r, axis)};
+    for (int j = 0; j < 3; ++j)
+      if (segments_intersect_2d(a2, b2, t[j], t[(j + 1) % 3])) return true;
+    return point_in_triangle_2d(a2, t[0], t[1], t[2]);
+  }
+  // The segment crosses (or touches) the plane: the crossing point is inside the closed
+  // triangle iff the three tetrahedra (a, b, edge) have consistent orientation.
+  const Vec3 ab = b - a;
+  const double s1 = ab.dot((q - a).cross(p - a));
+  const double s2 = ab.dot((r - a).cross(q - a));
+  const double s3 = ab.dot((p - a).cross(r - a));
+  const bool has_negative = s1 < 0 || s2 < 0 || s3 < 0;
+  const bool has_positive = s1 > 0 || s2 > 0 || s3 > 0;
+  return !(has_negative && has_positive);
+}
+
+}  // namespace offsetopt

@@ -1,0 +1,133 @@
+#include "mass/volume_integrals_gradient.h"
+
+#include <array>
+
+#include <Eigen/Geometry>
+
+#include "mass/compensated_sum.h"
+
+namespace offsetopt {
+
+void accumulate_volume_integrals_gradient(const Mesh& mesh, const Eigen::Vector3d& origin, const Vector10d& w,
+                                          Vertices& gradient) {
+  // W u/120 with W = [[2wxx, wxy, wzx], [wxy, 2wyy, wyz], [wzx, wyz, 2wzz]] collects the
+  // derivative of Σ_ij w_ij G_ij with respect to one corner (G_ij's derivative is e_i u_j + e_j u_i).
+  Eigen::Matrix3d W;
+  W << 2.0 * w(kIntXX), w(kIntXY), w(kIntZX),
+       w(kIntXY), 2.0 * w(kIntYY), w(kIntYZ),
+       w(kIntZX), w(kIntYZ), 2.0 * w(kIntZZ);
+  const Eigen::Vector3d w_linear(w(kIntX), w(kIntY), w(kIntZ));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const int ia = mesh.F(f, 0), ib = mesh.F(f, 1), ic = mesh.F(f, 2);
+    const Eigen::Vector3d a = mesh.V.row(ia).transpose() - origin;
+    const Eigen::Vector3d b = mesh.V.row(ib).transpose() - origin;
+    const Eigen::Vector3d c = mesh.V.row(ic).transpose() - origin;
+    const Eigen::Vector3d bc = b.cross(c), ca = c.cross(a), ab = a.cross(b);
+    const double D = a.dot(bc);
+    const Eigen::Vector3d S = a + b + c;
+    auto G = [&](int i, int j) { return a(i) * a(j) + b(i) * b(j) + c(i) * c(j) + S(i) * S(j); };
+    // The weighted sum of the triangle's ten terms divided by D: the factor of ∂D.
+    const double per_D = w(kIntVolume) / 6.0 + w_linear.dot(S) / 24.0 +
+                         (w(kIntXX) * G(0, 0) + w(kIntYY) * G(1, 1) + w(kIntZZ) * G(2, 2) + w(kIntXY) * G(0, 1) +
+                          w(kIntYZ) * G(1, 2) + w(kIntZX) * G(2, 0)) / 120.0;
+    const Eigen::Vector3d linear_part = w_linear / 24.0;
+    const Eigen::Vector3d ga = bc * per_D + D * (linear_part + W * (a + S) / 120.0);
+    const Eigen::Vector3d gb = ca * per_D + D * (linear_part + W * (b + S) / 120.0);
+    const Eigen::Vector3d gc = ab * per_D + D * (linear_part + W * (c + S) / 120.0);
+    gradient.row(ia) += ga.transpose();
+    gradient.row(ib) += gb.transpose();
+    gradient.row(ic) += gc.transpose();
+  }
+}
+
+Eigen::MatrixXd volume_integrals_jacobian(const Mesh& mesh, const Eigen::Vector3d& origin) {
+  const Eigen::Index n = mesh.V.rows();
+  Eigen::MatrixXd J(10, 3 * n);
+  for (int k = 0; k < 10; ++k) {
+    Vertices g = Vertices::Zero(n, 3);
+    accumulate_volume_integrals_gradient(mesh, origin, Vector10d::Unit(k), g);
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) J(k, 3 * i + c) = g(i, c);
+  }
+  return J;
+}
+
+Eigen::Matrix<double, 10, Eigen::Dynamic> volume_integrals_directional_jacobian(const Mesh& mesh,
+                                                                                const Eigen::Vector3d& origin,
+                                                                                const Vertices& directions) {
+  Eigen::Matrix<double, 10, Eigen::Dynamic> J = Eigen::Matrix<double, 10, Eigen::Dynamic>::Zero(10, mesh.V.rows());
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const int corner_index[3] = {mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
+    const Eigen::Vector3d p[3] = {mesh.V.row(corner_index[0]).transpose() - origin,
+                                  mesh.V.row(corner_index[1]).transpose() - origin,
+                                  mesh.V.row(corner_index[2]).transpose() - origin};
+    const double D = p[0].dot(p[1].cross(p[2]));
+    const Eigen::Vector3d S = p[0] + p[1] + p[2];
+    auto G = [&](int i, int j) { return p[0](i) * p[0](j) + p[1](i) * p[1](j) + p[2](i) * p[2](j) + S(i) * S(j); };
+    const double Gxx = G(0, 0), Gyy = G(1, 1), Gzz = G(2, 2), Gxy = G(0, 1), Gyz = G(1, 2), Gzx = G(2, 0);
+    for (int corner = 0; corner < 3; ++corner) {
+      const Eigen::Vector3d d = directions.row(corner_index[corner]).transpose();
+      // ∂D/∂(this corner) is the cross product of the other two, in cyclic order.
+      const double dD = p[(corner + 1) % 3].cross(p[(corner + 2) % 3]).dot(d);
+      const Eigen::Vector3d u = p[corner] + S;  // ∂G_ij/∂corner = e_i u_j + e_j u_i
+      auto column = J.col(corner_index[corner]);
+      column(kIntVolume) += dD / 6.0;
+      column(kIntX) += (dD * S.x() + D * d.x()) / 24.0;
+      column(kIntY) += (dD * S.y() + D * d.y()) / 24.0;
+      column(kIntZ) += (dD * S.z() + D * d.z()) / 24.0;
+      column(kIntXX) += (dD * Gxx + D * 2.0 * d.x() * u.x()) / 120.0;
+      column(kIntYY) += (dD * Gyy + D * 2.0 * d.y() * u.y()) / 120.0;
+      column(kIntZZ) += (dD * Gzz + D * 2.0 * d.z() * u.z()) / 120.0;
+      column(kIntXY) += (dD * Gxy + D * (d.x() * u.y() + d.y() * u.x())) / 120.0;
+      column(kIntYZ) += (dD * Gyz + D * (d.y() * u.z() + d.z() * u.y())) / 120.0;
+      column(kIntZX) += (dD * Gzx + D * (d.z() * u.x() + d.x() * u.z())) / 120.0;
+    }
+  }
+  return J;
+}
+
+void volume_integrals_and_directional_jacobian(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
+                                               const Vertices& directions, Vector10d& integrals,
+                                               Eigen::Matrix<double, 10, Eigen::Dynamic>& jacobian) {
+  jacobian.setZero(10, V.rows());
+  std::array<NeumaierSum, 10> sums;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const int corner_index[3] = {F(f, 0), F(f, 1), F(f, 2)};
+    const Eigen::Vector3d p[3] = {V.row(corner_index[0]).transpose() - origin, V.row(corner_index[1]).transpose() - origin,
+                                  V.row(corner_index[2]).transpose() - origin};
+    const double D = p[0].dot(p[1].cross(p[2]));
+    const Eigen::Vector3d S = p[0] + p[1] + p[2];
+    auto G = [&](int i, int j) { return p[0](i) * p[0](j) + p[1](i) * p[1](j) + p[2](i) * p[2](j) + S(i) * S(j); };
+    const double Gxx = G(0, 0), Gyy = G(1, 1), Gzz = G(2, 2), Gxy = G(0, 1), Gyz = G(1, 2), Gzx = G(2, 0);
+    // The same terms, in the same order, as volume_integrals().
+    sums[kIntVolume].add(D / 6.0);
+    sums[kIntX].add(D * S.x() / 24.0);
+    sums[kIntY].add(D * S.y() / 24.0);
+    sums[kIntZ].add(D * S.z() / 24.0);
+    sums[kIntXX].add(D * Gxx / 120.0);
+    sums[kIntYY].add(D * Gyy / 120.0);
+    sums[kIntZZ].add(D * Gzz / 120.0);
+    sums[kIntXY].add(D * Gxy / 120.0);
+    sums[kIntYZ].add(D * Gyz / 120.0);
+    sums[kIntZX].add(D * Gzx / 120.0);
+    for (int corner = 0; corner < 3; ++corner) {
+      const Eigen::Vector3d d = directions.row(corner_index[corner]).transpose();
+      const double dD = p[(corner + 1) % 3].cross(p[(corner + 2) % 3]).dot(d);
+      const Eigen::Vector3d u = p[corner] + S;
+      double* column = jacobian.col(corner_index[corner]).data();
+      column[kIntVolume] += dD / 6.0;
+      column[kIntX] += (dD * S.x() + D * d.x()) / 24.0;
+      column[kIntY] += (dD * S.y() + D * d.y()) / 24.0;
+      column[kIntZ] += (dD * S.z() + D * d.z()) / 24.0;
+      column[kIntXX] += (dD * Gxx + D * 2.0 * d.x() * u.x()) / 120.0;
+      column[kIntYY] += (dD * Gyy + D * 2.0 * d.y() * u.y()) / 120.0;
+      column[kIntZZ] += (dD * Gzz + D * 2.0 * d.z() * u.z()) / 120.0;
+      column[kIntXY] += (dD * Gxy + D * (d.x() * u.y() + d.y() * u.x())) / 120.0;
+      column[kIntYZ] += (dD * Gyz + D * (d.y() * u.z() + d.z() * u.y())) / 120.0;
+      column[kIntZX] += (dD * Gzx + D * (d.z() * u.x() + d.x() * u.z())) / 120.0;
+    }
+  }
+  for (int k = 0; k < 10; ++k) integrals(k) = sums[static_cast<std::size_t>(k)].value();
+}
+
+}  // namespace offsetopt

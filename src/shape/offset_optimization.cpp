@@ -1,0 +1,479 @@
+#include "shape/offset_optimization.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include <Eigen/Cholesky>
+
+#include "geometry/bvh.h"
+#include "mass/mass_properties.h"
+#include "mass/stability.h"
+#include "mass/volume_integrals.h"
+#include "shape/offset_field.h"
+#include "shape/printable_solid.h"
+#include "shape/verify_offsets.h"
+#include "skeleton/laplacian_contraction.h"
+#include "util/format_double.h"
+
+namespace offsetopt {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+Json vec3(const Eigen::Vector3d& v) { return Json::array_of({v.x(), v.y(), v.z()}); }
+
+Json properties_json(const Vector10d& P) {
+  Json j = Json::object();
+  j["mass"] = P(kMass);
+  j["center_of_mass"] = Json::array_of({P(kCx), P(kCy), P(kCz)});
+  Json inertia = Json::object();
+  inertia["xx"] = P(kIxx);
+  inertia["yy"] = P(kIyy);
+  inertia["zz"] = P(kIzz);
+  inertia["xy"] = P(kIxy);
+  inertia["yz"] = P(kIyz);
+  inertia["zx"] = P(kIzx);
+  j["inertia"] = inertia;
+  return j;
+}
+
+// Algebraic least-squares sphere |x|² = 2 c·x + d through the vertices of the bottom part.
+bool fit_bottom_sphere(const Mesh& mesh, double zmin, double height, Eigen::Vector3d& center, double& radius) {
+  for (double fraction : {0.25, 0.4, 0.6}) {
+    Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
+    int used = 0;
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+      const Eigen::Vector3d p = mesh.V.row(i).transpose();
+      if (p.z() > zmin + fraction * height) continue;
+      const Eigen::Vector4d row(2 * p.x(), 2 * p.y(), 2 * p.z(), 1.0);
+      normal += row * row.transpose();
+      rhs += row * p.squaredNorm();
+      ++used;
+    }
+    if (used < 10) continue;
+    const Eigen::Vector4d s = normal.ldlt().solve(rhs);
+    center = s.head<3>();
+    const double r2 = s(3) + center.squaredNorm();
+    if (!(r2 > 0.0) || !s.allFinite()) continue;
+    radius = std::sqrt(r2);
+    return true;
+  }
+  return false;
+}
+
+// The largest field below `values` with slope at most `slope` along mesh edges:
+// out_i = min_j (values_j + slope * edge-path length from j to i) (Dijkstra; ties by index, so
+// deterministic). Keeps the bounds from jumping between neighbours, where a jump folds the inner
+// surface.
+Eigen::VectorXd lipschitz_envelope(const Mesh& mesh, const Eigen::VectorXd& values, double slope) {
+  const Eigen::Index n = mesh.V.rows();
+  std::vector<std::vector<std::pair<int, double>>> neighbours(static_cast<std::size_t>(n));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int a = mesh.F(f, c), b = mesh.F(f, (c + 1) % 3);
+      const double length = (mesh.V.row(a) - mesh.V.row(b)).norm() * slope;
+      neighbours[static_cast<std::size_t>(a)].emplace_back(b, length);
+      neighbours[static_cast<std::size_t>(b)].emplace_back(a, length);
+    }
+  Eigen::VectorXd out = values;
+  std::set<std::pair<double, int>> queue;
+  for (Eigen::Index i = 0; i < n; ++i) queue.emplace(out(i), static_cast<int>(i));
+  while (!queue.empty()) {
+    const auto [value, i] = *queue.begin();
+    queue.erase(queue.begin());
+    for (const auto& [j, length] : neighbours[static_cast<std::size_t>(i)]) {
+      if (value + length < out(j)) {
+        queue.erase({out(j), j});
+        out(j) = value + length;
+        queue.emplace(out(j), j);
+      }
+    }
+  }
+  return out;
+}
+
+OptimizeResult failure(OptimizeStatus status, const std::string& message) {
+  OptimizeResult r;
+  r.status = status;
+  r.message = message;
+  return r;
+}
+
+}  // namespace
+
+std::string check_optimize_settings(const OptimizeSettings& s) {
+  if (s.k < 0) return "--k must be >= 1 or 'all'";
+  auto finite_or_default = [](double v) { return std::isfinite(v); };
+  for (double v : {s.wall, s.outer_max, s.margin, s.ground_tol, s.radius, s.penalty, s.fill_density, s.fluid_density,
+                   s.target_volume, s.gap, s.ramp})
+    if (!finite_or_default(v)) return "every numeric option must be finite";
+  if (s.penalty < 0.0) return "--penalty must be >= 0";
+  if (s.goal == GoalKind::stand_filled && !(s.fill_density > 0.0)) return "--fill-density must be > 0";
+  if (s.goal == GoalKind::floating && !(s.fluid_density > 0.0 && s.fluid_density < 1.0))
+    return "--goal float needs --fluid-density in (0, 1) (relative to the material)";
+  if (s.goal == GoalKind::volume && !(s.target_volume > 0.0)) return "--goal volume needs --target-volume > 0";
+  if (!(s.gap >= 0.0 && s.gap < 1.0)) return "gap must be in [0, 1)";
+  if (!(s.ramp > 0.0)) return "ramp must be > 0";
+  if (s.outer && s.bounds == BoundsMode::hard && s.k == 0) return "--k all with --bounds hard and --outer is not supported";
+  return check_al_params(s.solver);
+}
+
+OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& settings,
+                                const std::function<void(const std::string&)>& progress) {
+  auto say = [&](const std::string& line) {
+    if (progress) progress(line);
+  };
+  if (const std::string problem = check_optimize_settings(settings); !problem.empty())
+    return failure(OptimizeStatus::bad_input, problem);
+  const Eigen::Index n = input.V.rows();
+  const int k = settings.k;
+  if (k >= n) return failure(OptimizeStatus::bad_input, "--k " + std::to_string(k) + " is not below the vertex count " + std::to_string(n));
+
+  Json timings = Json::object();
+  auto stage_start = Clock::now();
+  const auto total_start = stage_start;
+
+  // Frame: ground, support polygon, scale.
+  const Eigen::Vector3d lo = input.V.colwise().minCoeff().transpose(), hi = input.V.colwise().maxCoeff().transpose();
+  const double diag = (hi - lo).norm();
+  const double scale = 1.0 / diag;
+  auto length = [&](double value, double fraction) { return value >= 0.0 ? value : fraction * diag; };
+  const double wall = length(settings.wall, 0.01), outer_max = length(settings.outer_max, 0.02);
+  const double margin = length(settings.margin, 0.002), ground_tol = length(settings.ground_tol, 0.001);
+  const Vector10d before = mass_properties(input);
+  StabilityOptions stability_options;
+  stability_options.ground_tol = ground_tol;
+  const Stability stability_before =
+      compute_stability(input, Eigen::Vector3d(before(kCx), before(kCy), before(kCz)), stability_options);
+  const double zmin = stability_before.ground_z;
+  Eigen::Vector2d contact_centroid = Eigen::Vector2d::Zero();
+  int contacts = 0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (input.V(i, 2) <= zmin + ground_tol) {
+      contact_centroid += input.V.row(i).head<2>().transpose();
+      ++contacts;
+    }
+  contact_centroid /= contacts;
+  const Eigen::Vector3d frame_origin(contact_centroid.x(), contact_centroid.y(), zmin);
+  auto to_frame = [&](const Eigen::Vector3d& p) { return Eigen::Vector3d((p - frame_origin) * scale); };
+  Mesh normalized = input;
+  for (Eigen::Index i = 0; i < n; ++i) normalized.V.row(i) = to_frame(input.V.row(i).transpose()).transpose();
+
+  // The goal in input units (for verification) and in the frame (for the solver).
+  GoalSpec goal_input;
+  goal_input.kind = settings.goal;
+  goal_input.margin = margin;
+  goal_input.epsilon = margin;
+  goal_input.fill_density = settings.fill_density;
+  goal_input.fluid_density = settings.fluid_density;
+  goal_input.target_volume = settings.target_volume;
+  goal_input.support_polygon = stability_before.support_polygon;
+  Json goal_json = Json::object();
+  goal_json["name"] = to_string(settings.goal);
+  if (settings.goal == GoalKind::roly_poly) {
+    Eigen::Vector3d center;
+    double radius = settings.radius;
+    if (radius > 0.0) {
+      Eigen::Index lowest = 0;
+      input.V.col(2).minCoeff(&lowest);
+      center = Eigen::Vector3d(input.V(lowest, 0), input.V(lowest, 1), zmin + radius);
+    } else if (!fit_bottom_sphere(input, zmin, hi.z() - lo.z(), center, radius)) {
+      return failure(OptimizeStatus::bad_input, "no sphere could be fitted to the bottom; give --radius");
+    }
+    goal_input.axis_point = center;
+    goal_json["sphere_center"] = vec3(center);
+    goal_json["sphere_radius"] = radius;
+  } else if (settings.goal == GoalKind::spin) {
+    Eigen::Index lowest = 0;
+    input.V.col(2).minCoeff(&lowest);
+    goal_input.axis_point = input.V.row(lowest).transpose();
+    goal_json["tip"] = vec3(goal_input.axis_point);
+  } else if (settings.goal == GoalKind::volume && settings.target_volume >= before(kMass)) {
+    return failure(OptimizeStatus::bad_input, "--target-volume " + format_double(settings.target_volume) +
+                                                  " is not below the object's volume " + format_double(before(kMass)));
+  }
+  if (const std::string problem = check_goal_spec(goal_input); !problem.empty())
+    return failure(OptimizeStatus::bad_input, problem);
+  GoalSpec goal = goal_input;
+  for (auto& p : goal.support_polygon) p = (p - contact_centroid) * scale;
+  // A hair of extra margin so the constraint met to the solver's tolerance is met exactly.
+  goal.margin = margin * scale + 1e-7;
+  goal.epsilon = margin * scale + 1e-7;
+  goal.axis_point = to_frame(goal_input.axis_point);
+  goal.target_volume = settings.target_volume * scale * scale * scale;
+  timings["frame"] = seconds_since(stage_start);
+
+  // Meso-skeleton and offset field (input units).
+  stage_start = Clock::now();
+  say("skeleton: contracting " + std::to_string(n) + " vertices");
+  const ContractionResult contraction = laplacian_contraction(input.V, input.F);
+  const TriangleBvh bvh(input.V, input.F);
+  OffsetFieldOptions field_options;
+  field_options.wall = wall;
+  const OffsetField field = offset_field(input, contraction.V, bvh, field_options);
+  timings["skeleton"] = seconds_since(stage_start);
+
+  OffsetBand band;
+  band.inner_direction = field.inner;
+  band.outer_direction = field.outer;
+  band.lower = field.lower * scale;
+  band.upper = lipschitz_envelope(normalized, field.upper * ((1.0 - settings.gap) * scale), settings.bound_slope);
+  band.fixed = fixed_vertices(input, settings.fix);
+  int fixed_count = 0;
+  for (char f : band.fixed) fixed_count += f ? 1 : 0;
+  if (settings.fix.kind != FixRegion::Kind::none && fixed_count == 0)
+    return failure(OptimizeStatus::bad_input, "--fix " + settings.fix.text + " selects no vertex");
+  if (settings.outer) {
+    // The base stays where it is: no outer offset within reach of the ground, so the object keeps
+    // its contact set and its pose.
+    band.outer_limit.resize(n);
+    for (Eigen::Index i = 0; i < n; ++i)
+      band.outer_limit(i) = input.V(i, 2) <= zmin + 2.0 * outer_max + ground_tol ? 0.0 : outer_max * scale;
+  }
+  std::vector<char> thin(static_cast<std::size_t>(n), 0);
+  int thin_count = 0;
+  auto mark_thin = [&]() {
+    thin_count = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const bool collapsed = !band.fixed[static_cast<std::size_t>(i)] && band.lower(i) >= band.upper(i);
+      thin[static_cast<std::size_t>(i)] = collapsed ? 1 : 0;
+      thin_count += collapsed ? 1 : 0;
+    }
+  };
+  mark_thin();
+  const int thin_count_initial = thin_count;
+
+  // Basis.
+  stage_start = Clock::now();
+  Eigen::MatrixXd basis;
+  Json basis_json = Json::object();
+  basis_json["kind"] = k == 0 ? "identity" : to_string(settings.basis);
+  basis_json["k"] = k == 0 ? static_cast<int>(n) : k;
+  if (k > 0) {
+    say("basis: " + std::to_string(k) + " manifold harmonics");
+    ManifoldHarmonicsOptions basis_options;
+    basis_options.kind = settings.basis;
+    const LanczosResult harmonics = manifold_harmonics(normalized, k, basis_options);
+    basis_json["status"] = to_string(harmonics.status);
+    basis_json["largest_eigenvalue"] = harmonics.eigenvalues.size() ? harmonics.eigenvalues(harmonics.eigenvalues.size() - 1) : 0.0;
+    if (harmonics.eigenvectors.cols() != k)
+      return failure(OptimizeStatus::bad_input, "the eigensolver returned no basis: " + harmonics.message);
+    basis = harmonics.eigenvectors;
+  }
+  timings["basis"] = seconds_since(stage_start);
+
+  // Solve; where the result is not printable (the inner surface folds onto itself or comes too
+  // close to the outside), tighten those vertices' bounds and solve again from there.
+  stage_start = Clock::now();
+  ReducedOptions reduced_options;
+  reduced_options.ramp_width = settings.ramp;
+  reduced_options.outer = settings.outer;
+  reduced_options.outer_penalty = settings.penalty;
+  reduced_options.bounds = settings.bounds;
+  reduced_options.start_fraction = settings.start_fraction;
+  if (const std::string problem_text = check_reduced_options(reduced_options); !problem_text.empty())
+    return failure(OptimizeStatus::bad_input, problem_text);
+  OptimizeResult result;
+  AlResult solved;
+  ReducedProblem::Evaluation final_eval;
+  Eigen::VectorXd x;
+  int variables = 0, repair_rounds = 0, total_evaluations = 0;
+  Json repairs = Json::array();
+  for (int round = 0;; ++round) {
+    ReducedProblem problem(normalized, band, basis, k == 0, goal, reduced_options);
+    variables = problem.num_variables();
+    if (round == 0) {
+      x = problem.start_point();
+      say("solve: " + std::to_string(variables) + " variables, goal " + to_string(settings.goal));
+    }
+    AlParams solver_params = settings.solver;
+    if (round > 0) {
+      // A repair round solves a nearby problem: start from the last round's multipliers and
+      // penalty (measured on the bottle with --outer: 3605 evaluations without, 1124 with).
+      solver_params.initial_equality_multipliers = solved.equality_multipliers;
+      solver_params.initial_inequality_multipliers = solved.inequality_multipliers;
+      solver_params.initial_penalty = solved.penalty;
+    }
+    if (settings.trace_solver)
+      solver_params.on_outer_iteration = [&](const AlIterationInfo& info) {
+        say("  round " + std::to_string(round) + " outer " + std::to_string(info.outer_iteration) + ": f " +
+            format_double(info.f) + ", violation " + format_double(info.max_violation) + ", stationarity " +
+            format_double(info.stationarity) + ", penalty " + format_double(info.penalty) + ", inner " +
+            to_string(info.inner_status) + " after " + std::to_string(info.inner_iterations) + " iterations, " +
+            std::to_string(info.evaluations) + " evaluations");
+      };
+    solved = augmented_lagrangian_minimize(problem.constrained_problem(), x, solver_params);
+    total_evaluations += solved.evaluations;
+    x = solved.x;
+    final_eval = problem.evaluate(x);
+    result.inner = input;
+    result.outer = input;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      result.inner.V.row(i) += (final_eval.inner_offset(i) / scale) * band.inner_direction.row(i);
+      if (settings.outer) result.outer.V.row(i) += (final_eval.outer_offset(i) / scale) * band.outer_direction.row(i);
+    }
+    // Tightened bounds only shrink the feasible set: when the goal's constraints are not met,
+    // repairs cannot help, and the report says why.
+    const bool constraints_met = solved.status != AlStatus::Infeasible &&
+                                 solved.max_violation <= 100.0 * settings.solver.feasibility_tolerance;
+    if (round == settings.max_repair_rounds || !constraints_met) break;
+    const SurfaceDefects defects = find_surface_defects(result.outer, result.inner, band.fixed, thin, wall);
+    if (defects.empty()) break;
+    ++repair_rounds;
+    Json entry = Json::object();
+    entry["intersecting_vertices"] = static_cast<long long>(defects.intersecting_vertices.size());
+    entry["thin_wall_vertices"] = static_cast<long long>(defects.thin_wall_vertices.size());
+    repairs.push_back(entry);
+    say("repair " + std::to_string(repair_rounds) + ": " + std::to_string(defects.intersecting_vertices.size()) +
+        " vertices on folds, " + std::to_string(defects.thin_wall_vertices.size()) + " on thin walls");
+    for (int v : defects.intersecting_vertices) band.upper(v) *= settings.repair_shrink;
+    band.upper = lipschitz_envelope(normalized, band.upper, settings.bound_slope);
+    for (int v : defects.thin_wall_vertices) band.lower(v) += 0.5 * wall * scale;
+    mark_thin();
+  }
+  timings["solve"] = seconds_since(stage_start);
+
+  // Final surfaces in input units.
+  stage_start = Clock::now();
+  double bound_violation = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (band.fixed[static_cast<std::size_t>(i)]) continue;
+    const double upper = band.upper(i) / scale;
+    const double lower = std::min(band.lower(i) - final_eval.outer_offset(i), band.upper(i)) / scale;
+    const double offset = final_eval.inner_offset(i) / scale;
+    bound_violation = std::max({bound_violation, offset - upper, lower - offset});
+  }
+  result.printable = printable_solid(result.outer, result.inner, band.fixed);
+  result.skeleton = Mesh{contraction.V, input.F};
+
+  VerifyInput verify_input;
+  verify_input.outer = &result.outer;
+  verify_input.inner = &result.inner;
+  verify_input.goal = goal_input;
+  verify_input.diagonal = diag;
+  verify_input.ground_tol = ground_tol;
+  verify_input.wall = wall;
+  verify_input.fixed = band.fixed;
+  verify_input.thin = thin;
+  verify_input.bound_violation = bound_violation;
+  const Verification verification = verify_offsets(verify_input);
+  timings["verify"] = seconds_since(stage_start);
+  timings["total"] = seconds_since(total_start);
+
+  // Report.
+  Json report = Json::object();
+  Json params = Json::object();
+  params["goal"] = to_string(settings.goal);
+  params["k"] = k == 0 ? Json("all") : Json(k);
+  params["basis"] = to_string(settings.basis);
+  params["bounds"] = settings.bounds == BoundsMode::clamp ? "clamp" : "hard";
+  params["outer"] = settings.outer;
+  params["wall"] = wall;
+  params["outer_max"] = outer_max;
+  params["penalty"] = settings.penalty;
+  params["margin"] = margin;
+  params["ground_tol"] = ground_tol;
+  params["fill_density"] = settings.fill_density;
+  params["fluid_density"] = settings.goal == GoalKind::floating ? Json(settings.fluid_density) : Json();
+  params["target_volume"] = settings.goal == GoalKind::volume ? Json(settings.target_volume) : Json();
+  params["radius"] = settings.radius > 0 ? Json(settings.radius) : Json();
+  params["fix"] = settings.fix.kind == FixRegion::Kind::none ? Json() : Json(settings.fix.text);
+  params["gap"] = settings.gap;
+  params["ramp"] = settings.ramp;
+  params["start_fraction"] = settings.start_fraction;
+  report["parameters"] = params;
+  report["goal"] = goal_json;
+  Json frame = Json::object();
+  frame["origin"] = vec3(frame_origin);
+  frame["scale"] = scale;
+  frame["diagonal"] = diag;
+  report["frame"] = frame;
+
+  Json field_json = Json::object();
+  field_json["contraction_steps"] = contraction.steps;
+  field_json["contraction_status"] = to_string(contraction.status);
+  field_json["volume_ratio"] = contraction.volume_ratio;
+  field_json["shortened"] = field.shortened_count;
+  field_json["fallback"] = field.fallback_count;
+  field_json["fixed"] = fixed_count;
+  field_json["parts_left_solid"] = thin_count_initial;
+  field_json["parts_left_solid_after_repairs"] = thin_count;
+  int at_lower = 0, at_upper = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (band.fixed[static_cast<std::size_t>(i)] || thin[static_cast<std::size_t>(i)]) continue;
+    const double span = settings.ramp;
+    if (final_eval.inner_offset(i) >= band.upper(i) - span) ++at_upper;
+    else if (final_eval.inner_offset(i) <= std::min(band.lower(i) - final_eval.outer_offset(i), band.upper(i)) + span) ++at_lower;
+  }
+  field_json["clamped_at_wall"] = at_lower;
+  field_json["clamped_at_skeleton"] = at_upper;
+  report["offset_field"] = field_json;
+  report["basis"] = basis_json;
+
+  Json solver = Json::object();
+  solver["status"] = to_string(solved.status);
+  solver["objective"] = final_eval.objective;
+  solver["outer_iterations"] = solved.outer_iterations;
+  solver["inner_iterations"] = solved.inner_iterations;
+  solver["evaluations"] = total_evaluations;
+  solver["repair_rounds"] = repair_rounds;
+  solver["repairs"] = repairs;
+  solver["max_violation"] = solved.max_violation;
+  solver["variables"] = variables;
+  Json constraints = Json::array();
+  const auto eq_names = goal_equality_names(goal), ineq_names = goal_inequality_names(goal);
+  auto add_rows = [&](const std::vector<std::string>& names, const Eigen::VectorXd& values, const char* type) {
+    for (std::size_t r = 0; r < names.size(); ++r) {
+      Json c = Json::object();
+      c["name"] = names[r];
+      c["type"] = type;
+      c["value"] = values(static_cast<Eigen::Index>(r));
+      constraints.push_back(c);
+    }
+  };
+  add_rows(eq_names, final_eval.goal.equality, "= 0");
+  add_rows(ineq_names, final_eval.goal.inequality, "<= 0");
+  solver["constraints_in_frame"] = constraints;
+  report["solver"] = solver;
+  report["before"] = properties_json(before);
+  report["before"]["stability"] = Json::object();
+  report["before"]["stability"]["com_margin"] = stability_before.com_margin;
+  report["before"]["stability"]["stands"] = stability_before.stands;
+  report["after"] = verification.metrics;
+  report["goal_met"] = verification.goal_met;
+  report["valid"] = verification.valid;
+
+  result.report = report;
+  result.timings = timings;
+  if (thin_count > 0)
+    result.warnings.push_back(std::to_string(thin_count) + " vertices lie in parts thinner than two walls; those parts stay solid");
+  if (field.fallback_count > 0)
+    result.warnings.push_back(std::to_string(field.fallback_count) + " vertices move along the inward normal (skeleton direction unusable or too shallow)");
+  if (verification.goal_met && verification.valid) {
+    result.status = OptimizeStatus::verified;
+  } else {
+    result.status = OptimizeStatus::goal_not_met;
+    std::string why = verification.failures.empty() ? "unknown" : verification.failures.front();
+    const bool constraints_unmet = solved.status == AlStatus::Infeasible ||
+                                   solved.max_violation > 100.0 * settings.solver.feasibility_tolerance;
+    if (settings.bounds == BoundsMode::hard && thin_count_initial > 0)
+      why = "the per-vertex bounds cannot be met in the basis: " + std::to_string(thin_count_initial) +
+            " vertices lie in parts thinner than two walls, where no offset is both above the wall and below the "
+            "skeleton (try --bounds clamp); " + why;
+    else if (constraints_unmet)
+      why = "no offset in this basis meets the constraints (k too small, or a goal no void can reach); " + why;
+    result.message = why;
+    result.report["why"] = why;
+  }
+  return result;
+}
+
+}  // namespace offsetopt

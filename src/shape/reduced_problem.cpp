@@ -1,0 +1,291 @@
+#include "shape/reduced_problem.h"
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Cholesky>
+
+#include "mass/volume_integrals_gradient.h"
+#include "shape/smooth_clamp.h"
+
+namespace offsetopt {
+
+std::string check_reduced_options(const ReducedOptions& options) {
+  if (!(options.ramp_width > 0.0) || !std::isfinite(options.ramp_width)) return "ramp width must be > 0";
+  if (!(options.outer_penalty >= 0.0) || !std::isfinite(options.outer_penalty)) return "penalty must be >= 0";
+  if (!(options.overshoot_weight >= 0.0) || !std::isfinite(options.overshoot_weight)) return "overshoot weight must be >= 0";
+  if (!(options.start_fraction >= 0.0 && options.start_fraction <= 1.0)) return "start fraction must be in [0, 1]";
+  return {};
+}
+
+ReducedProblem::ReducedProblem(const Mesh& mesh, const OffsetBand& band, const Eigen::MatrixXd& basis,
+                               bool identity_basis, const GoalSpec& goal, const ReducedOptions& options)
+    : mesh_(mesh),
+      band_(band),
+      basis_(basis),
+      identity_basis_(identity_basis),
+      k_(identity_basis ? static_cast<int>(mesh.V.rows()) : static_cast<int>(basis.cols())),
+      goal_(goal),
+      options_(options) {
+  if (!identity_basis_)
+    for (Eigen::Index i = 0; i < mesh_.V.rows(); ++i)
+      if (band_.fixed[static_cast<std::size_t>(i)]) basis_.row(i).setZero();
+  fixed_outer_integrals_ = volume_integrals(mesh_, Eigen::Vector3d::Zero()).values;
+  if (options_.outer) {
+    // Inward, the outer surface may use at most half of the free band (hi − δl), so the wall
+    // coupling lo = δl − δout stays below hi and the inner surface cannot be crossed; where the
+    // band is collapsed (a part thinner than two walls) it cannot move inward at all.
+    outer_inward_limit_.resize(mesh_.V.rows());
+    for (Eigen::Index i = 0; i < mesh_.V.rows(); ++i) {
+      const double free_band = band_.upper(i) - band_.lower(i);
+      const double half = free_band > 0.0 ? 0.5 * free_band : 0.0;
+      outer_inward_limit_(i) = half < band_.outer_limit(i) ? half : band_.outer_limit(i);
+    }
+  }
+  if (options_.bounds == BoundsMode::hard) build_hard_bounds();
+}
+
+Eigen::VectorXd ReducedProblem::apply_basis(const Eigen::VectorXd& coefficients) const {
+  if (!identity_basis_) return basis_ * coefficients;
+  Eigen::VectorXd out = coefficients;
+  for (Eigen::Index i = 0; i < out.size(); ++i)
+    if (band_.fixed[static_cast<std::size_t>(i)]) out(i) = 0.0;
+  return out;
+}
+
+Eigen::MatrixXd ReducedProblem::project(const Eigen::MatrixXd& per_vertex) const {
+  if (!identity_basis_) return per_vertex * basis_;
+  Eigen::MatrixXd out = per_vertex;
+  for (Eigen::Index i = 0; i < out.cols(); ++i)
+    if (band_.fixed[static_cast<std::size_t>(i)]) out.col(i).setZero();
+  return out;
+}
+
+Eigen::VectorXd ReducedProblem::project_vector(const Eigen::VectorXd& per_vertex) const {
+  if (!identity_basis_) return basis_.transpose() * per_vertex;
+  Eigen::VectorXd out = per_vertex;
+  for (Eigen::Index i = 0; i < out.size(); ++i)
+    if (band_.fixed[static_cast<std::size_t>(i)]) out(i) = 0.0;
+  return out;
+}
+
+void ReducedProblem::build_hard_bounds() {
+  const Eigen::Index n = mesh_.V.rows(), k = k_;
+  const double inf = std::numeric_limits<double>::infinity();
+  Eigen::MatrixXd G = identity_basis_ ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(n, n)) : basis_;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (band_.fixed[static_cast<std::size_t>(i)]) G.row(i).setZero();
+  if (!options_.outer) {
+    hard_matrix_ = G;  // δl ≤ Γα ≤ hi: empty where a part is thinner than the wall
+    hard_lower_ = band_.lower;
+    hard_upper_ = band_.upper;
+  } else {
+    hard_matrix_ = Eigen::MatrixXd::Zero(3 * n, 2 * k);
+    hard_matrix_.block(0, 0, n, k) = G;          // −inf ≤ Γα ≤ hi
+    hard_matrix_.block(n, k, n, k) = G;          // −omax ≤ Γβ ≤ omax
+    hard_matrix_.block(2 * n, 0, n, k) = G;      // Γα + Γβ ≥ δl
+    hard_matrix_.block(2 * n, k, n, k) = G;
+    hard_lower_.resize(3 * n);
+    hard_upper_.resize(3 * n);
+    hard_lower_ << Eigen::VectorXd::Constant(n, -inf), -outer_inward_limit_, band_.lower;
+    hard_upper_ << band_.upper, band_.outer_limit, Eigen::VectorXd::Constant(n, inf);
+  }
+  // Fixed vertices have zero rows: their bounds are relaxed (paper 5.2).
+  for (Eigen::Index r = 0; r < hard_matrix_.rows(); ++r)
+    if (band_.fixed[static_cast<std::size_t>(r % n)]) {
+      hard_lower_(r) = -inf;
+      hard_upper_(r) = inf;
+    }
+}
+
+const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd& x) {
+  if (cache_valid_ && cache_.x.size() == x.size() && cache_.x == x) return cache_;
+  const Eigen::Index n = mesh_.V.rows();
+  const bool clamp = options_.bounds == BoundsMode::clamp;
+  const double tau = options_.ramp_width;
+  Evaluation& e = cache_;
+  e.x = x;
+  const Eigen::VectorXd raw_inner = apply_basis(x.head(k_));
+
+  // Outer offsets and their slope.
+  Eigen::VectorXd raw_outer = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd outer_slope = Eigen::VectorXd::Zero(n);
+  e.outer_offset = Eigen::VectorXd::Zero(n);
+  if (options_.outer) {
+    raw_outer = apply_basis(x.tail(k_));
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (band_.fixed[static_cast<std::size_t>(i)]) continue;
+      if (clamp) {
+        e.outer_offset(i) = smooth_clamp(raw_outer(i), -outer_inward_limit_(i), band_.outer_limit(i), tau, &outer_slope(i));
+      } else {
+        e.outer_offset(i) = raw_outer(i);
+        outer_slope(i) = 1.0;
+      }
+    }
+  }
+
+  // Inner offsets: slope with respect to Γα and with respect to the outer offset (through lo).
+  e.inner_offset = Eigen::VectorXd::Zero(n);
+  e.inner_slope = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd inner_by_outer = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (band_.fixed[static_cast<std::size_t>(i)]) continue;
+    if (!clamp) {
+      e.inner_offset(i) = raw_inner(i);
+      e.inner_slope(i) = 1.0;
+      continue;
+    }
+    const double hi = band_.upper(i);
+    const double wanted_lo = band_.lower(i) - e.outer_offset(i);
+    const double lo = wanted_lo < hi ? wanted_lo : hi;
+    double slope_lo = 0.0;
+    e.inner_offset(i) = smooth_clamp(raw_inner(i), lo, hi, tau, &e.inner_slope(i), &slope_lo);
+    if (wanted_lo < hi) inner_by_outer(i) = -slope_lo * outer_slope(i);
+  }
+
+  // Surfaces, their integrals and ∂I/∂(offset) per vertex, one pass over the faces each.
+  const Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  inner_vertices_ = mesh_.V;
+  for (Eigen::Index i = 0; i < n; ++i) inner_vertices_.row(i) += e.inner_offset(i) * band_.inner_direction.row(i);
+  volume_integrals_and_directional_jacobian(inner_vertices_, mesh_.F, origin, band_.inner_direction, e.inner_integrals,
+                                            inner_jacobian_);
+  if (options_.outer) {
+    outer_vertices_ = mesh_.V;
+    for (Eigen::Index i = 0; i < n; ++i) outer_vertices_.row(i) += e.outer_offset(i) * band_.outer_direction.row(i);
+    volume_integrals_and_directional_jacobian(outer_vertices_, mesh_.F, origin, band_.outer_direction,
+                                              e.outer_integrals, outer_jacobian_);
+  } else {
+    e.outer_integrals = fixed_outer_integrals_;
+  }
+  e.goal = evaluate_goal(goal_, e.outer_integrals, e.inner_integrals);
+
+  // ∂I/∂(coefficients) through the clamp's slopes, all blocks projected onto Γ in one product:
+  // rows 0-9 inner by α; with outer offsets rows 10-19 inner by β (through lo), 20-29 outer by β.
+  per_vertex_.resize(options_.outer ? 30 : 10, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    per_vertex_.col(i).head<10>() = inner_jacobian_.col(i) * e.inner_slope(i);
+    if (options_.outer) {
+      per_vertex_.col(i).segment<10>(10) = inner_jacobian_.col(i) * inner_by_outer(i);
+      per_vertex_.col(i).segment<10>(20) = outer_jacobian_.col(i) * outer_slope(i);
+    }
+  }
+  const Eigen::MatrixXd projected = project(per_vertex_);
+  const Eigen::Matrix<double, 10, Eigen::Dynamic> inner_by_alpha = projected.topRows(10);
+  Eigen::Matrix<double, 10, Eigen::Dynamic> inner_by_beta, outer_by_beta;
+  if (options_.outer) {
+    inner_by_beta = projected.middleRows(10, 10);
+    outer_by_beta = projected.middleRows(20, 10);
+  }
+  const int nv = num_variables();
+  auto chain = [&](const Eigen::Matrix<double, 1, 20>& weights) {
+    Eigen::RowVectorXd g(nv);
+    const Eigen::Matrix<double, 1, 10> w_out = weights.head<10>(), w_in = weights.tail<10>();
+    g.head(k_) = w_in * inner_by_alpha;
+    if (options_.outer) g.tail(k_) = w_out * outer_by_beta + w_in * inner_by_beta;
+    return g;
+  };
+  e.objective = e.goal.objective;
+  e.objective_gradient = chain(e.goal.objective_gradient.transpose()).transpose();
+  if (options_.outer && options_.outer_penalty > 0.0) {
+    const double beta1 = x(k_);
+    e.objective += options_.outer_penalty * beta1 * beta1;
+    e.objective_gradient(k_) += 2.0 * options_.outer_penalty * beta1;
+  }
+  if (clamp && options_.overshoot_weight > 0.0) {
+    // μ/n Σ (raw − clamped)², per vertex derivative with respect to Γα and Γβ.
+    const double weight = options_.overshoot_weight / static_cast<double>(n);
+    Eigen::VectorXd by_inner_raw = Eigen::VectorXd::Zero(n), by_outer_raw = Eigen::VectorXd::Zero(n);
+    double overshoot = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (band_.fixed[static_cast<std::size_t>(i)]) continue;
+      const double inner_excess = raw_inner(i) - e.inner_offset(i);
+      overshoot += inner_excess * inner_excess;
+      by_inner_raw(i) = 2.0 * weight * inner_excess * (1.0 - e.inner_slope(i));
+      if (options_.outer) {
+        const double outer_excess = raw_outer(i) - e.outer_offset(i);
+        overshoot += outer_excess * outer_excess;
+        // δin depends on the outer offset through lo; ∂δin/∂(Γβ) = inner_by_outer.
+        by_outer_raw(i) = 2.0 * weight * (outer_excess * (1.0 - outer_slope(i)) - inner_excess * inner_by_outer(i));
+      }
+    }
+    e.objective += weight * overshoot;
+    e.objective_gradient.head(k_) += project_vector(by_inner_raw);
+    if (options_.outer) e.objective_gradient.tail(k_) += project_vector(by_outer_raw);
+  }
+  e.equality_jacobian.resize(e.goal.equality.size(), nv);
+  for (Eigen::Index r = 0; r < e.goal.equality.size(); ++r) e.equality_jacobian.row(r) = chain(e.goal.equality_jacobian.row(r));
+  e.inequality_jacobian.resize(e.goal.inequality.size(), nv);
+  for (Eigen::Index r = 0; r < e.goal.inequality.size(); ++r)
+    e.inequality_jacobian.row(r) = chain(e.goal.inequality_jacobian.row(r));
+  cache_valid_ = true;
+  return e;
+}
+
+Eigen::VectorXd ReducedProblem::start_point() const {
+  const Eigen::Index n = mesh_.V.rows();
+  Eigen::VectorXd target(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double hi = band_.upper(i);
+    const double lo = band_.lower(i) < hi ? band_.lower(i) : hi;
+    target(i) = band_.fixed[static_cast<std::size_t>(i)] ? 0.0 : lo + options_.start_fraction * (hi - lo);
+  }
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(num_variables());
+  if (identity_basis_) {
+    x.head(k_) = target;
+  } else {
+    // Least squares Γα ≈ target; a tiny ridge keeps columns zeroed by fixed regions harmless.
+    Eigen::MatrixXd normal = basis_.transpose() * basis_;
+    normal.diagonal().array() += 1e-12 * (1.0 + normal.diagonal().maxCoeff());
+    x.head(k_) = normal.ldlt().solve(basis_.transpose() * target);
+  }
+  return x;
+}
+
+ConstrainedProblem ReducedProblem::constrained_problem() {
+  ConstrainedProblem p;
+  p.num_variables = num_variables();
+  p.objective = [this](const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
+    const Evaluation& e = evaluate(x);
+    grad = e.objective_gradient;
+    return e.objective;
+  };
+  const std::size_t eq = goal_equality_names(goal_).size(), ineq = goal_inequality_names(goal_).size();
+  p.num_equality = static_cast<int>(eq);
+  p.equality = [this](const Eigen::VectorXd& x, Eigen::VectorXd& values, Eigen::MatrixXd& jacobian) {
+    const Evaluation& e = evaluate(x);
+    values = e.goal.equality;
+    jacobian = e.equality_jacobian;
+  };
+  p.num_inequality = static_cast<int>(ineq);
+  p.inequality = [this](const Eigen::VectorXd& x, Eigen::VectorXd& values, Eigen::MatrixXd& jacobian) {
+    const Evaluation& e = evaluate(x);
+    values = e.goal.inequality;
+    jacobian = e.inequality_jacobian;
+  };
+  if (options_.bounds == BoundsMode::hard && identity_basis_ && !options_.outer) {
+    // Per vertex (paper eq. 1) the rows δl ≤ δ ≤ hi are bounds on the variables themselves:
+    // L-BFGS-B keeps them exactly, with no multipliers to find. Where a part is thinner than two
+    // walls (δl > hi) the box is empty and the solver reports the bounds as unsatisfiable.
+    p.lower = hard_lower_;
+    p.upper = hard_upper_;
+  } else if (options_.bounds == BoundsMode::hard) {
+    p.linear_matrix = &hard_matrix_;
+    p.linear_lower = hard_lower_;
+    p.linear_upper = hard_upper_;
+  }
+  return p;
+}
+
+Mesh ReducedProblem::inner_mesh(const Evaluation& e) const {
+  Mesh inner = mesh_;
+  for (Eigen::Index i = 0; i < inner.V.rows(); ++i) inner.V.row(i) += e.inner_offset(i) * band_.inner_direction.row(i);
+  return inner;
+}
+
+Mesh ReducedProblem::outer_mesh(const Evaluation& e) const {
+  Mesh outer = mesh_;
+  for (Eigen::Index i = 0; i < outer.V.rows(); ++i) outer.V.row(i) += e.outer_offset(i) * band_.outer_direction.row(i);
+  return outer;
+}
+
+}  // namespace offsetopt

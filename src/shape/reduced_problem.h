@@ -1,0 +1,118 @@
+// The reduced-order offset problem (Musialski et al. 2015, eq. 3, in the form DESIGN.md "Reduced
+// problem" fixes). With Γ the #V by k basis (manifold harmonics; rows of fixed vertices zeroed,
+// paper 5.2) the variables are x = [α] or, with outer offsets, x = [α; β]:
+//   outer offset  δout = smoothclamp(Γβ, −min(omax_i, (hi−δl)₊/2), omax_i)   along w (outward),
+//   inner offset  δin  = smoothclamp(Γα, lo, hi),  lo = min(δl − δout, hi)   along v (inward),
+// so the wall δin + δout ≥ δl and the skeleton bound δin ≤ hi hold by construction (clamp mode).
+// In hard mode (the paper's formulation, for comparison) δin = Γα and δout = Γβ unclamped, and
+// the bounds become the linear rows δl ≤ Γα ≤ hi (or, with outer offsets, −omax ≤ Γβ ≤ omax and
+// Γα + Γβ ≥ δl, Γα ≤ hi) handed to the solver's linear block.
+//   inner surface  x_in,i  = x_i + δin_i v_i,   outer surface  x_out,i = x_i + δout_i w_i.
+// The goal (shape/goal.h) is evaluated on the volume integrals of both surfaces (measured from the
+// frame origin) and its derivatives are chained exactly:
+//   ∂row/∂α = (∂row/∂I_in) (∂I_in/∂δin) diag(∂δin/∂(Γα)) Γ,   O(#F + 10·#V·k) per evaluation.
+// The outer penalty wp·β₁² (paper 5.2: the first coefficient, the DC term) and, in clamp mode,
+// the overshoot term (ReducedOptions::overshoot_weight) are added to f.
+#pragma once
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mass/volume_integrals.h"
+#include "mesh/mesh.h"
+#include "optim/augmented_lagrangian.h"
+#include "shape/goal.h"
+
+namespace offsetopt {
+
+// Per-vertex offset directions and bounds in the mesh's frame.
+struct OffsetBand {
+  Vertices inner_direction;  // v, #V by 3 (unit, inward)
+  Vertices outer_direction;  // w, #V by 3 (unit, outward)
+  Eigen::VectorXd lower;     // δl: the inner offset that leaves the wall thickness, #V
+  Eigen::VectorXd upper;     // hi: the largest inner offset (skeleton distance less the gap), #V, >= 0
+  std::vector<char> fixed;   // #V; nonzero: both offsets are 0 there (an opening)
+  Eigen::VectorXd outer_limit;  // omax_i >= 0 per vertex (0 keeps the outer surface in place);
+                                // empty when there are no outer offsets
+};
+
+enum class BoundsMode { clamp, hard };
+
+struct ReducedOptions {
+  double ramp_width = 2e-3;   // τ of the smooth clamp, in the mesh's units (> 0)
+  bool outer = false;         // optimise an outer offset too
+  double outer_penalty = 0.0; // wp >= 0
+  BoundsMode bounds = BoundsMode::clamp;
+  // Weight μ of the overshoot term μ · mean_i (raw_i − clamped_i)² added to f (raw = Γα or Γβ):
+  // where the clamp saturates its slope is 0 and the constraints lose their gradient; the term
+  // keeps the raw offsets near their band so the solver can still move every vertex. 0 disables.
+  double overshoot_weight = 1.0;
+  // Start: the least-squares fit of Γα to lo + start_fraction (hi − lo) (β = 0).
+  double start_fraction = 0.5;
+};
+
+std::string check_reduced_options(const ReducedOptions& options);
+
+class ReducedProblem {
+ public:
+  // `basis` is #V by k; an empty (0-column) basis with identity_basis = true means the
+  // per-vertex problem of paper eq. (1) (Γ = I, k = #V). The mesh, band and basis are copied.
+  ReducedProblem(const Mesh& mesh, const OffsetBand& band, const Eigen::MatrixXd& basis, bool identity_basis,
+                 const GoalSpec& goal, const ReducedOptions& options);
+
+  int basis_size() const { return k_; }
+  int num_variables() const { return options_.outer ? 2 * k_ : k_; }
+
+  struct Evaluation {
+    Eigen::VectorXd x;
+    Eigen::VectorXd inner_offset, outer_offset;  // δin, δout (#V)
+    Eigen::VectorXd inner_slope;                 // ∂δin/∂(Γα), in [0, 1] (1 in hard mode)
+    Vector10d inner_integrals, outer_integrals;  // from the frame origin
+    GoalValues goal;
+    double objective = 0.0;                      // goal objective + outer penalty
+    Eigen::VectorXd objective_gradient;          // num_variables
+    Eigen::MatrixXd equality_jacobian, inequality_jacobian;  // rows by num_variables
+  };
+
+  // Evaluates at x; the last evaluation is cached (the solver asks for f, h and c at each x).
+  const Evaluation& evaluate(const Eigen::VectorXd& x);
+
+  Eigen::VectorXd start_point() const;
+
+  // The problem for the augmented Lagrangian; it refers to *this, which must outlive the solve.
+  ConstrainedProblem constrained_problem();
+
+  Mesh inner_mesh(const Evaluation& e) const;
+  Mesh outer_mesh(const Evaluation& e) const;
+
+  const Mesh& mesh() const { return mesh_; }
+  const OffsetBand& band() const { return band_; }
+
+ private:
+  Eigen::VectorXd apply_basis(const Eigen::VectorXd& coefficients) const;  // Γ c
+  // (rows by #V) times Γ: rows by k.
+  Eigen::MatrixXd project(const Eigen::MatrixXd& per_vertex) const;
+  Eigen::VectorXd project_vector(const Eigen::VectorXd& per_vertex) const;  // Γᵀ v
+  void build_hard_bounds();
+
+  Mesh mesh_;
+  OffsetBand band_;
+  Eigen::MatrixXd basis_;
+  bool identity_basis_;
+  int k_;
+  GoalSpec goal_;
+  ReducedOptions options_;
+  Vector10d fixed_outer_integrals_;  // the input's integrals, when there is no outer offset
+  Eigen::VectorXd outer_inward_limit_;  // per vertex, see the constructor
+  Eigen::MatrixXd hard_matrix_;      // hard mode: the linear block
+  Eigen::VectorXd hard_lower_, hard_upper_;
+  Evaluation cache_;
+  // Work space of evaluate(), kept between calls.
+  Vertices inner_vertices_, outer_vertices_;
+  Eigen::Matrix<double, 10, Eigen::Dynamic> inner_jacobian_, outer_jacobian_;
+  Eigen::MatrixXd per_vertex_;
+  bool cache_valid_ = false;
+};
+
+}  // namespace offsetopt

@@ -1,0 +1,227 @@
+#include "shape/verify_offsets.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geometry/bvh.h"
+#include "geometry/closest_point.h"
+#include "geometry/intersecting_faces.h"
+#include "mass/mass_properties.h"
+#include "mass/stability.h"
+#include "mass/volume_integrals.h"
+#include "util/det_math.h"
+#include "util/format_double.h"
+
+namespace offsetopt {
+
+namespace {
+
+Json vec3(const Eigen::Vector3d& v) { return Json::array_of({v.x(), v.y(), v.z()}); }
+
+struct Check {
+  Verification& out;
+  void require(bool ok, const std::string& failure) {
+    if (!ok) out.failures.push_back(failure);
+  }
+};
+
+Json stability_json(const Stability& s) {
+  Json j = Json::object();
+  j["com_margin"] = s.com_margin;
+  j["tipping_angle_deg"] = s.tipping_angle_deg;
+  j["stands"] = s.stands;
+  return j;
+}
+
+// Faces with no fixed corner: contacts at the opening (where the surfaces coincide) are by design.
+Mesh without_fixed_faces(const Mesh& mesh, const std::vector<char>& fixed) {
+  Mesh out;
+  out.V = mesh.V;
+  std::vector<int> rows;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    bool touches = false;
+    for (int c = 0; c < 3; ++c) touches = touches || fixed[static_cast<std::size_t>(mesh.F(f, c))];
+    if (!touches) rows.push_back(static_cast<int>(f));
+  }
+  out.F.resize(static_cast<Eigen::Index>(rows.size()), 3);
+  for (std::size_t r = 0; r < rows.size(); ++r) out.F.row(static_cast<Eigen::Index>(r)) = mesh.F.row(rows[r]);
+  return out;
+}
+
+}  // namespace
+
+SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
+                                    const std::vector<char>& thin, double wall) {
+  SurfaceDefects d;
+  const Mesh inner_free = without_fixed_faces(inner, fixed);
+  const Mesh outer_free = without_fixed_faces(outer, fixed);
+  const TriangleBvh inner_bvh(inner_free.V, inner_free.F), outer_bvh(outer_free.V, outer_free.F);
+  const std::size_t cap = 100000;
+  const IntersectingFaces self = self_intersections(inner_bvh, cap);
+  const IntersectingFaces crossing = intersecting_faces(inner_bvh, outer_bvh, cap);
+  d.self_intersection_pairs = self.pairs.size();
+  d.crossing_pairs = crossing.pairs.size();
+  d.truncated = self.truncated || crossing.truncated;
+  std::vector<char> flagged(static_cast<std::size_t>(inner.V.rows()), 0);
+  for (const auto& p : self.pairs)
+    for (int f : {p.first, p.second})
+      for (int c = 0; c < 3; ++c) flagged[static_cast<std::size_t>(inner_free.F(f, c))] = 1;
+  for (const auto& p : crossing.pairs)
+    for (int c = 0; c < 3; ++c) flagged[static_cast<std::size_t>(inner_free.F(p.first, c))] = 1;
+  for (std::size_t i = 0; i < flagged.size(); ++i)
+    if (flagged[i]) d.intersecting_vertices.push_back(static_cast<int>(i));
+
+  const TriangleBvh outer_full(outer.V, outer.F);
+  d.thinnest_wall = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < inner.V.rows(); ++i) {
+    const std::size_t u = static_cast<std::size_t>(i);
+    if (fixed[u] || thin[u]) continue;
+    const ClosestPoint c = closest_point(outer_full, inner.V.row(i).transpose());
+    if (!c.found) continue;
+    if (c.distance < d.thinnest_wall) {
+      d.thinnest_wall = c.distance;
+      d.thinnest_vertex = static_cast<int>(i);
+    }
+    if (c.distance < 0.5 * wall) d.thin_wall_vertices.push_back(static_cast<int>(i));
+  }
+  return d;
+}
+
+Verification verify_offsets(const VerifyInput& in) {
+  Verification out;
+  out.metrics = Json::object();
+  Check check{out};
+  const Mesh& outer = *in.outer;
+  const Mesh& inner = *in.inner;
+  const double diag = in.diagonal;
+  const double position_tol = 1e-4 * diag;
+
+  // The integrals of the printed material, measured from a point near the object.
+  const Eigen::Vector3d origin = mean_vertex(outer);
+  VolumeIntegrals outer_int = volume_integrals(outer, origin), inner_int = volume_integrals(inner, origin);
+  const VolumeIntegrals shell = subtract(outer_int, inner_int);
+  const Vector10d P = mass_properties(shell);
+  const Eigen::Vector3d com(P(kCx), P(kCy), P(kCz));
+  Json& m = out.metrics;
+  m["mass"] = P(kMass);
+  m["void_volume"] = inner_int.values(kIntVolume);
+  m["outer_volume"] = outer_int.values(kIntVolume);
+  m["center_of_mass"] = vec3(com);
+
+  StabilityOptions stability_options;
+  stability_options.ground_tol = in.ground_tol;
+  const GoalSpec& g = in.goal;
+  switch (g.kind) {
+    case GoalKind::stand:
+    case GoalKind::stand_filled: {
+      const Stability empty = compute_stability(outer, com, stability_options);
+      m["empty"] = stability_json(empty);
+      check.require(empty.com_margin >= g.margin,
+                    "the centre of mass is " + format_double(empty.com_margin) + " inside the support polygon, less than the margin " +
+                        format_double(g.margin));
+      if (g.kind == GoalKind::stand_filled) {
+        VolumeIntegrals filled = shell;
+        filled.values += g.fill_density * inner_int.values;
+        const Vector10d Pf = mass_properties(filled);
+        const Stability full = compute_stability(outer, Eigen::Vector3d(Pf(kCx), Pf(kCy), Pf(kCz)), stability_options);
+        m["filled"] = stability_json(full);
+        m["filled"]["center_of_mass"] = vec3(Eigen::Vector3d(Pf(kCx), Pf(kCy), Pf(kCz)));
+        check.require(full.com_margin >= g.margin, "filled, the centre of mass is " + format_double(full.com_margin) +
+                                                       " inside the support polygon, less than the margin " + format_double(g.margin));
+      }
+      break;
+    }
+    case GoalKind::roly_poly: {
+      const double off_axis = std::hypot(P(kCx) - g.axis_point.x(), P(kCy) - g.axis_point.y());
+      const double below = g.axis_point.z() - P(kCz);
+      m["sphere_center"] = vec3(g.axis_point);
+      m["com_off_axis"] = off_axis;
+      m["com_below_center"] = below;
+      check.require(off_axis <= position_tol, "the centre of mass is " + format_double(off_axis) + " off the sphere's vertical axis");
+      check.require(below > g.epsilon * (1.0 - 1e-9), "the centre of mass is not below the sphere centre by the margin (" +
+                                                          format_double(below) + " < " + format_double(g.epsilon) + ")");
+      break;
+    }
+    case GoalKind::spin: {
+      const double off_axis = std::hypot(P(kCx) - g.axis_point.x(), P(kCy) - g.axis_point.y());
+      const PrincipalInertia principal = principal_inertia(P);
+      // The principal axis closest to z and the angle between them.
+      int axis = 0;
+      for (int a = 1; a < 3; ++a)
+        if (std::fabs(principal.axes(2, a)) > std::fabs(principal.axes(2, axis))) axis = a;
+      const double tilt = det_acos(std::min(1.0, std::fabs(principal.axes(2, axis)))) * 180.0 / kPi;
+      const bool largest = axis == 2;
+      m["tip"] = vec3(g.axis_point);
+      m["com_off_axis"] = off_axis;
+      m["Izx_over_Izz"] = P(kIzx) / P(kIzz);
+      m["Iyz_over_Izz"] = P(kIyz) / P(kIzz);
+      m["principal_moments"] = vec3(principal.moments);
+      m["spin_axis_tilt_deg"] = tilt;
+      m["spin_axis_is_largest_moment"] = largest;
+      check.require(off_axis <= position_tol, "the centre of mass is " + format_double(off_axis) + " off the spin axis");
+      check.require(std::fabs(P(kIzx)) <= 1e-4 * P(kIzz) && std::fabs(P(kIyz)) <= 1e-4 * P(kIzz),
+                    "the inertia products Izx, Iyz are not below 1e-4 Izz");
+      check.require(tilt <= 0.5, "the principal axis is tilted " + format_double(tilt) + " degrees from z");
+      check.require(largest, "z is not the axis of the largest principal moment: the spin is not stable");
+      break;
+    }
+    case GoalKind::volume: {
+      const double relative = (inner_int.values(kIntVolume) - g.target_volume) / g.target_volume;
+      m["target_volume"] = g.target_volume;
+      m["volume_relative_error"] = relative;
+      check.require(std::fabs(relative) <= 1e-4, "the void holds " + format_double(inner_int.values(kIntVolume)) +
+                                                     " instead of " + format_double(g.target_volume));
+      break;
+    }
+    case GoalKind::floating: {
+      const double v_out = outer_int.values(kIntVolume);
+      const Eigen::Vector3d buoyancy = origin + Eigen::Vector3d(outer_int.values(kIntX), outer_int.values(kIntY),
+                                                                outer_int.values(kIntZ)) / v_out;
+      const double imbalance = g.fluid_density * v_out - P(kMass);
+      const double off_axis = std::hypot(P(kCx) - buoyancy.x(), P(kCy) - buoyancy.y());
+      m["center_of_buoyancy"] = vec3(buoyancy);
+      m["buoyancy_minus_weight"] = imbalance;
+      m["com_off_buoyancy_axis"] = off_axis;
+      m["com_below_buoyancy"] = buoyancy.z() - P(kCz);
+      check.require(std::fabs(imbalance) <= 1e-3 * P(kMass), "buoyancy and weight differ by " + format_double(imbalance));
+      check.require(off_axis <= position_tol, "the centre of mass is " + format_double(off_axis) + " off the buoyancy axis");
+      check.require(P(kCz) < buoyancy.z(), "the centre of mass is above the centre of buoyancy: it would flip");
+      break;
+    }
+  }
+  out.goal_met = out.failures.empty();
+
+  // Validity of the solid.
+  const std::size_t goal_failures = out.failures.size();
+  const SurfaceDefects defects = find_surface_defects(outer, inner, in.fixed, in.thin, in.wall);
+  m["inner_self_intersections"] = static_cast<long long>(defects.self_intersection_pairs);
+  m["inner_outer_crossings"] = static_cast<long long>(defects.crossing_pairs);
+  const std::string more = defects.truncated ? "+" : "";
+  check.require(defects.self_intersection_pairs == 0,
+                "the inner surface intersects itself (" + std::to_string(defects.self_intersection_pairs) + more + " face pairs)");
+  check.require(defects.crossing_pairs == 0,
+                "the inner surface crosses the outer surface (" + std::to_string(defects.crossing_pairs) + more + " face pairs)");
+  int thin_count = 0;
+  for (char t : in.thin) thin_count += t ? 1 : 0;
+  const bool measured = std::isfinite(defects.thinnest_wall);
+  m["requested_wall"] = in.wall;
+  m["min_wall_measured"] = measured ? Json(defects.thinnest_wall) : Json();
+  m["min_wall_vertex"] = defects.thinnest_vertex;
+  m["vertices_in_parts_left_solid"] = thin_count;
+  m["largest_bound_violation"] = in.bound_violation;
+  if (measured)
+    check.require(defects.thin_wall_vertices.empty(), "the wall is " + format_double(defects.thinnest_wall) +
+                                                          " thin at inner vertex " + std::to_string(defects.thinnest_vertex) +
+                                                          ", less than half the requested " + format_double(in.wall));
+  check.require(in.bound_violation <= 1e-6 * diag, "the offsets leave their bounds by " + format_double(in.bound_violation));
+  out.valid = out.failures.size() == goal_failures;
+  m["goal_met"] = out.goal_met;
+  m["valid"] = out.valid;
+  Json failures = Json::array();
+  for (const auto& f : out.failures) failures.push_back(f);
+  m["failures"] = failures;
+  return out;
+}
+
+}  // namespace offsetopt

@@ -1,0 +1,56 @@
+// Verification of an optimised object as it will be printed (what the paper does not do): the
+// goal's metrics recomputed from the final surfaces in input units, the bounds, the wall
+// thickness measured as a distance, and intersections found through the BVH
+// (geometry/intersecting_faces.h). The optimiser's exit status is decided here.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "io/json.h"
+#include "mesh/mesh.h"
+#include "shape/goal.h"
+
+namespace offsetopt {
+
+struct VerifyInput {
+  const Mesh* outer = nullptr;  // outer surface (the input itself without outer offsets)
+  const Mesh* inner = nullptr;  // inner surface, same connectivity
+  GoalSpec goal;                // in input units (support polygon, axis point, target volume, ε)
+  double diagonal = 1.0;        // input bounding-box diagonal
+  double ground_tol = 0.0;      // input units
+  double wall = 0.0;            // requested wall, input units
+  std::vector<char> fixed;      // per vertex
+  std::vector<char> thin;       // per vertex: band collapsed (a part thinner than two walls)
+  double bound_violation = 0.0; // largest violation of the enforced band, input units
+};
+
+struct Verification {
+  bool goal_met = false;
+  bool valid = false;
+  std::vector<std::string> failures;  // one line each, empty when goal_met && valid
+  Json metrics;                       // goal metrics and validity figures
+};
+
+// Where the surfaces are not printable as they are: vertices of inner faces that intersect other
+// inner faces or cross the outer surface, and inner vertices closer to the outer surface than
+// half the wall (away from fixed vertices and parts left solid). The optimiser tightens the
+// bounds of these vertices and solves again.
+struct SurfaceDefects {
+  std::vector<int> intersecting_vertices;  // sorted, unique
+  std::vector<int> thin_wall_vertices;     // sorted
+  std::size_t self_intersection_pairs = 0, crossing_pairs = 0;
+  bool truncated = false;
+  double thinnest_wall = 0.0;  // infinity when nothing was measured
+  int thinnest_vertex = -1;
+  bool empty() const { return intersecting_vertices.empty() && thin_wall_vertices.empty(); }
+};
+SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
+                                    const std::vector<char>& thin, double wall);
+
+// Tolerances (relative to the diagonal unless stated): centre-of-mass positions 1e-4,
+// inertia products 1e-4 of Izz, principal-axis tilt 0.5°, volume 1e-4 relative, buoyancy
+// balance 1e-3 of the mass; the measured wall at least half the requested one away from thin
+// parts; no self-intersection of the inner surface and no inner/outer crossing.
+Verification verify_offsets(const VerifyInput& input);
+
+}  // namespace offsetopt

@@ -1,0 +1,144 @@
+// The built binary end to end: `generate` reproduces the committed demo meshes byte for byte,
+// `inspect` reports what the library computes and says the leaning bottle falls, and bad usage
+// exits with code 2 and one "Error:" line.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "io/json.h"
+#include "mass/mass_properties.h"
+#include "mesh/demo_meshes.h"
+
+using namespace offsetopt;
+
+namespace {
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+// A scratch directory for this process, removed with everything in it at exit.
+const std::filesystem::path& scratch_dir() {
+  struct Scratch {
+    std::filesystem::path path;
+    Scratch() : path(std::filesystem::temp_directory_path() / ("offsetopt_test_cli_" + std::to_string(::getpid()))) {
+      std::filesystem::create_directories(path);
+    }
+    ~Scratch() {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const Scratch scratch;
+  return scratch.path;
+}
+
+std::filesystem::path temp_path(const std::string& name) { return scratch_dir() / name; }
+
+// Runs the offsetopt binary with `arguments` (already shell-quoted where needed).
+RunResult run(const std::string& arguments) {
+  static int counter = 0;
+  const auto out = temp_path("out" + std::to_string(counter) + ".txt");
+  const auto err = temp_path("err" + std::to_string(counter++) + ".txt");
+  const std::string command = std::string("'") + OFFSETOPT_BINARY + "' " + arguments + " >'" + out.string() + "' 2>'" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  RunResult result;
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = read_file(out);
+  result.err = read_file(err);
+  return result;
+}
+
+const std::string kSource = OFFSETOPT_SOURCE_DIR;
+
+}  // namespace
+
+TEST_CASE("generate writes each demo mesh byte-identical to the committed meshes/NAME.obj") {
+  const RunResult list = run("generate --list");
+  REQUIRE(list.exit_code == 0);
+  std::string expected_list;
+  for (const auto& name : demo_mesh_names()) expected_list += name + "\n";
+  CHECK(list.out == expected_list);
+  for (const auto& name : demo_mesh_names()) {
+    CAPTURE(name);
+    const auto path = temp_path(name + ".obj");
+    const RunResult r = run("generate " + name + " -o '" + path.string() + "'");
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.empty());
+    const std::string committed = read_file(kSource + "/meshes/" + name + ".obj");
+    REQUIRE(!committed.empty());
+    CHECK(read_file(path) == committed);
+    std::filesystem::remove(path);
+  }
+}
+
+TEST_CASE("inspect reports the library's numbers and that the leaning bottle falls over") {
+  const std::string bottle = "'" + kSource + "/meshes/bottle.obj'";
+  const RunResult r = run("inspect " + bottle + " --json -");
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("\"stands\": false") != std::string::npos);
+  const Json report = Json::parse(r.out);
+  const Vector10d P = mass_properties(make_demo_mesh("bottle"));  // the file holds these vertices exactly
+  CHECK(report.at("vertices").as_integer() == make_demo_mesh("bottle").V.rows());
+  CHECK(report.at("volume").as_number() == doctest::Approx(P(kMass)).epsilon(1e-15));
+  CHECK(report.at("center_of_mass").at(0).as_number() == doctest::Approx(P(kCx)).epsilon(1e-15));
+  CHECK(report.at("inertia").at("zx").as_number() == doctest::Approx(P(kIzx)).epsilon(1e-15));
+  const Json& stability = report.at("stability");
+  CHECK_FALSE(stability.at("stands").as_bool());
+  CHECK(stability.at("com_margin").as_number() < 0.0);
+  CHECK(stability.at("support_polygon").size() == 64);
+  CHECK(stability.at("ground_tol").as_number() > 0.0);
+
+  // Same input, same bytes; a JSON file equals the stdout JSON.
+  CHECK(run("inspect " + bottle + " --json -").out == r.out);
+  const auto json_file = temp_path("bottle.json");
+  REQUIRE(run("inspect " + bottle + " --json '" + json_file.string() + "'").exit_code == 0);
+  CHECK(read_file(json_file) == r.out);
+
+  // A larger ground tolerance takes in more contact vertices; the summary says it falls.
+  const Json loose = Json::parse(run("inspect " + bottle + " --json - --ground-tol 5").out);
+  CHECK(loose.at("stability").at("contact_vertices").as_integer() > stability.at("contact_vertices").as_integer());
+  const RunResult summary = run("inspect " + bottle);
+  CHECK(summary.exit_code == 0);
+  CHECK(summary.out.find("falls over") != std::string::npos);
+
+  const Json torus = Json::parse(run("inspect '" + kSource + "/meshes/torus.obj' --json -").out);
+  CHECK(torus.at("stability").at("stands").as_bool());
+}
+
+TEST_CASE("bad usage: exit code 2 and one Error line") {
+  const std::string bottle = "'" + kSource + "/meshes/bottle.obj'";
+  for (const std::string& arguments :
+       {std::string("generate teapot -o x.obj"), std::string("generate bottle"), std::string("generate"),
+        std::string("generate bottle -o '") + temp_path("no/such/dir/x.obj").string() + "'", std::string("generate bottle -o x.xyz"),
+        std::string("inspect"), std::string("inspect /no/such/file.obj"), "inspect " + bottle + " --ground-tol -1",
+        "inspect " + bottle + " --ground-tol abc", "inspect " + bottle + " --bogus", "inspect " + bottle + " --json",
+        "inspect " + bottle + " " + bottle}) {
+    CAPTURE(arguments);
+    const RunResult r = run(arguments);
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.rfind("Error: ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  const RunResult help = run("inspect --help");
+  CHECK(help.exit_code == 0);
+  CHECK(help.out.find("default: 1e-3 x the bounding-box diagonal") != std::string::npos);
+  CHECK(run("generate --help").exit_code == 0);
+}

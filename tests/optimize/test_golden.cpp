@@ -1,0 +1,181 @@
+// Golden files (tests/golden): every case of cases.txt is run through the binary and its report
+// and printable solid are compared with the stored ones. When `offsetopt --version` names the
+// build recorded in BUILD.txt the comparison is byte for byte (the report's "input" path aside);
+// for any other build (another compiler, another CPU, a sanitizer build) it is within stated
+// tolerances, because the solver's path may differ in the last bits and so in its counts:
+//   report: the same keys and strings, numbers within 1e-3 relative or 1e-6 of the diagonal
+//           absolute, except the solver's counters, status and objective and the basis'
+//           status (how the path went, not what came out);
+//   solid:  the same vertex and face counts, the same faces, vertices within 1e-3 of the diagonal.
+// tests/golden/regenerate.sh rewrites them after an intended change.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/json.h"
+#include "mesh/read_raw_mesh.h"
+
+using offsetopt::Json;
+
+namespace {
+
+const std::string kBinary = OFFSETOPT_BINARY;
+const std::string kSource = OFFSETOPT_SOURCE_DIR;
+const std::string kGolden = kSource + "/tests/golden/";
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string temp_dir() {
+  static const std::string dir = [] {
+    char pattern[] = "/tmp/offsetopt-golden-XXXXXX";
+    const char* made = mkdtemp(pattern);
+    REQUIRE(made != nullptr);
+    return std::string(made);
+  }();
+  return dir;
+}
+
+int run(const std::string& command) {
+  const int status = std::system(command.c_str());
+  REQUIRE(status != -1);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+struct Case {
+  std::string name, mesh, options;
+  int exit_code = 0;
+};
+
+std::vector<Case> read_cases() {
+  std::vector<Case> cases;
+  std::istringstream in(read_file(kGolden + "cases.txt"));
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> fields;
+    std::size_t start = 0;
+    for (std::size_t bar; (bar = line.find('|', start)) != std::string::npos; start = bar + 1)
+      fields.push_back(line.substr(start, bar - start));
+    fields.push_back(line.substr(start));
+    REQUIRE(fields.size() == 4);
+    cases.push_back({fields[0], fields[2], fields[3], std::stoi(fields[1])});
+  }
+  return cases;
+}
+
+// The report with its "input" path (which names where the mesh was read from) blanked.
+std::string without_input_path(std::string report) {
+  const std::string key = "\"input\": \"";
+  const std::size_t at = report.find(key);
+  if (at == std::string::npos) return report;
+  const std::size_t end = report.find('"', at + key.size());
+  return report.replace(at + key.size(), end - at - key.size(), "MESH");
+}
+
+std::string compact(const Json& value) {
+  std::string text = value.dump(0);
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return text.size() > 80 ? text.substr(0, 77) + "..." : text;
+}
+
+// Keys whose values describe the solver's path rather than the result.
+const std::set<std::string> kPathKeys = {"evaluations", "outer_iterations", "inner_iterations", "repair_rounds",
+                                         "repairs",     "status",           "objective",        "input"};
+
+void compare_json(const Json& expected, const Json& actual, const std::string& where, double absolute,
+                  std::vector<std::string>& differences) {
+  if (differences.size() > 20) return;
+  const bool numbers = (expected.type() == Json::Type::Number || expected.type() == Json::Type::Integer) &&
+                       (actual.type() == Json::Type::Number || actual.type() == Json::Type::Integer);
+  if (numbers) {
+    const double a = expected.as_number(), b = actual.as_number();
+    if (std::fabs(a - b) > 1e-3 * std::max(std::fabs(a), std::fabs(b)) + absolute)
+      differences.push_back(where + ": " + compact(expected) + " against " + compact(actual));
+    return;
+  }
+  if (expected.type() != actual.type()) {
+    differences.push_back(where + ": " + compact(expected) + " against " + compact(actual));
+    return;
+  }
+  switch (expected.type()) {
+    case Json::Type::Object: {
+      if (expected.items().size() != actual.items().size()) differences.push_back(where + ": different keys");
+      for (const auto& [key, value] : expected.items()) {
+        if (kPathKeys.count(key)) continue;
+        if (!actual.contains(key)) {
+          differences.push_back(where + "." + key + ": missing");
+          continue;
+        }
+        compare_json(value, actual.at(key), where + "." + key, absolute, differences);
+      }
+      break;
+    }
+    case Json::Type::Array:
+      if (expected.size() != actual.size()) {
+        differences.push_back(where + ": " + std::to_string(expected.size()) + " elements against " +
+                              std::to_string(actual.size()));
+        break;
+      }
+      for (std::size_t i = 0; i < expected.size(); ++i)
+        compare_json(expected.at(i), actual.at(i), where + "[" + std::to_string(i) + "]", absolute, differences);
+      break;
+    default:
+      if (compact(expected) != compact(actual))
+        differences.push_back(where + ": " + compact(expected) + " against " + compact(actual));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("golden files: every case's report and solid match the stored ones (exactly for the same build)") {
+  const std::string version_file = temp_dir() + "/version.txt";
+  REQUIRE(run(kBinary + " --version > " + version_file) == 0);
+  const bool same_build = read_file(version_file) == read_file(kGolden + "BUILD.txt");
+  MESSAGE(std::string(same_build ? "same build as the golden files: byte comparison"
+                                  : "another build than the golden files: comparison within tolerances"));
+  const std::vector<Case> cases = read_cases();
+  CHECK(cases.size() >= 10);
+  for (const Case& c : cases) {
+    CAPTURE(c.name);
+    const std::string base = temp_dir() + "/" + c.name;
+    // Each option word single-quoted for the shell (cases.txt has words like z>240).
+    std::string quoted;
+    std::istringstream words(c.options);
+    for (std::string word; words >> word;) quoted += " '" + word + "'";
+    const int code = run("cd " + temp_dir() + " && timeout 600 " + kBinary + " optimize " + kSource + "/meshes/" + c.mesh +
+                         quoted + " --quiet --no-timings -o " + c.name + ".ply --report " + c.name + ".json 2>/dev/null");
+    CHECK(code == c.exit_code);
+    const std::string report = read_file(base + ".json"), golden_report = read_file(kGolden + c.name + ".json");
+    REQUIRE_FALSE(golden_report.empty());
+    if (same_build) {
+      CHECK(without_input_path(report) == without_input_path(golden_report));
+      CHECK(read_file(base + ".ply") == read_file(kGolden + c.name + ".ply"));
+      continue;
+    }
+    const Json expected = Json::parse(golden_report), actual = Json::parse(report);
+    const double diagonal = expected.at("frame").at("diagonal").as_number();
+    std::vector<std::string> differences;
+    compare_json(expected, actual, "report", 1e-6 * diagonal, differences);
+    for (const std::string& d : differences) MESSAGE(d);
+    CHECK(differences.empty());
+    const offsetopt::RawMesh golden_solid = offsetopt::read_raw_mesh(kGolden + c.name + ".ply");
+    const offsetopt::RawMesh solid = offsetopt::read_raw_mesh(base + ".ply");
+    REQUIRE(solid.V.rows() == golden_solid.V.rows());
+    REQUIRE(solid.F.rows() == golden_solid.F.rows());
+    CHECK(solid.F == golden_solid.F);
+    const double worst = (solid.V - golden_solid.V).cwiseAbs().maxCoeff();
+    CHECK(worst <= 1e-3 * diagonal);
+  }
+}

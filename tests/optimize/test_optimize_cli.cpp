@@ -1,0 +1,167 @@
+// The acceptance cases of `offsetopt optimize` on the demo meshes, run through the real binary:
+// exit codes, the report's goal metrics against the stated tolerances, an independent `inspect`
+// of the written solid, a welded opening accepted by `check`, and byte-identical reruns.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "io/json.h"
+
+using offsetopt::Json;
+
+namespace {
+
+const std::string kBinary = OFFSETOPT_BINARY;
+const std::string kMeshes = std::string(OFFSETOPT_SOURCE_DIR) + "/meshes/";
+
+std::string temp_dir() {
+  static const std::string dir = [] {
+    char pattern[] = "/tmp/offsetopt-optimize-XXXXXX";
+    const char* made = mkdtemp(pattern);
+    REQUIRE(made != nullptr);
+    return std::string(made);
+  }();
+  return dir;
+}
+
+int run(const std::string& command) {
+  const int status = std::system(("timeout 300 " + command + " 2>>" + temp_dir() + "/stderr.txt").c_str());
+  REQUIRE(status != -1);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Outcome {
+  int exit_code;
+  Json report;
+  std::string solid;
+};
+
+Outcome optimize(const std::string& name, const std::string& mesh, const std::string& options) {
+  const std::string base = temp_dir() + "/" + name;
+  const int code = run(kBinary + " optimize " + kMeshes + mesh + " " + options + " --quiet --no-timings -o " + base +
+                       ".obj --report " + base + ".json --inner " + base + "_inner.obj");
+  return {code, Json::parse(read_file(base + ".json")), base + ".obj"};
+}
+
+double diagonal(const Json& report) { return report.at("frame").at("diagonal").as_number(); }
+
+}  // namespace
+
+TEST_CASE("bottle: falls as it is, stands after --goal stand, and inspect of the written solid agrees") {
+  const Outcome out = optimize("bottle_stand", "bottle.obj", "--goal stand");
+  CHECK(out.exit_code == 0);
+  CHECK_FALSE(out.report.at("before").at("stability").at("stands").as_bool());
+  CHECK(out.report.at("goal_met").as_bool());
+  CHECK(out.report.at("valid").as_bool());
+  const double margin = out.report.at("parameters").at("margin").as_number();
+  const std::string inspected = temp_dir() + "/bottle_inspect.json";
+  REQUIRE(run(kBinary + " inspect " + out.solid + " --json " + inspected) == 0);
+  const Json inspect = Json::parse(read_file(inspected));
+  CHECK(inspect.at("stability").at("stands").as_bool());
+  CHECK(inspect.at("stability").at("com_margin").as_number() >= margin);
+  // The printed solid is the shell: inspect's volume is the report's mass.
+  CHECK(inspect.at("volume").as_number() == doctest::Approx(out.report.at("after").at("mass").as_number()).epsilon(1e-9));
+}
+
+TEST_CASE("bottle: --goal stand-filled --fill-density 0.8 --outer stands empty and filled") {
+  const Outcome out = optimize("bottle_filled", "bottle.obj", "--goal stand-filled --fill-density 0.8 --outer");
+  CHECK(out.exit_code == 0);
+  const Json& after = out.report.at("after");
+  const double margin = out.report.at("parameters").at("margin").as_number();
+  CHECK(after.at("empty").at("com_margin").as_number() >= margin);
+  CHECK(after.at("filled").at("com_margin").as_number() >= margin);
+  CHECK(after.at("inner_outer_crossings").as_integer() == 0);
+}
+
+TEST_CASE("top: --goal spin puts the centre of mass on the axis and z on the largest principal axis") {
+  const Outcome out = optimize("top_spin", "top.obj", "--goal spin");
+  CHECK(out.exit_code == 0);
+  const Json& after = out.report.at("after");
+  CHECK(after.at("com_off_axis").as_number() <= 1e-4 * diagonal(out.report));
+  CHECK(std::fabs(after.at("Izx_over_Izz").as_number()) <= 1e-4);
+  CHECK(std::fabs(after.at("Iyz_over_Izz").as_number()) <= 1e-4);
+  CHECK(after.at("spin_axis_is_largest_moment").as_bool());
+  CHECK(after.at("spin_axis_tilt_deg").as_number() <= 0.5);
+}
+
+TEST_CASE("rolypoly: --goal roly-poly brings the centre of mass under the sphere centre, on its axis") {
+  const Outcome out = optimize("rolypoly", "rolypoly.obj", "--goal roly-poly");
+  CHECK(out.exit_code == 0);
+  const Json& after = out.report.at("after");
+  CHECK(after.at("com_below_center").as_number() > out.report.at("parameters").at("margin").as_number());
+  CHECK(after.at("com_off_axis").as_number() <= 1e-4 * diagonal(out.report));
+}
+
+TEST_CASE("sphere: --goal volume hits the target void volume") {
+  const Outcome out = optimize("sphere_volume", "sphere.obj", "--goal volume --target-volume 20000");
+  CHECK(out.exit_code == 0);
+  CHECK(std::fabs(out.report.at("after").at("void_volume").as_number() - 20000.0) <= 1e-4 * 20000.0);
+}
+
+TEST_CASE("buoy: --goal float --fluid-density 0.806 balances weight and buoyancy, upright") {
+  const Outcome out = optimize("buoy", "buoy.obj", "--goal float --fluid-density 0.806");
+  CHECK(out.exit_code == 0);
+  const Json& after = out.report.at("after");
+  const double mass = after.at("mass").as_number();
+  CHECK(std::fabs(0.806 * after.at("outer_volume").as_number() - mass) <= 1e-3 * mass);
+  CHECK(after.at("com_off_buoyancy_axis").as_number() <= 1e-4 * diagonal(out.report));
+  CHECK(after.at("com_below_buoyancy").as_number() > 0.0);
+}
+
+TEST_CASE("an opening with --fix welds inner and outer into one closed surface that check accepts") {
+  const Outcome out = optimize("bottle_open", "bottle.obj", "--goal stand --fix 'z>240'");
+  CHECK(out.exit_code == 0);
+  CHECK(out.report.at("offset_field").at("fixed").as_integer() > 0);
+  CHECK(run(kBinary + " check " + out.solid + " --quiet") == 0);
+}
+
+TEST_CASE("unreachable cases exit 3 with a reason: hard bounds on thin parts, a two-function basis") {
+  const Outcome hard = optimize("bottle_hard", "bottle.obj", "--goal stand --bounds hard");
+  CHECK(hard.exit_code == 3);
+  CHECK(hard.report.at("why").as_string().find("bounds cannot be met") != std::string::npos);
+  const Outcome tiny = optimize("capsule_k2", "capsule.obj", "--goal spin --k 2");
+  CHECK(tiny.exit_code == 3);
+  CHECK(tiny.report.at("why").as_string().find("basis") != std::string::npos);
+}
+
+TEST_CASE("--bounds hard reaches the goal on a mesh without thin parts") {
+  const Outcome out = optimize("sphere_hard", "sphere.obj", "--goal volume --target-volume 20000 --bounds hard");
+  CHECK(out.exit_code == 0);
+  CHECK(out.report.at("offset_field").at("parts_left_solid").as_integer() == 0);
+}
+
+TEST_CASE("two runs write byte-identical meshes and reports") {
+  const Outcome a = optimize("repeat_a", "top.obj", "--goal spin");
+  const Outcome b = optimize("repeat_b", "top.obj", "--goal spin");
+  CHECK(read_file(a.solid) == read_file(b.solid));
+  CHECK(read_file(temp_dir() + "/repeat_a_inner.obj") == read_file(temp_dir() + "/repeat_b_inner.obj"));
+  std::string ra = read_file(temp_dir() + "/repeat_a.json"), rb = read_file(temp_dir() + "/repeat_b.json");
+  // The reports differ only in the output paths they name.
+  for (std::string* r : {&ra, &rb}) {
+    for (const char* tag : {"repeat_a", "repeat_b"}) {
+      for (std::size_t at = r->find(tag); at != std::string::npos; at = r->find(tag)) r->replace(at, 8, "repeat_x");
+    }
+  }
+  CHECK(ra == rb);
+}
+
+TEST_CASE("usage errors exit 2 with one line") {
+  CHECK(run(kBinary + " optimize " + kMeshes + "bottle.obj -o " + temp_dir() + "/u.obj") == 2);
+  CHECK(run(kBinary + " optimize " + kMeshes + "bottle.obj --goal fly -o " + temp_dir() + "/u.obj") == 2);
+  CHECK(run(kBinary + " optimize " + kMeshes + "bottle.obj --goal float -o " + temp_dir() + "/u.obj") == 2);
+  CHECK(run(kBinary + " optimize " + kMeshes + "bottle.obj --goal stand --fix 'q>3' -o " + temp_dir() + "/u.obj") == 2);
+  CHECK(run(kBinary + " optimize " + kMeshes + "bottle.obj --goal stand -o " + kMeshes + "bottle.obj") == 2);
+  CHECK(run(kBinary + " optimize " + kMeshes + "sphere.obj --goal volume --target-volume 1e9 -o " + temp_dir() + "/u.obj") == 2);
+}
