@@ -39,6 +39,8 @@ constexpr const char* kUsage =
     "                        0 when k = 1)\n"
     "  --tol T               convergence: |L phi - lambda M phi| <= T |L|inf |phi| (default 1e-10)\n"
     "  --block-size B        Lanczos block size (default 6; >= the largest eigenvalue multiplicity)\n"
+    "  --threads N           threads for the iteration (default 0: min(2, cores)); the results are\n"
+    "                        the same bits for any N\n"
     "  --matrices PREFIX     also write PREFIX_L.mtx and PREFIX_M.mtx (Matrix Market), the exact\n"
     "                        matrices solved, for comparisons with other eigensolvers\n"
     "  --quiet               no progress or warnings on stderr\n"
@@ -95,6 +97,8 @@ int run_basis(const Args& args) {
       options.lanczos.tolerance = parse_double(cursor.value_of(arg), arg, 1e-15, 1e-2);
     } else if (arg == "--block-size") {
       options.lanczos.block_size = parse_int(cursor.value_of(arg), arg, 1, 64);
+    } else if (arg == "--threads") {
+      options.lanczos.threads = parse_int(cursor.value_of(arg), arg, 0, 64);
     } else if (arg == "--matrices") {
       matrices_prefix = cursor.value_of(arg);
     } else if (arg == "--quiet") {
@@ -154,6 +158,7 @@ int run_basis(const Args& args) {
   report.set("converged", result.converged);
   report.set("solver", result.dense ? "dense" : "block-lanczos");
   report.set("block_size", result.dense ? 0 : std::min<int>(options.lanczos.block_size, static_cast<int>(n)));
+  report.set("threads", result.threads);
   report.set("iterations", result.iterations);
   report.set("restarts", result.restarts);
   report.set("operator_applications", result.operator_applications);

@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-#include "spectral/row_block_kernels.h"
+#include "spectral/panel_matrix.h"
 #include "spectral/shift_invert_operator.h"
 #include "spectral/worker_pool.h"
 #include "util/rng.h"
@@ -59,12 +59,6 @@ double infinity_norm(const Eigen::SparseMatrix<double>& L) {
     largest = std::max(largest, sum);
   }
   return largest;
-}
-
-double dot(const double* a, const double* b, Eigen::Index n, Eigen::Index stride_a = 1, Eigen::Index stride_b = 1) {
-  double sum = 0.0;
-  for (Eigen::Index i = 0; i < n; ++i) sum += a[i * stride_a] * b[i * stride_b];
-  return sum;
 }
 
 // Turns approximate eigenvectors (columns of X, any scale) into the reported pairs: Rayleigh
@@ -170,10 +164,14 @@ void solve_dense(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& ma
 // orthogonal, H (j by j) symmetric, C (b by j). A step appends R to Q and applies Op to it; the
 // Lanczos recurrence says the new block's coefficients on the old basis are Cᵀ, so those are
 // removed first (cheap: C is nonzero only on the previous block, or on the kept vectors after a
-// restart), then one classical Gram–Schmidt pass against the whole basis removes what rounding
-// left, and a second pass runs when the first removed more than a DGKS factor (Daniel, Gragg,
-// Kaufman & Stewart 1976). The basis therefore stays orthonormal to working precision at about
-// half the cost of two full passes.
+// restart), then the new block's own coefficients (A = Rᵀ W), and then the coefficients against
+// the whole basis are computed (one classical Gram–Schmidt pass, the re-orthogonalisation) and
+// subtracted whenever one exceeds rounding level; a second pass runs when the first removed more
+// than the DGKS factor 1/√2 (Daniel, Gragg, Kaufman & Stewart 1976). The basis thus stays
+// orthonormal to working precision for about one product with the basis per step.
+//
+// Data: the basis and the blocks are PanelMatrix (spectral/panel_matrix.h); the block handed to
+// the operator is also kept row-major (the layout of its triangular solves).
 class BlockKrylovSchur {
  public:
   struct Settings {
@@ -186,7 +184,6 @@ class BlockKrylovSchur {
   BlockKrylovSchur(const ShiftInvertOperator& op, const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass,
                    const Settings& settings, WorkerPool& pool)
       : op_(op), L_(L), pool_(&pool), n_(op.size()), k_(settings.k), b_(settings.block), m_(settings.basis),
-        capacity_(std::min(settings.basis, ((settings.k + 4 * settings.block) / settings.block + 1) * settings.block)),
         settings_(settings), rng_(settings.seed) {
     scale_.resize(n_);
     double largest_mass = 1.0;
@@ -201,7 +198,7 @@ class BlockKrylovSchur {
 
   // Runs until the convergence test passes or the cap is hit. Returns true when converged.
   bool run();
-  // Ritz vectors of the k wanted pairs in y-space (n by k), from the last Rayleigh–Ritz.
+  // φ = D⁻¹ Q z for the k wanted Ritz pairs (n by k), from the last Rayleigh–Ritz.
   Eigen::MatrixXd wanted_vectors() const;
   // After a failed verification: demand `factor` times smaller estimates and continue.
   void tighten(double factor) { internal_scale_ *= factor; }
@@ -220,41 +217,43 @@ class BlockKrylovSchur {
   void restart();
   void ensure_capacity(int columns);
   void update_residual_gram();
-  // Orthonormalises the columns of W (n by b, already orthogonal to Q(:, 0:j)); S (b by b,
-  // upper triangular) gets W_in = W_out S. Dependent columns are replaced by random directions
-  // (orthogonal to everything) with a zero coefficient.
-  void orthonormalize(RowMatrix& W, int j, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S);
-  bool cholesky_qr(RowMatrix& W, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S) const;
-  void gram_schmidt_with_replacement(RowMatrix& W, int j, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S);
-  // One classical Gram–Schmidt pass of W against Q(:, first:last); returns the coefficients.
-  RowMatrix project_out(RowMatrix& W, int first, int last) const;
-  Eigen::VectorXd column_norms(const RowMatrix& W) const;
+  // Orthonormalises the columns of W (n by b, already orthogonal to Q(:, 0:j)); S (b by b)
+  // gets W_in = W_out S. Dependent columns are replaced by random directions (orthogonal to
+  // everything) with a zero coefficient.
+  void orthonormalize(PanelMatrix& W, int j, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S);
+  bool cholesky_qr(PanelMatrix& W, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S) const;
+  void gram_schmidt_with_replacement(PanelMatrix& W, int j, const Eigen::VectorXd& reference_norms,
+                                     Eigen::MatrixXd& S);
+  // One classical Gram–Schmidt pass of the columns of W against Q(:, first:last); returns the
+  // coefficients (last - first by W.cols(), row-major).
+  RowMatrix project_out(PanelMatrix& W, int first, int last) const;
 
   const ShiftInvertOperator& op_;
   const Eigen::SparseMatrix<double>& L_;
   WorkerPool* pool_;
   Eigen::Index n_;
-  int k_, b_, m_, capacity_;
+  int k_, b_, m_, capacity_ = 0;
   Settings settings_;
   Rng rng_;
   Eigen::VectorXd scale_;  // D
   double smallest_phi_norm_ = 1.0;
   double internal_scale_ = 1.0;
 
-  RowMatrix Q_;        // basis, n by capacity, columns 0:j_ active
-  RowMatrix R_;        // next block
-  Eigen::MatrixXd H_;  // projected operator, j_ by j_ active
-  Eigen::MatrixXd C_;  // coupling, b by j_ active; zero left of coupled_from_
+  PanelMatrix Q_;         // basis, columns 0:j_ active
+  PanelMatrix R_;         // next block
+  RowMatrix R_rows_;      // the same, row-major, for the operator and the residual estimate
+  PanelMatrix previous_;  // the block before R (empty after a restart)
+  Eigen::MatrixXd H_;     // projected operator, j_ by j_ active
+  Eigen::MatrixXd C_;     // coupling, b by j_ active; zero left of coupled_from_
   int coupled_from_ = 0;
   int j_ = 0;
   Eigen::MatrixXd residual_gram_;  // (K D⁻¹ R)ᵀ (K D⁻¹ R), b by b
   bool gram_current_ = false;      // residual_gram_ belongs to the current R
-  RowMatrix previous_;             // the block before R, contiguous
 
-  // Last Rayleigh–Ritz: θ descending, Z (j by j), ‖C z‖ and estimated relative residuals.
+  // Last Rayleigh–Ritz: θ descending, Z (j by j), C Z and ‖C z‖.
   Eigen::VectorXd theta_;
   Eigen::MatrixXd Z_;
-  Eigen::MatrixXd coupling_;  // C Z
+  Eigen::MatrixXd coupling_;
   Eigen::VectorXd rho_;
   int required_ = 0;  // pairs that must converge (k extended to the end of its cluster)
 
@@ -263,39 +262,32 @@ class BlockKrylovSchur {
   double largest_theta_ = 0.0;
 };
 
-Eigen::VectorXd BlockKrylovSchur::column_norms(const RowMatrix& W) const {
-  const int b = static_cast<int>(W.cols());
-  Eigen::VectorXd sums = Eigen::VectorXd::Zero(b);
-  for (Eigen::Index i = 0; i < n_; ++i)
-    for (int c = 0; c < b; ++c) sums(c) += W(i, c) * W(i, c);
-  return sums.cwiseSqrt();
-}
-
-RowMatrix BlockKrylovSchur::project_out(RowMatrix& W, int first, int last) const {
-  const int b = static_cast<int>(W.cols());
+RowMatrix BlockKrylovSchur::project_out(PanelMatrix& W, int first, int last) const {
+  const int b = W.cols();
   RowMatrix coefficients(last - first, b);
   if (last <= first) return coefficients;
-  project_onto_columns(Q_.data() + first, Q_.cols(), last - first, W.data(), b, n_, coefficients.data(), pool_);
-  subtract_combination(Q_.data() + first, Q_.cols(), last - first, coefficients.data(), b, n_, W.data(), pool_);
+  panel_project(Q_, first, last - first, W, 0, b, coefficients.data(), pool_);
+  panel_subtract(Q_, first, last - first, coefficients.data(), W, 0, b, pool_);
   return coefficients;
 }
 
-// CholQR twice (Yamamoto et al. 2015): orthonormal to working precision when cond(W) < ~1e7.
-// Returns false when W is too ill-conditioned or rank deficient (W then spans the same space).
 // W ← W U⁻¹ for an upper triangular U (b by b): a product with the explicit inverse, so the rows
 // are independent (a row-by-row triangular solve is a chain of dependent divisions).
-void apply_inverse_upper(RowMatrix& W, const Eigen::MatrixXd& U, WorkerPool* pool) {
-  const int b = static_cast<int>(W.cols());
+void apply_inverse_upper(PanelMatrix& W, const Eigen::MatrixXd& U, WorkerPool* pool) {
+  const int b = W.cols();
   const RowMatrix inverse = U.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(b, b));
-  combine_columns(W.data(), b, b, inverse.data(), b, W.rows(), W.data(), b, pool);
+  panel_combine(W, 0, b, inverse.data(), b, W, 0, pool);
 }
 
-bool BlockKrylovSchur::cholesky_qr(RowMatrix& W, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S) const {
-  const int b = static_cast<int>(W.cols());
+// CholQR twice (Yamamoto et al. 2015): orthonormal to working precision when cond(W) < ~1e7.
+// Returns false when W is too ill-conditioned or rank deficient; S then holds what has been
+// applied (W = W_in S⁻¹ spans the same space).
+bool BlockKrylovSchur::cholesky_qr(PanelMatrix& W, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S) const {
+  const int b = W.cols();
   RowMatrix gram(b, b);
-  project_onto_columns(W.data(), b, b, W.data(), b, n_, gram.data(), pool_);
+  panel_project(W, 0, b, W, 0, b, gram.data(), pool_);
   Eigen::MatrixXd U[2];
-  S = Eigen::MatrixXd::Identity(b, b);  // what has been applied so far, should a pass fail
+  S = Eigen::MatrixXd::Identity(b, b);
   for (int pass = 0; pass < 2; ++pass) {
     Eigen::LLT<Eigen::MatrixXd> llt(Eigen::MatrixXd(gram).selfadjointView<Eigen::Lower>());
     if (llt.info() != Eigen::Success) return false;
@@ -307,59 +299,70 @@ bool BlockKrylovSchur::cholesky_qr(RowMatrix& W, const Eigen::VectorXd& referenc
         return false;
     }
     if (pass == 1) break;
-    // Should the second factorisation fail, W is already transformed (S says how).
     apply_inverse_upper(W, U[0], pool_);
     S = U[0];
-    project_onto_columns(W.data(), b, b, W.data(), b, n_, gram.data(), pool_);
+    panel_project(W, 0, b, W, 0, b, gram.data(), pool_);
   }
   apply_inverse_upper(W, U[1], pool_);
   S = U[1] * U[0];
   return true;
 }
 
-void BlockKrylovSchur::gram_schmidt_with_replacement(RowMatrix& W, int j, const Eigen::VectorXd& reference_norms,
+void BlockKrylovSchur::gram_schmidt_with_replacement(PanelMatrix& W, int j, const Eigen::VectorXd& reference_norms,
                                                      Eigen::MatrixXd& S) {
-  const int b = static_cast<int>(W.cols());
+  const int b = W.cols();
   S = Eigen::MatrixXd::Zero(b, b);
-  for (int c = 0; c < b; ++c) {
-    double* w = W.data() + c;
+  // Column c of W against columns d < c (two passes), rows in order.
+  auto orthogonalise_column = [&](PanelMatrix& M, int c, PanelMatrix* against, int count, Eigen::MatrixXd* record) {
     for (int pass = 0; pass < 2; ++pass) {
-      for (int d = 0; d < c; ++d) {
-        const double h = dot(W.data() + d, w, n_, b, b);
-        S(d, c) += h;
-        for (Eigen::Index i = 0; i < n_; ++i) w[i * b] -= h * W(i, d);
+      for (int d = 0; d < count; ++d) {
+        double h = 0.0;
+        for (Eigen::Index p = 0; p < M.panels(); ++p) {
+          const double* x = M.column(p, c);
+          const double* y = against->column(p, d);
+          for (Eigen::Index i = 0; i < kPanelRows; ++i) h += y[i] * x[i];
+        }
+        if (record) (*record)(d, c) += h;
+        for (Eigen::Index p = 0; p < M.panels(); ++p) {
+          double* x = M.column(p, c);
+          const double* y = against->column(p, d);
+          for (Eigen::Index i = 0; i < kPanelRows; ++i) x[i] -= h * y[i];
+        }
       }
     }
-    double norm = std::sqrt(dot(w, w, n_, b, b));
+  };
+  for (int c = 0; c < b; ++c) {
+    orthogonalise_column(W, c, &W, c, &S);
+    double norm = panel_column_norms(W, c, 1)(0);
     // Nothing (numerically) left outside the basis: the Krylov space is invariant in that
     // direction. Continue with a random direction, coupled by 0.
     const double floor = 1e-12 * std::max(reference_norms(c), largest_theta_);
     if (norm > floor && norm > 0.0) {
       S(c, c) = norm;
-      for (Eigen::Index i = 0; i < n_; ++i) w[i * b] /= norm;
+      for (Eigen::Index p = 0; p < W.panels(); ++p)
+        for (Eigen::Index i = 0; i < kPanelRows; ++i) W.column(p, c)[i] /= norm;
       continue;
     }
-    for (Eigen::Index i = 0; i < n_; ++i) w[i * b] = 0.0;  // stays 0 only if the space is full
+    for (Eigen::Index p = 0; p < W.panels(); ++p) std::fill(W.column(p, c), W.column(p, c) + kPanelRows, 0.0);
     for (int attempt = 0; attempt < 3; ++attempt) {
-      RowMatrix fresh(n_, 1);
+      PanelMatrix fresh(n_, 1);
       for (Eigen::Index i = 0; i < n_; ++i) fresh(i, 0) = rng_.uniform(-1.0, 1.0);
       for (int pass = 0; pass < 2; ++pass) {
         project_out(fresh, 0, j);
-        for (int d = 0; d < c; ++d) {
-          const double h = dot(W.data() + d, fresh.data(), n_, b, 1);
-          for (Eigen::Index i = 0; i < n_; ++i) fresh(i, 0) -= h * W(i, d);
-        }
+        orthogonalise_column(fresh, 0, &W, c, nullptr);
       }
-      norm = std::sqrt(dot(fresh.data(), fresh.data(), n_));
+      norm = panel_column_norms(fresh, 0, 1)(0);
       if (norm > 1e-6 * std::sqrt(static_cast<double>(n_) / 3.0)) {
-        for (Eigen::Index i = 0; i < n_; ++i) w[i * b] = fresh(i, 0) / norm;
+        for (Eigen::Index p = 0; p < W.panels(); ++p)
+          for (Eigen::Index i = 0; i < kPanelRows; ++i) W.column(p, c)[i] = fresh.column(p, 0)[i] / norm;
         break;
       }
     }
   }
 }
 
-void BlockKrylovSchur::orthonormalize(RowMatrix& W, int j, const Eigen::VectorXd& reference_norms, Eigen::MatrixXd& S) {
+void BlockKrylovSchur::orthonormalize(PanelMatrix& W, int j, const Eigen::VectorXd& reference_norms,
+                                      Eigen::MatrixXd& S) {
   Eigen::MatrixXd applied;
   if (cholesky_qr(W, reference_norms, applied)) {
     S = applied;
@@ -373,9 +376,7 @@ void BlockKrylovSchur::orthonormalize(RowMatrix& W, int j, const Eigen::VectorXd
 
 void BlockKrylovSchur::ensure_capacity(int columns) {
   if (columns <= capacity_) return;
-  RowMatrix grown(n_, columns);
-  grown.leftCols(capacity_) = Q_;
-  Q_ = std::move(grown);
+  Q_.resize_columns(columns);
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(columns, columns);
   H.topLeftCorner(capacity_, capacity_) = H_;
   H_ = std::move(H);
@@ -386,6 +387,7 @@ void BlockKrylovSchur::ensure_capacity(int columns) {
 }
 
 void BlockKrylovSchur::start() {
+  capacity_ = std::min(m_, ((k_ + 4 * b_) / b_ + 1) * b_);
   Q_.resize(n_, capacity_);
   H_ = Eigen::MatrixXd::Zero(capacity_, capacity_);
   C_ = Eigen::MatrixXd::Zero(b_, capacity_);
@@ -393,7 +395,9 @@ void BlockKrylovSchur::start() {
   for (Eigen::Index i = 0; i < n_; ++i)
     for (int c = 0; c < b_; ++c) R_(i, c) = rng_.uniform(-1.0, 1.0);
   Eigen::MatrixXd S;
-  orthonormalize(R_, 0, column_norms(R_), S);
+  orthonormalize(R_, 0, panel_column_norms(R_, 0, b_), S);
+  R_rows_.resize(n_, b_);
+  R_.get_columns(0, b_, R_rows_.data(), b_);
   j_ = 0;
   coupled_from_ = 0;
 }
@@ -402,62 +406,64 @@ void BlockKrylovSchur::start() {
 // residual of φ = D⁻¹ y in the original problem is L φ - λ M φ = -K D⁻¹ R (C z) / θ.
 void BlockKrylovSchur::update_residual_gram() {
   const int b = b_;
-  RowMatrix T(n_, b);
-  // L is symmetric: column `row` lists the entries of row `row`. Rows split among the threads.
-  pool_->run([&](int part) {
+  PanelMatrix T(n_, b);
+  // L is symmetric: column `row` lists the entries of row `row`. Panels split among threads.
+  auto rows = [&](Eigen::Index begin, Eigen::Index end) {
     std::vector<double> acc(static_cast<std::size_t>(b));
-    for (Eigen::Index row = split_point(n_, pool_->size(), part); row < split_point(n_, pool_->size(), part + 1); ++row) {
+    for (Eigen::Index row = begin; row < end; ++row) {
       std::fill(acc.begin(), acc.end(), 0.0);
       for (Eigen::SparseMatrix<double>::InnerIterator it(L_, row); it; ++it) {
-        const double* r = R_.data() + it.row() * b;
+        const double* r = R_rows_.data() + it.row() * b;
         const double v = it.value() / scale_(it.row());
         for (int c = 0; c < b; ++c) acc[c] += v * r[c];
       }
       const double diagonal = settings_.shift * scale_(row);  // s M_ii / D_ii
-      for (int c = 0; c < b; ++c) T(row, c) = acc[c] + diagonal * R_(row, c);
+      for (int c = 0; c < b; ++c) T(row, c) = acc[c] + diagonal * R_rows_(row, c);
     }
+  };
+  const Eigen::Index panels = T.panels();
+  pool_->run([&](int part) {
+    const Eigen::Index p0 = split_point(panels, pool_->size(), part), p1 = split_point(panels, pool_->size(), part + 1);
+    rows(std::min(n_, p0 * kPanelRows), std::min(n_, p1 * kPanelRows));
   });
   RowMatrix gram(b, b);
-  project_onto_columns(T.data(), b, b, T.data(), b, n_, gram.data(), pool_);
+  panel_project(T, 0, b, T, 0, b, gram.data(), pool_);
   residual_gram_ = gram;
   gram_current_ = true;
 }
 
 void BlockKrylovSchur::expand() {
   const int j = j_, b = b_;
-  // The new block V = R joins the basis; it is also kept contiguous (cache-friendly for the
-  // recurrence of this step and the next).
-  for (Eigen::Index i = 0; i < n_; ++i)
-    for (int c = 0; c < b; ++c) Q_(i, j + c) = R_(i, c);
+  Q_.copy_columns(j, R_, 0, b);
   H_.block(j, 0, b, j) = C_.leftCols(j);
   H_.block(0, j, j, b) = C_.leftCols(j).transpose();
 
-  RowMatrix W;
-  op_.apply(R_.data(), b, b, W, pool_);
+  RowMatrix applied;
+  op_.apply(R_rows_.data(), b, b, applied, pool_);
   applications_ += b;
   ++iterations_;
+  PanelMatrix W(n_, b);
+  W.set_columns(0, b, applied.data(), b);
 
   // The recurrence: coefficients Cᵀ on the old basis (the previous block, or after a restart the
-  // kept vectors), then A = Vᵀ W on the new block.
+  // kept vectors), then A = Rᵀ W on the new block.
   if (j > coupled_from_) {
     const RowMatrix known = C_.block(0, coupled_from_, b, j - coupled_from_).transpose();
-    if (coupled_from_ == j - b && previous_.rows() == n_)
-      subtract_combination(previous_.data(), b, b, known.data(), b, n_, W.data(), pool_);
+    if (coupled_from_ == j - b && previous_.cols() == b)
+      panel_subtract(previous_, 0, b, known.data(), W, 0, b, pool_);
     else
-      subtract_combination(Q_.data() + coupled_from_, Q_.cols(), j - coupled_from_, known.data(), b, n_, W.data(), pool_);
+      panel_subtract(Q_, coupled_from_, j - coupled_from_, known.data(), W, 0, b, pool_);
   }
   RowMatrix diagonal(b, b);
-  project_onto_columns(R_.data(), b, b, W.data(), b, n_, diagonal.data(), pool_);
-  subtract_combination(R_.data(), b, b, diagonal.data(), b, n_, W.data(), pool_);
+  panel_project(R_, 0, b, W, 0, b, diagonal.data(), pool_);
+  panel_subtract(R_, 0, b, diagonal.data(), W, 0, b, pool_);
   Eigen::MatrixXd diagonal_block = diagonal;
 
-  // Re-orthogonalisation against the whole basis: the coefficients are computed every step; the
-  // correction is applied when one exceeds kCorrectionThreshold relative to the column (below
-  // that it is rounding noise and subtracting it changes nothing measurable), and repeated when
-  // it removed much (DGKS, 1/√2; the norm after is |before|² - |coefficients|², Q orthonormal).
-  const Eigen::VectorXd before = column_norms(W);
+  // Re-orthogonalisation against the whole basis (see the class comment); the norm after a
+  // pass is |before|² - |coefficients|² (Q orthonormal).
+  const Eigen::VectorXd before = panel_column_norms(W, 0, b);
   RowMatrix correction(j + b, b);
-  project_onto_columns(Q_.data(), Q_.cols(), j + b, W.data(), b, n_, correction.data(), pool_);
+  panel_project(Q_, 0, j + b, W, 0, b, correction.data(), pool_);
   bool significant = false, again = false;
   for (int c = 0; c < b; ++c) {
     const double largest = correction.col(c).cwiseAbs().maxCoeff();
@@ -466,7 +472,7 @@ void BlockKrylovSchur::expand() {
   }
   if (significant) {
     ++corrections_;
-    subtract_combination(Q_.data(), Q_.cols(), j + b, correction.data(), b, n_, W.data(), pool_);
+    panel_subtract(Q_, 0, j + b, correction.data(), W, 0, b, pool_);
     diagonal_block += correction.bottomRows(b);
     if (again) {
       ++second_passes_;
@@ -480,6 +486,7 @@ void BlockKrylovSchur::expand() {
   orthonormalize(W, j + b, before, S);
   previous_ = std::move(R_);
   R_ = std::move(W);
+  R_.get_columns(0, b, R_rows_.data(), b);
   C_.setZero();
   C_.block(0, j, b, b) = S;
   coupled_from_ = j;
@@ -537,8 +544,8 @@ void BlockKrylovSchur::restart() {
   int keep = wanted + (m_ - wanted) / 2;
   keep = std::min(keep, m_ - b_);
   keep = std::max(keep, std::min(wanted, m_ - b_));
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Zkeep = Z_.leftCols(keep);
-  combine_columns(Q_.data(), Q_.cols(), j, Zkeep.data(), keep, n_, Q_.data(), Q_.cols(), pool_);
+  const RowMatrix Zkeep = Z_.leftCols(keep);
+  panel_combine(Q_, 0, j, Zkeep.data(), keep, Q_, 0, pool_);
   H_.setZero();
   for (int i = 0; i < keep; ++i) H_(i, i) = theta_(i);
   Eigen::MatrixXd coupling = C_.leftCols(j) * Z_.leftCols(keep);
@@ -549,13 +556,13 @@ void BlockKrylovSchur::restart() {
   C_.setZero();
   C_.leftCols(keep) = coupling;
   coupled_from_ = 0;
-  previous_.resize(0, 0);
+  previous_ = PanelMatrix();
   j_ = keep;
   ++restarts_;
 }
 
 bool BlockKrylovSchur::run() {
-  if (Q_.size() == 0) start();
+  if (Q_.cols() == 0) start();
   while (true) {
     if (j_ + b_ > capacity_) {
       // A cluster reaching past the basis: grow the basis instead of restarting in vain.
@@ -581,15 +588,18 @@ bool BlockKrylovSchur::run() {
 Eigen::MatrixXd BlockKrylovSchur::wanted_vectors() const {
   const int j = j_;
   const int count = std::min(k_, j);
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Zk = Z_.leftCols(count);
-  RowMatrix Y(n_, count);
-  combine_columns(Q_.data(), Q_.cols(), j, Zk.data(), count, n_, Y.data(), count, pool_);
-  // φ = D⁻¹ y.
-  for (Eigen::Index i = 0; i < n_; ++i) {
-    const double d = scale_(i);
-    for (int c = 0; c < count; ++c) Y(i, c) /= d;
-  }
-  return Eigen::MatrixXd(Y);
+  const RowMatrix Zk = Z_.leftCols(count);
+  PanelMatrix Y(n_, count);
+  panel_combine(Q_, 0, j, Zk.data(), count, Y, 0, pool_);
+  // φ = D⁻¹ y, column-major.
+  Eigen::MatrixXd X(n_, count);
+  for (int c = 0; c < count; ++c)
+    for (Eigen::Index p = 0; p < Y.panels(); ++p) {
+      const double* y = Y.column(p, c);
+      const Eigen::Index rows = std::min(kPanelRows, n_ - p * kPanelRows);
+      for (Eigen::Index i = 0; i < rows; ++i) X(p * kPanelRows + i, c) = y[i] / scale_(p * kPanelRows + i);
+    }
+  return X;
 }
 
 }  // namespace
@@ -651,7 +661,7 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
     return result;
   }
 
-  ShiftInvertOperator op(L, mass, result.shift, positions);
+  ShiftInvertOperator op(L, mass, result.shift, positions, &pool);
   result.factor_seconds = seconds_since(start);
   result.factor_nonzeros = static_cast<long>(op.factor_nonzeros());
   if (op.status() != ShiftInvertOperator::Status::Ok)

@@ -20,10 +20,11 @@ class Dissector {
     build_adjacency(pattern);
   }
 
-  std::vector<int> run() {
+  std::vector<int> run(DissectionSplit* split) {
     std::vector<int> all(side_.size());
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
     order_.reserve(all.size());
+    split_ = split;
     dissect(all);
     return std::move(order_);
   }
@@ -150,6 +151,11 @@ class Dissector {
       return;
     }
     for (int v : best.separator) side_[v] = -1;  // a separator vertex belongs to no later subset
+    if (split_) {  // the top level: record the sizes of its three parts, once
+      *split_ = {static_cast<int>(best.first.size()), static_cast<int>(best.second.size()),
+                 static_cast<int>(best.separator.size())};
+      split_ = nullptr;
+    }
     dissect(best.first);
     dissect(best.second);
     std::sort(best.separator.begin(), best.separator.end());
@@ -163,14 +169,16 @@ class Dissector {
   std::vector<int> start_, neighbours_;
   std::vector<std::pair<double, int>> keyed_;
   std::vector<int> order_;
+  DissectionSplit* split_ = nullptr;
 };
 
 }  // namespace
 
 std::vector<int> nested_dissection(const Eigen::SparseMatrix<double>& pattern, const Vertices& positions,
-                                   const NestedDissectionOptions& options) {
+                                   const NestedDissectionOptions& options, DissectionSplit* split) {
+  if (split) *split = {};
   Dissector dissector(pattern, positions, options.leaf_size);
-  return dissector.run();
+  return dissector.run(split);
 }
 
 }  // namespace offsetopt

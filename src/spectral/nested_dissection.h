@@ -24,10 +24,18 @@ struct NestedDissectionOptions {
   std::string check() const;
 };
 
+// The first level of the dissection: the new order is `first` vertices, then `second`, then the
+// `separator`, and no edge joins the first part to the second. All zero when the whole set was
+// a single leaf.
+struct DissectionSplit {
+  int first = 0, second = 0, separator = 0;
+};
+
 // `pattern` is #V by #V with a symmetric nonzero pattern (only the pattern is read; either
 // triangle or both may be stored), `positions` #V by 3. Returns `order` with order[new] = old:
-// row/column `order[i]` of the matrix becomes row/column i of the permuted matrix.
+// row/column `order[i]` of the matrix becomes row/column i of the permuted matrix. `split`, when
+// given, receives the sizes of the first level.
 std::vector<int> nested_dissection(const Eigen::SparseMatrix<double>& pattern, const Vertices& positions,
-                                   const NestedDissectionOptions& options = {});
+                                   const NestedDissectionOptions& options = {}, DissectionSplit* split = nullptr);
 
 }  // namespace offsetopt

@@ -1,5 +1,5 @@
 // The building blocks of the solver: the nested-dissection ordering, the shift-invert operator
-// (block triangular solves) and the row-block kernels, each against a plain dense computation.
+// (block triangular solves) and the panel kernels, each against a plain dense computation.
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
@@ -9,7 +9,7 @@
 #include "spectral/cotan_laplacian.h"
 #include "spectral/mass_matrix.h"
 #include "spectral/nested_dissection.h"
-#include "spectral/row_block_kernels.h"
+#include "spectral/panel_matrix.h"
 #include "spectral/shift_invert_operator.h"
 #include "spectral/worker_pool.h"
 #include "test_meshes.h"
@@ -98,53 +98,92 @@ TEST_CASE("shift-invert operator equals D (L + sM)^-1 D on blocks of any width")
   CHECK(bad.status() == ShiftInvertOperator::Status::NotPositiveDefinite);
 }
 
-TEST_CASE("row-block kernels match dense products for every width") {
-  const Eigen::Index n = 301;  // odd: exercises the row tails
-  const RowMatrix Q = random_block(n, 40, 1);
-  for (int b : {1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 13, 17}) {
-    CAPTURE(b);
-    for (int j : {1, 7, 32}) {
-      CAPTURE(j);
-      const RowMatrix W = random_block(n, b, 100 + b);
-      const Eigen::MatrixXd Qj = Eigen::MatrixXd(Q).leftCols(j);
-      RowMatrix C(j, b);
-      project_onto_columns(Q.data(), Q.cols(), j, W.data(), b, n, C.data());
-      const Eigen::MatrixXd expected = Qj.transpose() * Eigen::MatrixXd(W);
-      CHECK((Eigen::MatrixXd(C) - expected).cwiseAbs().maxCoeff() <= 1e-12 * n);
-      RowMatrix V = W;
-      subtract_combination(Q.data(), Q.cols(), j, C.data(), b, n, V.data());
-      const Eigen::MatrixXd subtracted = Eigen::MatrixXd(W) - Qj * Eigen::MatrixXd(C);
-      CHECK((Eigen::MatrixXd(V) - subtracted).cwiseAbs().maxCoeff() <= 1e-11 * n);
-      RowMatrix X(n, b);
-      combine_columns(Q.data(), Q.cols(), j, C.data(), b, n, X.data(), b);
-      CHECK((Eigen::MatrixXd(X) - Qj * Eigen::MatrixXd(C)).cwiseAbs().maxCoeff() <= 1e-11 * n);
+TEST_CASE("panel kernels match dense products, with and without threads") {
+  WorkerPool pool(3);
+  for (Eigen::Index n : {Eigen::Index(301), Eigen::Index(2000)}) {  // 301: a partial last panel
+    CAPTURE(n);
+    const RowMatrix Qrows = random_block(n, 40, 1);
+    PanelMatrix Q(n, 40);
+    Q.set_columns(0, 40, Qrows.data(), 40);
+    RowMatrix back(n, 40);
+    Q.get_columns(0, 40, back.data(), 40);
+    REQUIRE((back.array() == Qrows.array()).all());
+    for (int b : {1, 2, 3, 5, 6, 7, 8, 13}) {
+      CAPTURE(b);
+      const RowMatrix Wrows = random_block(n, b, 100 + b);
+      PanelMatrix W(n, b);
+      W.set_columns(0, b, Wrows.data(), b);
+      for (int j : {1, 7, 32}) {
+        CAPTURE(j);
+        const int a0 = 3;  // a column range not starting at 0
+        const Eigen::MatrixXd Qj = Eigen::MatrixXd(Qrows).middleCols(a0, j);
+        RowMatrix C(j, b), Cp(j, b);
+        panel_project(Q, a0, j, W, 0, b, C.data());
+        panel_project(Q, a0, j, W, 0, b, Cp.data(), &pool);
+        const Eigen::MatrixXd expected = Qj.transpose() * Eigen::MatrixXd(Wrows);
+        CHECK((Eigen::MatrixXd(C) - expected).cwiseAbs().maxCoeff() <= 1e-12 * n);
+        CHECK((C.array() == Cp.array()).all());
+        PanelMatrix V = W, Vp = W;
+        panel_subtract(Q, a0, j, C.data(), V, 0, b);
+        panel_subtract(Q, a0, j, C.data(), Vp, 0, b, &pool);
+        RowMatrix Vrows(n, b), Vprows(n, b);
+        V.get_columns(0, b, Vrows.data(), b);
+        Vp.get_columns(0, b, Vprows.data(), b);
+        CHECK((Eigen::MatrixXd(Vrows) - (Eigen::MatrixXd(Wrows) - Qj * Eigen::MatrixXd(C))).cwiseAbs().maxCoeff() <= 1e-11 * n);
+        CHECK((Vrows.array() == Vprows.array()).all());
+        PanelMatrix X(n, b + 2), Xp(n, b + 2);
+        panel_combine(Q, a0, j, C.data(), b, X, 1);
+        panel_combine(Q, a0, j, C.data(), b, Xp, 1, &pool);
+        RowMatrix Xrows(n, b), Xprows(n, b);
+        X.get_columns(1, b, Xrows.data(), b);
+        Xp.get_columns(1, b, Xprows.data(), b);
+        CHECK((Eigen::MatrixXd(Xrows) - Qj * Eigen::MatrixXd(C)).cwiseAbs().maxCoeff() <= 1e-11 * n);
+        CHECK((Xrows.array() == Xprows.array()).all());
+      }
     }
+    // In place: the first columns of Q replaced by Q(:, 0:20) Z; the others untouched.
+    PanelMatrix P = Q;
+    const RowMatrix Z = random_block(20, 9, 5);
+    panel_combine(P, 0, 20, Z.data(), 9, P, 0, &pool);
+    RowMatrix Prows(n, 40);
+    P.get_columns(0, 40, Prows.data(), 40);
+    const Eigen::MatrixXd expected = Eigen::MatrixXd(Qrows).leftCols(20) * Eigen::MatrixXd(Z);
+    CHECK((Eigen::MatrixXd(Prows).leftCols(9) - expected).cwiseAbs().maxCoeff() <= 1e-11 * n);
+    CHECK((Prows.rightCols(31).array() == Qrows.rightCols(31).array()).all());
+    // Norms, rows in order.
+    const Eigen::VectorXd norms = panel_column_norms(Q, 2, 5);
+    for (int c = 0; c < 5; ++c) CHECK(norms(c) == doctest::Approx(Eigen::MatrixXd(Qrows).col(2 + c).norm()).epsilon(1e-14));
   }
-  // With a pool (large enough to be split): the same bits as without.
+}
+
+TEST_CASE("the factorisation split at the first dissection level gives the same operator") {
+  // 40962 vertices: large enough for the split (A, B and a dense separator).
+  const Mesh mesh = test::bumpy_icosphere(6);
+  const Eigen::SparseMatrix<double> L = cotan_laplacian(mesh.V, mesh.F);
+  const Eigen::VectorXd mass = lumped_mass(mesh.V, mesh.F);
+  DissectionSplit split;
+  nested_dissection(L, mesh.V, {}, &split);
+  REQUIRE(split.first > 0);
+  REQUIRE(split.second > 0);
+  CHECK(split.first + split.second + split.separator == L.rows());
+  CHECK(split.separator < 2500);
   WorkerPool pool(2);
-  const Eigen::Index rows = 5000;
-  const RowMatrix big = random_block(rows, 40, 3);
-  for (int b : {3, 6, 8}) {
-    CAPTURE(b);
-    const RowMatrix W = random_block(rows, b, 7);
-    RowMatrix C1(33, b), C2(33, b);
-    project_onto_columns(big.data(), big.cols(), 33, W.data(), b, rows, C1.data());
-    project_onto_columns(big.data(), big.cols(), 33, W.data(), b, rows, C2.data(), &pool);
-    CHECK((C1.array() == C2.array()).all());
-    RowMatrix V1 = W, V2 = W;
-    subtract_combination(big.data(), big.cols(), 33, C1.data(), b, rows, V1.data());
-    subtract_combination(big.data(), big.cols(), 33, C1.data(), b, rows, V2.data(), &pool);
-    CHECK((V1.array() == V2.array()).all());
-    RowMatrix X1(rows, b), X2(rows, b);
-    combine_columns(big.data(), big.cols(), 33, C1.data(), b, rows, X1.data(), b);
-    combine_columns(big.data(), big.cols(), 33, C1.data(), b, rows, X2.data(), b, &pool);
-    CHECK((X1.array() == X2.array()).all());
-  }
-  // In place: the first p columns of Q replaced by Q(:, 0:j) Z.
-  RowMatrix P = Q;
-  const RowMatrix Z = random_block(20, 9, 5);
-  combine_columns(P.data(), P.cols(), 20, Z.data(), 9, n, P.data(), P.cols());
-  const Eigen::MatrixXd expected = Eigen::MatrixXd(Q).leftCols(20) * Eigen::MatrixXd(Z);
-  CHECK((Eigen::MatrixXd(P).leftCols(9) - expected).cwiseAbs().maxCoeff() <= 1e-11 * n);
-  CHECK((P.rightCols(31).array() == Q.rightCols(31).array()).all());
+  const ShiftInvertOperator divided(L, mass, 0.3, &mesh.V, &pool);
+  const ShiftInvertOperator serial(L, mass, 0.3, &mesh.V);
+  const ShiftInvertOperator whole(L, mass, 0.3, nullptr);  // AMD: one factorisation
+  REQUIRE(divided.status() == ShiftInvertOperator::Status::Ok);
+  REQUIRE(whole.status() == ShiftInvertOperator::Status::Ok);
+  const RowMatrix X = random_block(L.rows(), 6, 9);
+  RowMatrix a, b, c;
+  divided.apply(X.data(), 6, 6, a, &pool);
+  serial.apply(X.data(), 6, 6, b);
+  whole.apply(X.data(), 6, 6, c);
+  CHECK((a.array() == b.array()).all());  // threads change nothing
+  CHECK((a - c).cwiseAbs().maxCoeff() <= 1e-11 * c.cwiseAbs().maxCoeff());
+  // And it is the inverse: D⁻¹ (L + sM) D⁻¹ applied to Op X gives X back.
+  const Eigen::VectorXd d = mass.cwiseSqrt();
+  Eigen::SparseMatrix<double> K = L;
+  for (Eigen::Index i = 0; i < K.rows(); ++i) K.coeffRef(i, i) += 0.3 * mass(i);
+  const Eigen::MatrixXd back = d.cwiseInverse().asDiagonal() * (K * (d.cwiseInverse().asDiagonal() * Eigen::MatrixXd(a)));
+  CHECK((back - Eigen::MatrixXd(X)).cwiseAbs().maxCoeff() <= 1e-9);
 }
