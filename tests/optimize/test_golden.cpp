@@ -3,9 +3,10 @@
 // build recorded in BUILD.txt the comparison is byte for byte (the report's "input" path aside);
 // for any other build (another compiler, another CPU, a sanitizer build) it is within stated
 // tolerances, because the solver's path may differ in the last bits and so in its counts:
-//   report: the same keys and strings, numbers within 1e-3 relative or 1e-6 of the diagonal
-//           absolute, except the solver's counters, status and objective and the basis'
-//           status (how the path went, not what came out);
+//   report: the same keys and strings, numbers within 1e-3 relative plus 1e-6 of the diagonal,
+//           vertex counts within 2% or 3, except the solver's counters, status and objective,
+//           the basis' status, the index of the thinnest wall and the failure texts (how the
+//           path went, not what came out);
 //   solid:  the same vertex and face counts, the same faces, vertices within 1e-3 of the diagonal.
 // tests/golden/regenerate.sh rewrites them after an intended change.
 #include <doctest/doctest.h>
@@ -90,15 +91,24 @@ std::string compact(const Json& value) {
   return text.size() > 80 ? text.substr(0, 77) + "..." : text;
 }
 
-// Keys whose values describe the solver's path rather than the result.
+// Keys whose values describe the solver's path rather than the result, or name which of many
+// equal candidates won (an argmin on a symmetric mesh), or are text with numbers inside.
 const std::set<std::string> kPathKeys = {"evaluations", "outer_iterations", "inner_iterations", "repair_rounds",
-                                         "repairs",     "status",           "objective",        "input"};
+                                         "repairs",     "status",           "objective",        "input",
+                                         "min_wall_vertex", "failures",     "why"};
 
 void compare_json(const Json& expected, const Json& actual, const std::string& where, double absolute,
                   std::vector<std::string>& differences) {
   if (differences.size() > 20) return;
   const bool numbers = (expected.type() == Json::Type::Number || expected.type() == Json::Type::Integer) &&
                        (actual.type() == Json::Type::Number || actual.type() == Json::Type::Integer);
+  if (expected.type() == Json::Type::Integer && actual.type() == Json::Type::Integer) {
+    // Counts of vertices (clamped, left solid, ...): a vertex at a threshold may fall either way.
+    const double a = expected.as_number(), b = actual.as_number();
+    if (std::fabs(a - b) > std::max(3.0, 0.02 * std::max(std::fabs(a), std::fabs(b))))
+      differences.push_back(where + ": " + compact(expected) + " against " + compact(actual));
+    return;
+  }
   if (numbers) {
     const double a = expected.as_number(), b = actual.as_number();
     if (std::fabs(a - b) > 1e-3 * std::max(std::fabs(a), std::fabs(b)) + absolute)
