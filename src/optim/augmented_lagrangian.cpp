@@ -226,6 +226,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
     msg = "initial multipliers must be finite";
   if (!msg.empty()) {
     res.status = AlStatus::InvalidInput;
+    res.x = x0;  // the caller's point, unchanged
     return res;
   }
 

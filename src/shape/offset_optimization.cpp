@@ -316,7 +316,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
       };
     solved = augmented_lagrangian_minimize(problem.constrained_problem(), x, solver_params);
     total_evaluations += solved.evaluations;
-    x = solved.x;
+    if (solved.x.size() == x.size()) x = solved.x;  // an invalid problem leaves x where it was
     final_eval = problem.evaluate(x);
     result.inner = input;
     result.outer = input;
@@ -490,7 +490,8 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
     const bool constraints_unmet = solved.status == AlStatus::Infeasible ||
                                    solved.max_violation > 100.0 * settings.solver.feasibility_tolerance;
     if (settings.bounds == BoundsMode::hard && thin_count_initial > 0)
-      why = "the per-vertex bounds cannot be met in the basis: " + std::to_string(thin_count_initial) +
+      why = std::string("the per-vertex bounds cannot be met") + (k == 0 ? ": " : " in the basis: ") +
+            std::to_string(thin_count_initial) +
             " vertices lie in parts thinner than two walls, where no offset is both above the wall and below the "
             "skeleton (try --bounds clamp); " + why;
     else if (constraints_unmet)

@@ -95,6 +95,17 @@ Eigen::VectorXd ReducedProblem::project_vector(const Eigen::VectorXd& per_vertex
 void ReducedProblem::build_hard_bounds() {
   const Eigen::Index n = mesh_.V.rows(), k = k_;
   const double inf = std::numeric_limits<double>::infinity();
+  if (identity_basis_ && !options_.outer) {
+    // Bounds on the variables themselves (see constrained_problem()): no #V by #V matrix.
+    hard_lower_ = band_.lower;
+    hard_upper_ = band_.upper;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (band_.fixed[static_cast<std::size_t>(i)]) {
+        hard_lower_(i) = -inf;
+        hard_upper_(i) = inf;
+      }
+    return;
+  }
   Eigen::MatrixXd G = identity_basis_ ? Eigen::MatrixXd(Eigen::MatrixXd::Identity(n, n)) : basis_;
   for (Eigen::Index i = 0; i < n; ++i)
     if (band_.fixed[static_cast<std::size_t>(i)]) G.row(i).setZero();

@@ -321,6 +321,14 @@ TEST_CASE("augmented-lagrangian: bad input and non-finite start are reported, no
   const AlResult bad_rows = augmented_lagrangian_minimize(r, VectorXd::Zero(2));
   CHECK(bad_rows.status == AlStatus::InvalidInput);
   CHECK(bad_rows.message.find("row 0") != std::string::npos);
+  CHECK(bad_rows.x.size() == 2);  // the start point comes back: callers may use x regardless
+  ConstrainedProblem empty_box = p;
+  empty_box.lower = Eigen::Vector2d(0.0, 1.0);
+  empty_box.upper = Eigen::Vector2d(1.0, 0.5);
+  const AlResult empty = augmented_lagrangian_minimize(empty_box, Eigen::Vector2d(0.5, 0.75));
+  CHECK(empty.status == AlStatus::InvalidInput);
+  CHECK(empty.message.find("variable 1") != std::string::npos);
+  CHECK(empty.x == Eigen::Vector2d(0.5, 0.75));
   AlParams params;
   params.feasibility_tolerance = 0.0;
   CHECK(augmented_lagrangian_minimize(p, VectorXd::Zero(2), params).status == AlStatus::InvalidInput);
