@@ -136,8 +136,15 @@ bool triangles_intersect(const Vec3& p1, const Vec3& q1, const Vec3& r1, const V
 bool segment_intersects_triangle(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r) {
   const Vec3 normal = (q - p).cross(r - p);
   const double da = (a - p).dot(normal), db = (b - p).dot(normal);
-  if ((da > 0.0 && db > 0.0) || (da < 0.0 && db < 0.0)) return false;
-  if (da == 0.0 && db == 0.0) {
+  // A segment lying in the triangle's plane in exact arithmetic (for example an edge of the next
+  // ring of a cone, collinear with the pole) comes out with distances of rounding size and
+  // random signs; the orientation test below is meaningless then. Within a relative 1e-12 the
+  // segment counts as coplanar and is decided in 2-D.
+  const double size = std::max({(a - p).norm(), (b - p).norm(), (q - p).norm(), (r - p).norm()});
+  const double on_plane = 1e-12 * normal.norm() * size;
+  const bool a_on = std::fabs(da) <= on_plane, b_on = std::fabs(db) <= on_plane;
+  if (!a_on && !b_on && ((da > 0.0 && db > 0.0) || (da < 0.0 && db < 0.0))) return false;
+  if (a_on && b_on) {
     const int axis = dominant_axis(normal);
     const Vec2 a2 = project(a, axis), b2 = project(b, axis);
     const Vec2 t[3] = {project(p, axis), project(q, axis), project(r, axis)};
