@@ -154,6 +154,7 @@ std::string check_al_params(const AlParams& p) {
     return "inner_tolerance_decrease must be in (0, 1]";
   if (p.infeasibility_patience < 1) return "infeasibility_patience must be >= 1";
   if (p.stall_patience < 1) return "stall_patience must be >= 1";
+  if (!(p.clear_violation_factor >= 0.0)) return "clear_violation_factor must be >= 0";
   const std::string inner = check_lbfgsb_params(p.inner);
   if (!inner.empty()) return "inner: " + inner;
   return std::string();
@@ -487,12 +488,16 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
 
     // Infeasibility: the violation stagnates although ρ keeps growing.
     if (feas > feas_tol && feas >= 0.99 * feas_prev) {
-      ++stagnant;
+      // A subproblem that took no step (its gradient already below the inner tolerance) is no
+      // evidence: the penalty grows and the next one moves.
+      if (sub.iterations > 0) ++stagnant;
     } else {
       stagnant = 0;
     }
     feas_prev = feas;
-    if (feas > feas_tol && (stagnant >= params.infeasibility_patience || rho >= params.max_penalty)) {
+    const bool clearly_infeasible = params.clear_violation_factor > 0.0 && stagnant >= 1 &&
+                                    feas > params.clear_violation_factor * feas_tol;
+    if (feas > feas_tol && (stagnant >= params.infeasibility_patience || clearly_infeasible || rho >= params.max_penalty)) {
       LbfgsbParams lv = params.inner;
       // Relative to the violation: at a least-violation point J^T c vanishes while c does not, so
       // a tiny violation with a clear descent direction (|J^T c| ≫ tol |c|) is not stationary.

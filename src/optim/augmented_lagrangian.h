@@ -92,6 +92,10 @@ struct AlParams {
   double initial_inner_tolerance = 1e-4;
   double inner_tolerance_decrease = 0.1;
   int infeasibility_patience = 3;  // outer iterations of stagnant violation before the check
+  // When > 0: a violation above this many times the feasibility tolerance that stagnates for one
+  // outer iteration is checked at once (far from feasible, stagnation under a growing penalty
+  // rarely recovers, and every later subproblem is worse conditioned than the last).
+  double clear_violation_factor = 0.0;
   int stall_patience = 3;  // feasible outer iterations whose subproblem cannot progress → Stalled
   LbfgsbParams inner;  // memory, caps and line search of the subproblem solver; its gradient
                        // tolerance is set by the outer loop

@@ -108,6 +108,15 @@ TEST_CASE("augmented-lagrangian: nonlinear constraint out of reach of the bounds
   CHECK(std::fabs(r.x(1)) < 1e-6);
   CHECK(r.max_violation == doctest::Approx(3.0).epsilon(1e-9));
   CHECK(r.outer_iterations < 20);
+  // A clearly infeasible problem (violation far above the tolerance) is checked after one
+  // stagnant outer iteration: the same answer, sooner.
+  AlParams quick;
+  quick.clear_violation_factor = 1e4;
+  const AlResult q = augmented_lagrangian_minimize(p, Eigen::Vector2d(2.5, 4.0), quick);
+  MESSAGE(describe(q));
+  CHECK(q.status == AlStatus::Infeasible);
+  CHECK(q.max_violation == doctest::Approx(3.0).epsilon(1e-9));
+  CHECK(q.outer_iterations < r.outer_iterations);
 }
 
 TEST_CASE("augmented-lagrangian: identical iterates on repeated runs") {
