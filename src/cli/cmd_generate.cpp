@@ -66,9 +66,12 @@ int run_generate(const Args& args) {
   if (!known) throw UsageError("unknown demo mesh '" + name + "' (see 'offsetopt generate --list')");
   if (output.empty()) throw UsageError("generate needs an output file: -o FILE");
 
-  if (detail != 1.0 && name != "bottle" && name != "top" && name != "rolypoly" && name != "buoy")
-    throw UsageError("--detail applies to bottle, top, rolypoly and buoy, not to '" + name + "'");
-  const Mesh mesh = make_demo_mesh(name, detail);
+  Mesh mesh;
+  try {
+    mesh = make_demo_mesh(name, detail);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--detail: ") + e.what());  // the name is known: only detail is left
+  }
   if (output == "-") {
     write_text("-", mesh_to_bytes(".obj", mesh));
     return kExitOk;
