@@ -517,6 +517,27 @@ MeshValidation validate_mesh(const Mesh& mesh) {
     }
     add(zero);
     add(inverted);
+    // Every shell faces the right way, yet the total is not positive: a cavity encloses more than
+    // the part around it, which only shells that cross each other can do. Nesting is decided at
+    // one point per shell, so such shells pass the checks above and would reach the optimiser as
+    // a solid of negative mass.
+    const double all_diagonal = all.diagonal();
+    if (zero.count == 0 && inverted.count == 0 && shells > 1 &&
+        out.volume <= 1e-12 * all_diagonal * all_diagonal * all_diagonal) {
+      Defect overlap{DefectKind::kOverlappingShells};
+      double largest_cavity = 0;
+      for (int s = 0; s < shells; ++s) {
+        const double volume = out.component_volume[static_cast<std::size_t>(s)];
+        if (volume >= 0) continue;
+        ++overlap.count;
+        if (-volume > largest_cavity) {
+          largest_cavity = -volume;
+          overlap.face = faces_of[static_cast<std::size_t>(s)][0];
+        }
+      }
+      overlap.value = out.volume;
+      add(overlap);
+    }
   }
 
   if (out.components > 1) {
@@ -543,6 +564,7 @@ const char* defect_name(DefectKind kind) {
     case DefectKind::kInconsistentOrientation: return "inconsistent orientation";
     case DefectKind::kZeroVolume: return "zero volume";
     case DefectKind::kInsideOut: return "inside-out (negative volume)";
+    case DefectKind::kOverlappingShells: return "overlapping shells";
     case DefectKind::kSeveralComponents: return "several components";
   }
   return "unknown defect";
@@ -557,7 +579,8 @@ const char* defect_unit(DefectKind kind) {
     case DefectKind::kNonManifoldEdge:
     case DefectKind::kInconsistentOrientation: return "edges";
     case DefectKind::kZeroVolume:
-    case DefectKind::kInsideOut: return "shells";
+    case DefectKind::kInsideOut:
+    case DefectKind::kOverlappingShells: return "shells";
     case DefectKind::kSeveralComponents: return "components";
     default: return "faces";
   }
@@ -633,6 +656,9 @@ std::string describe_defect(const Defect& d, const DefectSource& s) {
                " and too many shells to check which are cavities (at most " + std::to_string(kMaxShellsForNesting) +
                " shells and " + std::to_string(kMaxNestingTriangleTests) + " ray-triangle tests)";
       return "shell is inside-out: signed volume " + format_double(d.value) + " (normals point inwards)";
+    case DefectKind::kOverlappingShells:
+      return "cavity shell encloses more than the shells around it: the signed volumes sum to " + format_double(d.value) +
+             " (shells cross each other)";
     case DefectKind::kSeveralComponents:
       return "the mesh has " + format_double(d.value) + " separate components";
   }

@@ -98,6 +98,7 @@ enum class DefectKind {
   kInconsistentOrientation,
   kZeroVolume,
   kInsideOut,
+  kOverlappingShells,
   kSeveralComponents,
 };
 

@@ -201,6 +201,12 @@ bad["zero_volume.obj"] = (obj(pillow_v, pillow_t), "zero volume")
 inner_v = [(0.25 + 0.5 * x, 0.25 + 0.5 * y, 0.25 + 0.5 * z) for (x, y, z) in CUBE_V]
 inner_t = [tuple(i + 8 for i in f) for f in CUBE_T]  # same orientation as the outer: wrong for a cavity
 bad["cavity_facing_out.obj"] = (obj(CUBE_V + inner_v, CUBE_T + inner_t), "cavity shell has positive")
+# A cavity that pokes out of its part and holds more than it: each shell faces the right way for
+# the nesting found at its one test point, but the volumes sum to 48 - 72.5 < 0 (found by fuzzing).
+slab_v = [(4 * x, 4 * y, 3 * z) for (x, y, z) in CUBE_V]
+poking_v = [(0.5 + 5 * x, 0.5 + 5 * y, 1 + 2.9 * z) for (x, y, z) in CUBE_V]
+poking_t = flipped([tuple(i + 8 for i in f) for f in CUBE_T])
+bad["cavity_larger_than_part.obj"] = (obj(slab_v + poking_v, CUBE_T + poking_t), "signed volumes sum to -24.5")
 
 # --- accepted, some with warnings
 accepted["crlf.obj"] = (obj(CUBE_V, CUBE_T, newline="\r\n"), 0, "-")

@@ -317,6 +317,24 @@ TEST_CASE("inside-out, zero volume and nested shells") {
     CHECK(d->face == 12);
     CHECK(d->bound == 1);
   }
+  SUBCASE("a cavity larger than its part: the shells cross") {
+    // The slab's representative point (its first, largest face) lies outside the box, the box's
+    // inside the slab: both shells face the right way for their depth, but 72.5 > 48.
+    const Mesh slab = make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(4, 4, 3));
+    const Mesh box = make_box(Eigen::Vector3d(0.5, 0.5, 1), Eigen::Vector3d(5.5, 5.5, 3.9));
+    const Mesh crossed = join(slab, flipped(box), Eigen::RowVector3d::Zero());
+    v = validate_mesh(crossed);
+    CHECK(v.component_depth == std::vector<int>({0, 1}));
+    CHECK(kinds(v) == std::vector<DefectKind>{DefectKind::kOverlappingShells, DefectKind::kSeveralComponents});
+    const Defect* d = v.find(DefectKind::kOverlappingShells);
+    REQUIRE(d);
+    CHECK(d->count == 1);
+    CHECK(d->face == 12);
+    CHECK(d->value == doctest::Approx(48.0 - 72.5));
+    CHECK_THROWS_WITH_AS(load_raw_mesh("crossed.obj", RawMesh{MeshFormat::kObj, crossed.V, crossed.F, {}, {}, {}}),
+                         "crossed.obj: cavity shell encloses more than the shells around it: the signed volumes sum to -24.5 (shells cross each other), face 12",
+                         MeshInputError);
+  }
   SUBCASE("a part inside a cavity inside a part") {
     const Mesh core = make_box(Eigen::Vector3d(1.25, 1.5, 1.5), Eigen::Vector3d(1.75, 2.5, 2.5));
     v = validate_mesh(join(join(outer, flipped(inner), Eigen::RowVector3d::Zero()), core, Eigen::RowVector3d::Zero()));
