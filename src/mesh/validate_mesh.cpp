@@ -517,17 +517,21 @@ MeshValidation validate_mesh(const Mesh& mesh) {
     }
     add(zero);
     add(inverted);
-    // Every shell faces the right way, yet the total is not positive: a cavity encloses more than
-    // the part around it, which only shells that cross each other can do. Nesting is decided at
-    // one point per shell, so such shells pass the checks above and would reach the optimiser as
-    // a solid of negative mass.
+    // Every shell faces the right way (or every one the wrong way, which loading fixes by flipping
+    // all faces), yet the total is not positive: a cavity encloses more than the part around it,
+    // which only shells that cross each other can do. Nesting is decided at one point per shell,
+    // so such shells pass the checks above and would reach the optimiser as a solid of negative
+    // mass.
     const double all_diagonal = all.diagonal();
-    if (zero.count == 0 && inverted.count == 0 && shells > 1 &&
-        out.volume <= 1e-12 * all_diagonal * all_diagonal * all_diagonal) {
+    const bool all_inverted = inverted.count == shells;
+    const double oriented_total = all_inverted ? -out.volume : out.volume;
+    if (zero.count == 0 && (inverted.count == 0 || all_inverted) && shells > 1 &&
+        oriented_total <= 1e-12 * all_diagonal * all_diagonal * all_diagonal) {
       Defect overlap{DefectKind::kOverlappingShells};
+      overlap.bound = all_inverted ? 1 : 0;
       double largest_cavity = 0;
       for (int s = 0; s < shells; ++s) {
-        const double volume = out.component_volume[static_cast<std::size_t>(s)];
+        const double volume = (all_inverted ? -1.0 : 1.0) * out.component_volume[static_cast<std::size_t>(s)];
         if (volume >= 0) continue;
         ++overlap.count;
         if (-volume > largest_cavity) {
@@ -535,7 +539,7 @@ MeshValidation validate_mesh(const Mesh& mesh) {
           overlap.face = faces_of[static_cast<std::size_t>(s)][0];
         }
       }
-      overlap.value = out.volume;
+      overlap.value = oriented_total;
       add(overlap);
     }
   }
@@ -658,7 +662,7 @@ std::string describe_defect(const Defect& d, const DefectSource& s) {
       return "shell is inside-out: signed volume " + format_double(d.value) + " (normals point inwards)";
     case DefectKind::kOverlappingShells:
       return "cavity shell encloses more than the shells around it: the signed volumes sum to " + format_double(d.value) +
-             " (shells cross each other)";
+             (d.bound == 1 ? " once every face is flipped" : "") + " (shells cross each other)";
     case DefectKind::kSeveralComponents:
       return "the mesh has " + format_double(d.value) + " separate components";
   }

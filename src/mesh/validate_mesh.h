@@ -111,7 +111,8 @@ struct Defect {
   long long other_face = -1;                 // the face it conflicts with (duplicate, orientation)
   long long edge_from = -1, edge_to = -1;    // the offending edge (edge defects)
   double value = 0;  // coordinate, index, faces at the edge, fans, signed volume, components
-  long long bound = -1;  // #V (index out of range), nesting depth (inside-out), #V (empty mesh)
+  long long bound = -1;  // #V (index out of range), nesting depth (inside-out), #V (empty mesh),
+                         // 1 when every shell is inside-out (overlapping shells)
 };
 
 struct MeshValidation {

@@ -334,6 +334,15 @@ TEST_CASE("inside-out, zero volume and nested shells") {
     CHECK_THROWS_WITH_AS(load_raw_mesh("crossed.obj", RawMesh{MeshFormat::kObj, crossed.V, crossed.F, {}, {}, {}}),
                          "crossed.obj: cavity shell encloses more than the shells around it: the signed volumes sum to -24.5 (shells cross each other), face 12",
                          MeshInputError);
+    // Every face reversed: both shells are inside-out, and flipping them back (what loading does
+    // for inside-out meshes) would give the same crossed shells.
+    const MeshValidation reversed = validate_mesh(flipped(crossed));
+    CHECK(kinds(reversed) == std::vector<DefectKind>{DefectKind::kInsideOut, DefectKind::kOverlappingShells,
+                                                     DefectKind::kSeveralComponents});
+    CHECK_THROWS_WITH_AS(load_raw_mesh("reversed.obj", RawMesh{MeshFormat::kObj, crossed.V, flipped(crossed).F, {}, {}, {}}),
+                         "reversed.obj: cavity shell encloses more than the shells around it: the signed volumes sum to "
+                         "-24.5 once every face is flipped (shells cross each other), face 12",
+                         MeshInputError);
   }
   SUBCASE("a part inside a cavity inside a part") {
     const Mesh core = make_box(Eigen::Vector3d(1.25, 1.5, 1.5), Eigen::Vector3d(1.75, 2.5, 2.5));
