@@ -54,6 +54,7 @@ struct OffsetFieldOptions {
   double min_length = 1e-9;             // fraction of the bounding-box diagonal; >= 0
   double shallow_fraction = 0.5;        // in [0, 1]; 0 turns the shallow test off
   OuterDirections outer = OuterDirections::reversed_inner;
+  int threads = 2;                      // >= 1; vertices split in fixed ranges, every result identical for any count
 };
 
 // Throws std::invalid_argument naming the first out-of-range field.

@@ -191,6 +191,41 @@ TEST_CASE("wall lower bound, cosine floor and outer directions") {
   }
 }
 
+TEST_CASE("offset field: the same bits on 1, 3 and 8 threads") {
+  // 12,800 vertices: three ranges of more than 4,096. Skeleton points on the core circle, for a
+  // third of the vertices past it (still inside the tube) and for every fifth beyond the far side
+  // (shortened), so more than one source appears in every range.
+  const double R = 2.0, r = 0.5;
+  const Mesh m = make_torus(R, r, 160, 80);
+  Vertices skeleton(m.V.rows(), 3);
+  for (Eigen::Index i = 0; i < m.V.rows(); ++i) {
+    const Eigen::Vector3d x = m.V.row(i).transpose();
+    const Eigen::Vector3d core = R * Eigen::Vector3d(x.x(), x.y(), 0.0).normalized();
+    const double reach = i % 5 == 0 ? 3.0 : (i % 3 == 0 ? 1.5 : 1.0);
+    skeleton.row(i) = (x + reach * (core - x)).transpose();
+  }
+  const TriangleBvh bvh(m.V, m.F);
+  OffsetFieldOptions options;
+  options.wall = 0.02;
+  options.threads = 1;
+  const OffsetField one = offset_field(m, skeleton, bvh, options);
+  CHECK(one.shortened_count > 0);
+  CHECK(one.shortened_count < m.V.rows());
+  for (const int threads : {3, 8}) {
+    options.threads = threads;
+    const OffsetField many = offset_field(m, skeleton, bvh, options);
+    CHECK(many.inner == one.inner);
+    CHECK(many.outer == one.outer);
+    CHECK(many.lower == one.lower);
+    CHECK(many.upper == one.upper);
+    CHECK(many.source == one.source);
+    CHECK(many.shortened_count == one.shortened_count);
+    CHECK(many.shallow_count == one.shallow_count);
+    CHECK(many.fallback_count == one.fallback_count);
+    CHECK(many.immobile_count == one.immobile_count);
+  }
+}
+
 TEST_CASE("offset field option checks and mismatched inputs") {
   auto rejects = [](auto&& change) {
     OffsetFieldOptions o;
@@ -203,6 +238,7 @@ TEST_CASE("offset field option checks and mismatched inputs") {
   rejects([](OffsetFieldOptions& o) { o.exit_fraction = 0.0; });
   rejects([](OffsetFieldOptions& o) { o.min_length = -1.0; });
   rejects([](OffsetFieldOptions& o) { o.shallow_fraction = 2.0; });
+  rejects([](OffsetFieldOptions& o) { o.threads = 0; });
   const Mesh m = make_icosphere(1.0, 1);
   const TriangleBvh bvh(m.V, m.F);
   CHECK_THROWS_AS(offset_field(m, Vertices::Zero(3, 3), bvh), std::invalid_argument);
