@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <set>
 
@@ -211,9 +212,30 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   goal.target_volume = settings.target_volume * scale * scale * scale;
   timings["frame"] = seconds_since(stage_start);
 
+  // The basis needs the mesh alone, so it is computed alongside the skeleton. Both give the same
+  // bits on any number of threads, so running them together changes no result. The future's
+  // destructor waits for the basis on every return below.
+  struct BasisOutcome {
+    LanczosResult harmonics;
+    double seconds = 0.0;
+  };
+  std::future<BasisOutcome> basis_future;
+  say("skeleton: contracting " + std::to_string(n) + " vertices");
+  if (k > 0) {
+    say("basis: " + std::to_string(k) + " manifold harmonics, alongside the skeleton");
+    ManifoldHarmonicsOptions basis_options;
+    basis_options.kind = settings.basis;
+    basis_future = std::async(std::launch::async, [&normalized, k, basis_options]() {
+      const auto start = Clock::now();
+      BasisOutcome outcome;
+      outcome.harmonics = manifold_harmonics(normalized, k, basis_options);
+      outcome.seconds = seconds_since(start);
+      return outcome;
+    });
+  }
+
   // Meso-skeleton and offset field (input units).
   stage_start = Clock::now();
-  say("skeleton: contracting " + std::to_string(n) + " vertices");
   const ContractionResult contraction = laplacian_contraction(input.V, input.F);
   const TriangleBvh bvh(input.V, input.F);
   OffsetFieldOptions field_options;
@@ -251,24 +273,23 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   mark_thin();
   const int thin_count_initial = thin_count;
 
-  // Basis.
-  stage_start = Clock::now();
+  // Basis: its own seconds, which overlap the skeleton's.
   Eigen::MatrixXd basis;
   Json basis_json = Json::object();
   basis_json["kind"] = k == 0 ? "identity" : to_string(settings.basis);
   basis_json["k"] = k == 0 ? static_cast<int>(n) : k;
+  double basis_seconds = 0.0;
   if (k > 0) {
-    say("basis: " + std::to_string(k) + " manifold harmonics");
-    ManifoldHarmonicsOptions basis_options;
-    basis_options.kind = settings.basis;
-    const LanczosResult harmonics = manifold_harmonics(normalized, k, basis_options);
+    BasisOutcome outcome = basis_future.get();
+    basis_seconds = outcome.seconds;
+    const LanczosResult& harmonics = outcome.harmonics;
     basis_json["status"] = to_string(harmonics.status);
     basis_json["largest_eigenvalue"] = harmonics.eigenvalues.size() ? harmonics.eigenvalues(harmonics.eigenvalues.size() - 1) : 0.0;
     if (harmonics.eigenvectors.cols() != k)
       return failure(OptimizeStatus::bad_input, "the eigensolver returned no basis: " + harmonics.message);
     basis = harmonics.eigenvectors;
   }
-  timings["basis"] = seconds_since(stage_start);
+  timings["basis"] = basis_seconds;
 
   // Solve; where the result is not printable (the inner surface folds onto itself or comes too
   // close to the outside), tighten those vertices' bounds and solve again from there.
