@@ -54,7 +54,7 @@ ReducedProblem::ReducedProblem(const Mesh& mesh, const OffsetBand& band, const E
   if (options_.threads > 1) pool_ = std::make_unique<WorkerPool>(2);
 }
 
-void ReducedProblem::run_parts(const std::function<void(int)>& part) {
+void ReducedProblem::run_parts(const std::function<void(int)>& part) const {
   if (pool_) {
     pool_->run(part);
   } else {
@@ -66,7 +66,15 @@ void ReducedProblem::run_parts(const std::function<void(int)>& part) {
 ReducedProblem::~ReducedProblem() = default;
 
 Eigen::VectorXd ReducedProblem::apply_basis(const Eigen::VectorXd& coefficients) const {
-  if (!identity_basis_) return basis_ * coefficients;
+  if (!identity_basis_) {
+    // Reading Γ (#V by k) is most of this product's cost; each half of the rows is read by one thread.
+    Eigen::VectorXd out(basis_.rows());
+    run_parts([&](int part) {
+      const Eigen::Index begin = vertex_split_[part], count = vertex_split_[part + 1] - begin;
+      out.segment(begin, count).noalias() = basis_.middleRows(begin, count) * coefficients;
+    });
+    return out;
+  }
   Eigen::VectorXd out = coefficients;
   for (Eigen::Index i = 0; i < out.size(); ++i)
     if (band_.fixed[static_cast<std::size_t>(i)]) out(i) = 0.0;
@@ -81,14 +89,6 @@ Eigen::MatrixXd ReducedProblem::project_rows(const Eigen::MatrixXd& per_vertex, 
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(per_vertex.rows(), per_vertex.cols());
   for (Eigen::Index i = begin; i < end; ++i)
     if (!band_.fixed[static_cast<std::size_t>(i)]) out.col(i) = per_vertex.col(i);
-  return out;
-}
-
-Eigen::VectorXd ReducedProblem::project_vector(const Eigen::VectorXd& per_vertex) const {
-  if (!identity_basis_) return basis_.transpose() * per_vertex;
-  Eigen::VectorXd out = per_vertex;
-  for (Eigen::Index i = 0; i < out.size(); ++i)
-    if (band_.fixed[static_cast<std::size_t>(i)]) out(i) = 0.0;
   return out;
 }
 
@@ -200,8 +200,34 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
   e.inner_integrals = inner_part_integrals[0] + inner_part_integrals[1];
   e.outer_integrals = options_.outer ? Vector10d(outer_part_integrals[0] + outer_part_integrals[1]) : fixed_outer_integrals_;
 
-  // Rows 0-9: inner by α; with outer offsets rows 10-19: inner by β (through lo), 20-29: outer by β.
-  const Eigen::Index rows = options_.outer ? 30 : 10;
+  // The overshoot term μ/n Σ (raw − clamped)² and its derivative with respect to Γα (and Γβ) per
+  // vertex; projected onto Γ together with the Jacobians below, in the same pass over Γ.
+  const bool overshoot_term = clamp && options_.overshoot_weight > 0.0;
+  const double overshoot_weight = overshoot_term ? options_.overshoot_weight / static_cast<double>(n) : 0.0;
+  double overshoot = 0.0;
+  Eigen::VectorXd by_inner_raw, by_outer_raw;
+  if (overshoot_term) {
+    by_inner_raw = Eigen::VectorXd::Zero(n);
+    by_outer_raw = Eigen::VectorXd::Zero(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (band_.fixed[static_cast<std::size_t>(i)]) continue;
+      const double inner_excess = raw_inner(i) - e.inner_offset(i);
+      overshoot += inner_excess * inner_excess;
+      by_inner_raw(i) = 2.0 * overshoot_weight * inner_excess * (1.0 - e.inner_slope(i));
+      if (options_.outer) {
+        const double outer_excess = raw_outer(i) - e.outer_offset(i);
+        overshoot += outer_excess * outer_excess;
+        // δin depends on the outer offset through lo; ∂δin/∂(Γβ) = inner_by_outer.
+        by_outer_raw(i) = 2.0 * overshoot_weight * (outer_excess * (1.0 - outer_slope(i)) - inner_excess * inner_by_outer(i));
+      }
+    }
+  }
+
+  // Rows 0-9: inner by α; with outer offsets rows 10-19: inner by β (through lo), 20-29: outer by
+  // β. Then the overshoot's derivative by Γα (and by Γβ).
+  const Eigen::Index jacobian_rows = options_.outer ? 30 : 10;
+  const Eigen::Index overshoot_row = jacobian_rows;
+  const Eigen::Index rows = jacobian_rows + (overshoot_term ? (options_.outer ? 2 : 1) : 0);
   per_vertex_.resize(rows, n);
   Eigen::MatrixXd projected_part[2];
   auto projection_part = [&](int part) {
@@ -212,6 +238,10 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
       if (options_.outer) {
         per_vertex_.col(i).segment<10>(10) = inner_column * inner_by_outer(i);
         per_vertex_.col(i).segment<10>(20) = (outer_jacobian_[0].col(i) + outer_jacobian_[1].col(i)) * outer_slope(i);
+      }
+      if (overshoot_term) {
+        per_vertex_(overshoot_row, i) = by_inner_raw(i);
+        if (options_.outer) per_vertex_(overshoot_row + 1, i) = by_outer_raw(i);
       }
     }
     projected_part[part] = project_rows(per_vertex_, begin, end);
@@ -241,26 +271,10 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
     e.objective += options_.outer_penalty * beta1 * beta1;
     e.objective_gradient(k_) += 2.0 * options_.outer_penalty * beta1;
   }
-  if (clamp && options_.overshoot_weight > 0.0) {
-    // μ/n Σ (raw − clamped)², per vertex derivative with respect to Γα and Γβ.
-    const double weight = options_.overshoot_weight / static_cast<double>(n);
-    Eigen::VectorXd by_inner_raw = Eigen::VectorXd::Zero(n), by_outer_raw = Eigen::VectorXd::Zero(n);
-    double overshoot = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      if (band_.fixed[static_cast<std::size_t>(i)]) continue;
-      const double inner_excess = raw_inner(i) - e.inner_offset(i);
-      overshoot += inner_excess * inner_excess;
-      by_inner_raw(i) = 2.0 * weight * inner_excess * (1.0 - e.inner_slope(i));
-      if (options_.outer) {
-        const double outer_excess = raw_outer(i) - e.outer_offset(i);
-        overshoot += outer_excess * outer_excess;
-        // δin depends on the outer offset through lo; ∂δin/∂(Γβ) = inner_by_outer.
-        by_outer_raw(i) = 2.0 * weight * (outer_excess * (1.0 - outer_slope(i)) - inner_excess * inner_by_outer(i));
-      }
-    }
-    e.objective += weight * overshoot;
-    e.objective_gradient.head(k_) += project_vector(by_inner_raw);
-    if (options_.outer) e.objective_gradient.tail(k_) += project_vector(by_outer_raw);
+  if (overshoot_term) {
+    e.objective += overshoot_weight * overshoot;
+    e.objective_gradient.head(k_) += projected.row(overshoot_row).transpose();
+    if (options_.outer) e.objective_gradient.tail(k_) += projected.row(overshoot_row + 1).transpose();
   }
   e.equality_jacobian.resize(e.goal.equality.size(), nv);
   for (Eigen::Index r = 0; r < e.goal.equality.size(); ++r) e.equality_jacobian.row(r) = chain(e.goal.equality_jacobian.row(r));

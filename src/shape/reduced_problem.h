@@ -98,12 +98,12 @@ class ReducedProblem {
   const OffsetBand& band() const { return band_; }
 
  private:
-  Eigen::VectorXd apply_basis(const Eigen::VectorXd& coefficients) const;  // Γ c
+  // Γ c, its rows in the two vertex halves (every entry computed the same way either way).
+  Eigen::VectorXd apply_basis(const Eigen::VectorXd& coefficients) const;
   // Columns [begin, end) of a (rows by #V) matrix times the same rows of Γ: rows by k, one
   // part of the product (the parts add up to the whole).
   Eigen::MatrixXd project_rows(const Eigen::MatrixXd& per_vertex, Eigen::Index begin, Eigen::Index end) const;
-  void run_parts(const std::function<void(int)>& part);  // part(0) and part(1), maybe on two threads
-  Eigen::VectorXd project_vector(const Eigen::VectorXd& per_vertex) const;  // Γᵀ v
+  void run_parts(const std::function<void(int)>& part) const;  // part(0) and part(1), maybe on two threads
   void build_hard_bounds();
 
   Mesh mesh_;
