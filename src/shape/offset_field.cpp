@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -121,8 +122,15 @@ OffsetField offset_field(const Mesh& mesh, const Vertices& contracted, const Tri
   // Below a few thousand vertices a thread costs more than it saves.
   const Eigen::Index threads = std::min<Eigen::Index>(options.threads, std::max<Eigen::Index>(1, n / 4096));
   std::vector<std::thread> workers;
-  for (Eigen::Index t = 1; t < threads; ++t) workers.emplace_back(compute_range, n * t / threads, n * (t + 1) / threads);
+  Eigen::Index next_range = 1;
+  try {
+    for (; next_range < threads; ++next_range)
+      workers.emplace_back(compute_range, n * next_range / threads, n * (next_range + 1) / threads);
+  } catch (const std::system_error&) {
+    // No thread to be had: this thread computes the ranges left over (the same values).
+  }
   compute_range(0, n / threads);
+  for (Eigen::Index t = next_range; t < threads; ++t) compute_range(n * t / threads, n * (t + 1) / threads);
   for (std::thread& worker : workers) worker.join();
 
   for (const OffsetSource source : field.source) {

@@ -5,6 +5,7 @@
 #include <future>
 #include <limits>
 #include <set>
+#include <system_error>
 
 #include <Eigen/Cholesky>
 
@@ -225,13 +226,18 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
     say("basis: " + std::to_string(k) + " manifold harmonics, alongside the skeleton");
     ManifoldHarmonicsOptions basis_options;
     basis_options.kind = settings.basis;
-    basis_future = std::async(std::launch::async, [&normalized, k, basis_options]() {
+    const auto compute_basis = [&normalized, k, basis_options]() {
       const auto start = Clock::now();
       BasisOutcome outcome;
       outcome.harmonics = manifold_harmonics(normalized, k, basis_options);
       outcome.seconds = seconds_since(start);
       return outcome;
-    });
+    };
+    try {
+      basis_future = std::async(std::launch::async, compute_basis);
+    } catch (const std::system_error&) {
+      basis_future = std::async(std::launch::deferred, compute_basis);  // no thread: computed at get()
+    }
   }
 
   // Meso-skeleton and offset field (input units).
