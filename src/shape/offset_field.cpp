@@ -5,14 +5,12 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <system_error>
-#include <thread>
-#include <vector>
 
 #include "geometry/inscribed_ball.h"
 #include "geometry/ray_cast.h"
 #include "geometry/vertex_cone.h"
 #include "geometry/vertex_normals.h"
+#include "spectral/worker_pool.h"
 
 namespace offsetopt {
 
@@ -120,18 +118,8 @@ OffsetField offset_field(const Mesh& mesh, const Vertices& contracted, const Tri
     }
   };
   // Below a few thousand vertices a thread costs more than it saves.
-  const Eigen::Index threads = std::min<Eigen::Index>(options.threads, std::max<Eigen::Index>(1, n / 4096));
-  std::vector<std::thread> workers;
-  Eigen::Index next_range = 1;
-  try {
-    for (; next_range < threads; ++next_range)
-      workers.emplace_back(compute_range, n * next_range / threads, n * (next_range + 1) / threads);
-  } catch (const std::system_error&) {
-    // No thread to be had: this thread computes the ranges left over (the same values).
-  }
-  compute_range(0, n / threads);
-  for (Eigen::Index t = next_range; t < threads; ++t) compute_range(n * t / threads, n * (t + 1) / threads);
-  for (std::thread& worker : workers) worker.join();
+  WorkerPool pool(static_cast<int>(std::min<Eigen::Index>(options.threads, std::max<Eigen::Index>(1, n / 4096))));
+  pool.run([&](int part) { compute_range(split_point(n, pool.size(), part), split_point(n, pool.size(), part + 1)); });
 
   for (const OffsetSource source : field.source) {
     if (source == OffsetSource::shortened) ++field.shortened_count;

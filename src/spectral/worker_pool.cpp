@@ -1,9 +1,16 @@
 #include "spectral/worker_pool.h"
 
+#include <system_error>
+
 namespace offsetopt {
 
 WorkerPool::WorkerPool(int threads) {
-  for (int part = 1; part < threads; ++part) workers_.emplace_back([this, part] { work(part); });
+  try {
+    for (int part = 1; part < threads; ++part) workers_.emplace_back([this, part] { work(part); });
+  } catch (const std::system_error&) {
+    // No more threads to be had: the pool runs with those it got (size() says how many), which
+    // changes no result.
+  }
 }
 
 WorkerPool::~WorkerPool() {

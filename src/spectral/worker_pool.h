@@ -13,7 +13,8 @@ namespace offsetopt {
 
 class WorkerPool {
  public:
-  // `threads` >= 1 in total, the calling thread included.
+  // `threads` >= 1 in total, the calling thread included; fewer when the system refuses to start
+  // more (see size()).
   explicit WorkerPool(int threads);
   ~WorkerPool();
   WorkerPool(const WorkerPool&) = delete;
