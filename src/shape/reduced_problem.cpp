@@ -200,35 +200,37 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
   e.inner_integrals = inner_part_integrals[0] + inner_part_integrals[1];
   e.outer_integrals = options_.outer ? Vector10d(outer_part_integrals[0] + outer_part_integrals[1]) : fixed_outer_integrals_;
 
-  // The overshoot term μ/n Σ (raw − clamped)² and its derivative with respect to Γα (and Γβ) per
-  // vertex; projected onto Γ together with the Jacobians below, in the same pass over Γ.
-  const bool overshoot_term = clamp && options_.overshoot_weight > 0.0;
-  const double overshoot_weight = overshoot_term ? options_.overshoot_weight / static_cast<double>(n) : 0.0;
-  double overshoot = 0.0;
-  Eigen::VectorXd by_inner_raw, by_outer_raw;
-  if (overshoot_term) {
-    by_inner_raw = Eigen::VectorXd::Zero(n);
-    by_outer_raw = Eigen::VectorXd::Zero(n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      if (band_.fixed[static_cast<std::size_t>(i)]) continue;
-      const double inner_excess = raw_inner(i) - e.inner_offset(i);
-      overshoot += inner_excess * inner_excess;
-      by_inner_raw(i) = 2.0 * overshoot_weight * inner_excess * (1.0 - e.inner_slope(i));
-      if (options_.outer) {
-        const double outer_excess = raw_outer(i) - e.outer_offset(i);
-        overshoot += outer_excess * outer_excess;
-        // δin depends on the outer offset through lo; ∂δin/∂(Γβ) = inner_by_outer.
-        by_outer_raw(i) = 2.0 * overshoot_weight * (outer_excess * (1.0 - outer_slope(i)) - inner_excess * inner_by_outer(i));
-      }
-    }
-  }
-
   // Rows 0-9: inner by α; with outer offsets rows 10-19: inner by β (through lo), 20-29: outer by
-  // β. Then the overshoot's derivative by Γα (and by Γβ).
+  // β. Then the overshoot term's derivative by Γα (and by Γβ), so it is projected onto Γ in the
+  // same pass over Γ as the Jacobians.
+  const bool overshoot_term = clamp && options_.overshoot_weight > 0.0;
   const Eigen::Index jacobian_rows = options_.outer ? 30 : 10;
   const Eigen::Index overshoot_row = jacobian_rows;
   const Eigen::Index rows = jacobian_rows + (overshoot_term ? (options_.outer ? 2 : 1) : 0);
   per_vertex_.resize(rows, n);
+
+  // The overshoot term μ/n Σ (raw − clamped)² and its derivative with respect to Γα (and Γβ).
+  const double overshoot_weight = overshoot_term ? options_.overshoot_weight / static_cast<double>(n) : 0.0;
+  double overshoot = 0.0;
+  if (overshoot_term) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      double by_inner_raw = 0.0, by_outer_raw = 0.0;
+      if (!band_.fixed[static_cast<std::size_t>(i)]) {
+        const double inner_excess = raw_inner(i) - e.inner_offset(i);
+        overshoot += inner_excess * inner_excess;
+        by_inner_raw = 2.0 * overshoot_weight * inner_excess * (1.0 - e.inner_slope(i));
+        if (options_.outer) {
+          const double outer_excess = raw_outer(i) - e.outer_offset(i);
+          overshoot += outer_excess * outer_excess;
+          // δin depends on the outer offset through lo; ∂δin/∂(Γβ) = inner_by_outer.
+          by_outer_raw = 2.0 * overshoot_weight * (outer_excess * (1.0 - outer_slope(i)) - inner_excess * inner_by_outer(i));
+        }
+      }
+      per_vertex_(overshoot_row, i) = by_inner_raw;
+      if (options_.outer) per_vertex_(overshoot_row + 1, i) = by_outer_raw;
+    }
+  }
+
   Eigen::MatrixXd projected_part[2];
   auto projection_part = [&](int part) {
     const Eigen::Index begin = vertex_split_[part], end = vertex_split_[part + 1];
@@ -238,10 +240,6 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
       if (options_.outer) {
         per_vertex_.col(i).segment<10>(10) = inner_column * inner_by_outer(i);
         per_vertex_.col(i).segment<10>(20) = (outer_jacobian_[0].col(i) + outer_jacobian_[1].col(i)) * outer_slope(i);
-      }
-      if (overshoot_term) {
-        per_vertex_(overshoot_row, i) = by_inner_raw(i);
-        if (options_.outer) per_vertex_(overshoot_row + 1, i) = by_outer_raw(i);
       }
     }
     projected_part[part] = project_rows(per_vertex_, begin, end);
