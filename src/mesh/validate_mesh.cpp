@@ -500,11 +500,15 @@ MeshValidation validate_mesh(const Mesh& mesh) {
               nesting_depth(mesh, points[static_cast<std::size_t>(s)], s, faces_of, boxes);
     }
     Defect zero{DefectKind::kZeroVolume}, inverted{DefectKind::kInsideOut};
+    // A volume is zero when it is round-off of the coordinates in a box of this diagonal.
+    const auto is_zero_volume = [](double volume, double diagonal) {
+      return std::fabs(volume) <= 1e-12 * diagonal * diagonal * diagonal;
+    };
     for (int s = 0; s < shells; ++s) {
       const double volume = out.component_volume[static_cast<std::size_t>(s)];
       const double diagonal = boxes[static_cast<std::size_t>(s)].diagonal();
       const long long first_face = faces_of[static_cast<std::size_t>(s)][0];
-      const bool is_zero = std::fabs(volume) <= 1e-12 * diagonal * diagonal * diagonal;
+      const bool is_zero = is_zero_volume(volume, diagonal);
       const bool wrong_sign = (volume > 0) != (out.component_depth[static_cast<std::size_t>(s)] % 2 == 0);
       if (!is_zero && !wrong_sign) continue;
       Defect& d = is_zero ? zero : inverted;
@@ -522,11 +526,10 @@ MeshValidation validate_mesh(const Mesh& mesh) {
     // which only shells that cross each other can do. Nesting is decided at one point per shell,
     // so such shells pass the checks above and would reach the optimiser as a solid of negative
     // mass.
-    const double all_diagonal = all.diagonal();
     const bool all_inverted = inverted.count == shells;
     const double oriented_total = all_inverted ? -out.volume : out.volume;
     if (zero.count == 0 && (inverted.count == 0 || all_inverted) && shells > 1 &&
-        oriented_total <= 1e-12 * all_diagonal * all_diagonal * all_diagonal) {
+        (oriented_total <= 0.0 || is_zero_volume(oriented_total, all.diagonal()))) {
       Defect overlap{DefectKind::kOverlappingShells};
       overlap.bound = all_inverted ? 1 : 0;
       double largest_cavity = 0;
