@@ -86,10 +86,14 @@ Eigen::Matrix<double, 10, Eigen::Dynamic> volume_integrals_directional_jacobian(
   return J;
 }
 
-void volume_integrals_and_directional_jacobian(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
-                                               const Vertices& directions, Vector10d& integrals,
-                                               Eigen::Matrix<double, 10, Eigen::Dynamic>& jacobian) {
-  jacobian.setZero(10, V.rows());
+namespace {
+
+// The fused pass for a Jacobian of Rows rows (1, 4 or 10), so the loop carries no row tests.
+template <int Rows>
+void integrals_and_jacobian_rows(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
+                                 const Vertices& directions, Vector10d& integrals, Eigen::MatrixXd& jacobian) {
+  constexpr bool first_moments = Rows >= 4, second_moments = Rows >= 10;
+  jacobian.setZero(Rows, V.rows());
   std::array<NeumaierSum, 10> sums;
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     const int corner_index[3] = {F(f, 0), F(f, 1), F(f, 2)};
@@ -113,12 +117,14 @@ void volume_integrals_and_directional_jacobian(const Vertices& V, const Faces& F
     for (int corner = 0; corner < 3; ++corner) {
       const Eigen::Vector3d d = directions.row(corner_index[corner]).transpose();
       const double dD = p[(corner + 1) % 3].cross(p[(corner + 2) % 3]).dot(d);
-      const Eigen::Vector3d u = p[corner] + S;
       double* column = jacobian.col(corner_index[corner]).data();
       column[kIntVolume] += dD / 6.0;
+      if constexpr (!first_moments) continue;
       column[kIntX] += (dD * S.x() + D * d.x()) / 24.0;
       column[kIntY] += (dD * S.y() + D * d.y()) / 24.0;
       column[kIntZ] += (dD * S.z() + D * d.z()) / 24.0;
+      if constexpr (!second_moments) continue;
+      const Eigen::Vector3d u = p[corner] + S;
       column[kIntXX] += (dD * Gxx + D * 2.0 * d.x() * u.x()) / 120.0;
       column[kIntYY] += (dD * Gyy + D * 2.0 * d.y() * u.y()) / 120.0;
       column[kIntZZ] += (dD * Gzz + D * 2.0 * d.z() * u.z()) / 120.0;
@@ -128,6 +134,19 @@ void volume_integrals_and_directional_jacobian(const Vertices& V, const Faces& F
     }
   }
   for (int k = 0; k < 10; ++k) integrals(k) = sums[static_cast<std::size_t>(k)].value();
+}
+
+}  // namespace
+
+void volume_integrals_and_directional_jacobian(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
+                                               const Vertices& directions, Vector10d& integrals,
+                                               Eigen::MatrixXd& jacobian, int jacobian_rows) {
+  if (jacobian_rows >= 10)
+    integrals_and_jacobian_rows<10>(V, F, origin, directions, integrals, jacobian);
+  else if (jacobian_rows >= 4)
+    integrals_and_jacobian_rows<4>(V, F, origin, directions, integrals, jacobian);
+  else
+    integrals_and_jacobian_rows<1>(V, F, origin, directions, integrals, jacobian);
 }
 
 }  // namespace offsetopt

@@ -33,9 +33,12 @@ Eigen::Matrix<double, 10, Eigen::Dynamic> volume_integrals_directional_jacobian(
 // Both at once for the surface with vertices V and faces F, in one pass over the faces (the
 // optimiser's evaluation, without building a Mesh): `integrals` gets exactly what
 // volume_integrals({V, F}, origin).values returns (same compensated sums, same order) and
-// `jacobian` (resized to 10 by #V) what volume_integrals_directional_jacobian returns.
+// `jacobian` (resized to jacobian_rows by #V) the first jacobian_rows rows of what
+// volume_integrals_directional_jacobian returns, bit for bit. jacobian_rows is 1 (the volume),
+// 4 (and the first moments) or 10 (other values: the largest of these not above it, at least 1):
+// a goal that needs no second moments skips their derivatives.
 void volume_integrals_and_directional_jacobian(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
                                                const Vertices& directions, Vector10d& integrals,
-                                               Eigen::Matrix<double, 10, Eigen::Dynamic>& jacobian);
+                                               Eigen::MatrixXd& jacobian, int jacobian_rows = 10);
 
 }  // namespace offsetopt

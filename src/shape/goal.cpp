@@ -186,6 +186,14 @@ std::vector<std::string> goal_inequality_names(const GoalSpec& spec) {
   return names;
 }
 
+int goal_integral_rows(const GoalSpec& spec) {
+  switch (spec.kind) {
+    case GoalKind::volume: return 1;
+    case GoalKind::spin: return 10;
+    default: return 4;  // the centre of mass and the volumes
+  }
+}
+
 GoalValues evaluate_goal(const GoalSpec& spec, const Vector10d& outer, const Vector10d& inner) {
   D out[10], in[10];
   for (int j = 0; j < 10; ++j) {

@@ -70,6 +70,11 @@ struct GoalValues {
 std::vector<std::string> goal_equality_names(const GoalSpec& spec);
 std::vector<std::string> goal_inequality_names(const GoalSpec& spec);
 
+// How many leading integrals (kInt order) the goal's values depend on: 1 (the volume), 4 (and
+// the first moments) or 10 (and the second moments). evaluate_goal's derivatives by the other
+// integrals, outer and inner, are exactly 0, so the optimiser needs no Jacobian rows for them.
+int goal_integral_rows(const GoalSpec& spec);
+
 // `outer` and `inner` are raw integrals measured from the same origin; `inner` may be all zero
 // (no void). The shell's volume must be positive.
 GoalValues evaluate_goal(const GoalSpec& spec, const Vector10d& outer, const Vector10d& inner);

@@ -54,12 +54,14 @@ struct ReducedOptions {
   double overshoot_weight = 1.0;
   // Start: the least-squares fit of Γα to lo + start_fraction (hi − lo) (β = 0).
   double start_fraction = 0.5;
-  // Each evaluation is cut into two fixed parts, run on two threads when this is > 1 (the
-  // results are the same either way).
+  // Each evaluation is cut into two fixed parts, run on two threads when this is > 1 and the mesh
+  // has at least kMinVerticesForThreads vertices (the results are the same either way).
   int threads = 2;
 };
 
 std::string check_reduced_options(const ReducedOptions& options);
+
+constexpr long kMinVerticesForThreads = 2000;  // see the constructor
 
 class ReducedProblem {
  public:
@@ -112,6 +114,7 @@ class ReducedProblem {
   bool identity_basis_;
   int k_;
   GoalSpec goal_;
+  int integral_rows_;                // goal_integral_rows(goal_)
   ReducedOptions options_;
   Vector10d fixed_outer_integrals_;  // the input's integrals, when there is no outer offset
   Eigen::VectorXd outer_inward_limit_;  // per vertex, see the constructor
@@ -122,8 +125,10 @@ class ReducedProblem {
   Vertices inner_vertices_, outer_vertices_;
   Faces face_parts_[2];              // the faces cut in two fixed halves
   Eigen::Index vertex_split_[3] = {0, 0, 0};  // vertex halves [split[p], split[p + 1])
-  Eigen::Matrix<double, 10, Eigen::Dynamic> inner_jacobian_[2], outer_jacobian_[2];  // per face half
+  Eigen::MatrixXd inner_jacobian_[2], outer_jacobian_[2];  // integral_rows_ by #V, per face half
   Eigen::MatrixXd per_vertex_;
+  Eigen::VectorXd outer_slope_, inner_by_outer_;  // ∂δout/∂(Γβ) and ∂δin/∂(Γβ) per vertex
+  Eigen::VectorXd overshoot_squares_;             // (raw − clamped)² per vertex (inner, outer)
   std::unique_ptr<WorkerPool> pool_;
   bool cache_valid_ = false;
 };

@@ -40,6 +40,13 @@ void WorkerPool::run(const std::function<void(int)>& task) {
   task_ = nullptr;
 }
 
+void WorkerPool::run_parts(int parts, const std::function<void(int)>& task) {
+  const int threads = size();
+  run([&](int thread) {
+    for (int part = thread; part < parts; part += threads) task(part);
+  });
+}
+
 void WorkerPool::work(int part) {
   unsigned long seen = 0;
   while (true) {

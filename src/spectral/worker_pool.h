@@ -24,6 +24,10 @@ class WorkerPool {
   // Runs task(part) for every part in [0, size()), part 0 on the calling thread; returns when
   // all are done. Tasks must not throw.
   void run(const std::function<void(int)>& task);
+  // Runs task(p) once for every p in [0, parts), part p on thread p mod size(); returns when all
+  // are done. For work cut into a fixed number of parts, which must all run even when the pool
+  // got fewer threads than asked for. Tasks must not throw.
+  void run_parts(int parts, const std::function<void(int)>& task);
 
  private:
   void work(int part);

@@ -111,3 +111,31 @@ TEST_CASE("goal spec validation names the problem") {
   CHECK(kind == GoalKind::roly_poly);
   CHECK_FALSE(parse_goal_kind("fly", kind));
 }
+
+TEST_CASE("a goal ignores the integrals beyond goal_integral_rows: exact zeros there, same values when they change") {
+  const Shell s = off_centre_shell();
+  for (GoalKind kind : {GoalKind::stand, GoalKind::stand_filled, GoalKind::roly_poly, GoalKind::spin, GoalKind::volume,
+                        GoalKind::floating}) {
+    CAPTURE(to_string(kind));
+    const GoalSpec spec = spec_for(kind);
+    const int used = goal_integral_rows(spec);
+    REQUIRE((used == 1 || used == 4 || used == 10));
+    const GoalValues at = evaluate_goal(spec, s.outer, s.inner);
+    Vector10d outer = s.outer, inner = s.inner;
+    for (int j = used; j < 10; ++j) {
+      outer(j) *= 1.7;
+      inner(j) *= 0.3;
+    }
+    const GoalValues moved = evaluate_goal(spec, outer, inner);
+    CHECK(moved.objective == at.objective);
+    CHECK((moved.equality.array() == at.equality.array()).all());
+    CHECK((moved.inequality.array() == at.inequality.array()).all());
+    for (int j = 0; j < 20; ++j) {
+      if (j % 10 < used) continue;
+      CAPTURE(j);
+      CHECK(at.objective_gradient(j) == 0.0);
+      for (Eigen::Index r = 0; r < at.equality.size(); ++r) CHECK(at.equality_jacobian(r, j) == 0.0);
+      for (Eigen::Index r = 0; r < at.inequality.size(); ++r) CHECK(at.inequality_jacobian(r, j) == 0.0);
+    }
+  }
+}
