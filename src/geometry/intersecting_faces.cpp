@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
+#include <iterator>
 
 #include "geometry/triangle_triangle.h"
 
@@ -14,15 +15,15 @@ struct NodePair {
   int a, b;
 };
 
-// Visits every (leaf face of a, leaf face of b) pair whose node boxes overlap; when `same` the
-// pair (i, j) and (j, i) are visited once. Visitor returns false to stop.
+// Visits every (leaf face of a, leaf face of b) pair under the node pairs `start` whose node
+// boxes overlap; when `same` the pair (i, j) and (j, i) are visited once. Visitor returns false
+// to stop.
 template <class Visitor>
-void traverse_pairs(const TriangleBvh& a, const TriangleBvh& b, bool same, Visitor&& visit) {
+void traverse_pairs(const TriangleBvh& a, const TriangleBvh& b, bool same, std::vector<NodePair> start, Visitor&& visit) {
   if (a.empty() || b.empty()) return;
   const auto& na = a.nodes();
   const auto& nb = b.nodes();
-  std::vector<NodePair> stack;
-  stack.push_back({0, 0});
+  std::vector<NodePair> stack = std::move(start);
   while (!stack.empty()) {
     const NodePair p = stack.back();
     stack.pop_back();
@@ -94,9 +95,11 @@ bool mesh_faces_intersect(const TriangleBvh& bvh, int f, int g) {
   return segment_intersects_triangle(fa, fb, p2, q2, r2) || segment_intersects_triangle(ga, gb, p1, q1, r1);
 }
 
-IntersectingFaces self_intersections(const TriangleBvh& bvh, std::size_t max_pairs) {
+namespace {
+
+IntersectingFaces self_intersections_from(const TriangleBvh& bvh, std::vector<NodePair> start, std::size_t max_pairs) {
   IntersectingFaces out;
-  traverse_pairs(bvh, bvh, true, [&](int f, int g) {
+  traverse_pairs(bvh, bvh, true, std::move(start), [&](int f, int g) {
     if (!face_box(bvh, f).overlaps(face_box(bvh, g))) return true;
     if (mesh_faces_intersect(bvh, f, g)) {
       out.pairs.emplace_back(std::min(f, g), std::max(f, g));
@@ -111,9 +114,36 @@ IntersectingFaces self_intersections(const TriangleBvh& bvh, std::size_t max_pai
   return out;
 }
 
+}  // namespace
+
+IntersectingFaces self_intersections(const TriangleBvh& bvh, std::size_t max_pairs) {
+  return self_intersections_from(bvh, {{0, 0}}, max_pairs);
+}
+
+IntersectingFaces self_intersections_part(const TriangleBvh& bvh, int part, std::size_t max_pairs) {
+  if (bvh.empty()) return {};
+  const BvhNode& root = bvh.nodes().front();
+  if (root.is_leaf()) return part == 0 ? self_intersections(bvh, max_pairs) : IntersectingFaces{};
+  // Popped last-in first-out, as self_intersections would descend from the root.
+  if (part == 0) return self_intersections_from(bvh, {{root.left, root.right}, {root.left, root.left}}, max_pairs);
+  return self_intersections_from(bvh, {{root.right, root.right}}, max_pairs);
+}
+
+IntersectingFaces merge_intersections(const IntersectingFaces& a, const IntersectingFaces& b, std::size_t max_pairs) {
+  IntersectingFaces out;
+  out.pairs.reserve(a.pairs.size() + b.pairs.size());
+  std::merge(a.pairs.begin(), a.pairs.end(), b.pairs.begin(), b.pairs.end(), std::back_inserter(out.pairs));
+  out.truncated = a.truncated || b.truncated;
+  if (out.pairs.size() > max_pairs) {
+    out.pairs.resize(max_pairs);
+    out.truncated = true;
+  }
+  return out;
+}
+
 IntersectingFaces intersecting_faces(const TriangleBvh& a, const TriangleBvh& b, std::size_t max_pairs) {
   IntersectingFaces out;
-  traverse_pairs(a, b, false, [&](int f, int g) {
+  traverse_pairs(a, b, false, {{0, 0}}, [&](int f, int g) {
     if (!face_box(a, f).overlaps(face_box(b, g))) return true;
     if (triangles_intersect(a.corner(f, 0), a.corner(f, 1), a.corner(f, 2), b.corner(g, 0), b.corner(g, 1), b.corner(g, 2))) {
       out.pairs.emplace_back(f, g);

@@ -23,6 +23,14 @@ struct IntersectingFaces {
 // Faces of one mesh that intersect each other. Stops after `max_pairs` pairs.
 IntersectingFaces self_intersections(const TriangleBvh& bvh, std::size_t max_pairs = 1000);
 
+// Part `part` (0 or 1) of self_intersections, to run the two on two threads: part 0 the pairs
+// within the root's left subtree and across its two subtrees, part 1 those within the right
+// subtree. Merged by merge_intersections they are self_intersections' pairs, unless truncated.
+IntersectingFaces self_intersections_part(const TriangleBvh& bvh, int part, std::size_t max_pairs = 1000);
+
+// The sorted union of two disjoint results, at most `max_pairs` of them (truncated if either was).
+IntersectingFaces merge_intersections(const IntersectingFaces& a, const IntersectingFaces& b, std::size_t max_pairs);
+
 // (face of a, face of b) pairs that intersect. Stops after `max_pairs` pairs.
 IntersectingFaces intersecting_faces(const TriangleBvh& a, const TriangleBvh& b, std::size_t max_pairs = 1000);
 

@@ -54,8 +54,8 @@ Mesh without_fixed_faces(const Mesh& mesh, const std::vector<char>& fixed) {
 
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
                                     const std::vector<char>& thin, double wall) {
-  // Two fixed parts of each step (the two trees, the two intersection searches, the two vertex
-  // halves of the wall measurement), on two threads when there are: the same result either way.
+  // The two trees, then the two intersection searches, on two threads when there are: the same
+  // result either way.
   WorkerPool pool(2);
   const bool any_fixed = std::find(fixed.begin(), fixed.end(), char{1}) != fixed.end();
   Mesh inner_kept, outer_kept;
@@ -71,11 +71,12 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
     else outer_bvh = TriangleBvh(outer_free.V, outer_free.F);
   });
   const std::size_t cap = 100000;
-  IntersectingFaces self, crossing;
+  IntersectingFaces self_part[2], crossing;
   pool.run_parts(2, [&](int part) {
-    if (part == 0) self = self_intersections(inner_bvh, cap);
-    else crossing = intersecting_faces(inner_bvh, outer_bvh, cap);
+    self_part[part] = self_intersections_part(inner_bvh, part, cap);
+    if (part == 1) crossing = intersecting_faces(inner_bvh, outer_bvh, cap);
   });
+  const IntersectingFaces self = merge_intersections(self_part[0], self_part[1], cap);
   SurfaceDefects d;
   d.self_intersection_pairs = self.pairs.size();
   d.crossing_pairs = crossing.pairs.size();
@@ -93,35 +94,23 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   TriangleBvh outer_whole;
   if (any_fixed) outer_whole = TriangleBvh(outer.V, outer.F);
   const TriangleBvh& outer_full = any_fixed ? outer_whole : outer_bvh;
-  struct Thinnest {
-    double wall = std::numeric_limits<double>::infinity();
-    int vertex = -1;
-    std::vector<int> thin_vertices;
-  } half[2];
-  const long n = static_cast<long>(inner.V.rows());
-  pool.run_parts(2, [&](int part) {
-    Thinnest& h = half[part];
-    for (long i = split_point(n, 2, part); i < split_point(n, 2, part + 1); ++i) {
-      const std::size_t u = static_cast<std::size_t>(i);
-      if (fixed[u] || thin[u]) continue;
-      // Only distances below the thinnest so far or below half the wall matter: the search radius
-      // prunes the BVH (same results as an unbounded search, measured 4x faster at 100k vertices).
-      const double radius = std::max(0.5 * wall, h.wall);
-      const ClosestPoint c = closest_point(outer_full, inner.V.row(i).transpose(), radius);
-      if (!c.found) continue;
-      if (c.distance < h.wall) {
-        h.wall = c.distance;
-        h.vertex = static_cast<int>(i);
-      }
-      if (c.distance < 0.5 * wall) h.thin_vertices.push_back(static_cast<int>(i));
+  // In vertex order on one thread: the thinnest wall found so far prunes every later search
+  // (split in halves, the second half searched 7x longer without the first half's bound).
+  d.thinnest_wall = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < inner.V.rows(); ++i) {
+    const std::size_t u = static_cast<std::size_t>(i);
+    if (fixed[u] || thin[u]) continue;
+    // Only distances below the thinnest so far or below half the wall matter: the search radius
+    // prunes the BVH (same results as an unbounded search, measured 4x faster at 100k vertices).
+    const double radius = std::max(0.5 * wall, d.thinnest_wall);
+    const ClosestPoint c = closest_point(outer_full, inner.V.row(i).transpose(), radius);
+    if (!c.found) continue;
+    if (c.distance < d.thinnest_wall) {
+      d.thinnest_wall = c.distance;
+      d.thinnest_vertex = static_cast<int>(i);
     }
-  });
-  // The first vertex of the smallest distance, as one pass in vertex order would find it.
-  const Thinnest& thinnest = half[1].wall < half[0].wall ? half[1] : half[0];
-  d.thinnest_wall = thinnest.wall;
-  d.thinnest_vertex = thinnest.vertex;
-  d.thin_wall_vertices = half[0].thin_vertices;
-  d.thin_wall_vertices.insert(d.thin_wall_vertices.end(), half[1].thin_vertices.begin(), half[1].thin_vertices.end());
+    if (c.distance < 0.5 * wall) d.thin_wall_vertices.push_back(static_cast<int>(i));
+  }
   return d;
 }
 

@@ -119,8 +119,9 @@ TEST_CASE("a segment in the triangle's plane up to rounding is decided in 2-D, n
 TEST_CASE("a closed sphere has no self-intersections, a vertex pushed through the far side has") {
   Mesh sphere = make_icosphere(1.0, 3);
   CHECK(self_intersections(TriangleBvh(sphere.V, sphere.F)).pairs.empty());
-  // Pull vertex 0 (at some point on the sphere) through the centre to beyond the antipode.
-  sphere.V.row(0) *= -1.3;
+  // Pull vertex 4 through the centre to beyond the antipode: its crossings fall in both subtrees
+  // of the root, so both parts below find some.
+  sphere.V.row(4) *= -1.3;
   const TriangleBvh bvh(sphere.V, sphere.F);
   const IntersectingFaces found = self_intersections(bvh, 100000);
   CHECK_FALSE(found.pairs.empty());
@@ -131,6 +132,15 @@ TEST_CASE("a closed sphere has no self-intersections, a vertex pushed through th
     for (int g = f + 1; g < sphere.F.rows(); ++g)
       if (mesh_faces_intersect(bvh, f, g)) brute.emplace_back(f, g);
   CHECK(found.pairs == brute);
+  // The two parts (for two threads) hold the same pairs between them, none twice.
+  const IntersectingFaces part0 = self_intersections_part(bvh, 0, 100000), part1 = self_intersections_part(bvh, 1, 100000);
+  CHECK_FALSE(part0.pairs.empty());
+  CHECK_FALSE(part1.pairs.empty());
+  CHECK(part0.pairs.size() + part1.pairs.size() == brute.size());
+  CHECK(merge_intersections(part0, part1, 100000).pairs == brute);
+  const IntersectingFaces merged_capped = merge_intersections(part0, part1, 3);
+  CHECK(merged_capped.truncated);
+  CHECK(merged_capped.pairs.size() == 3);
   // Every reported pair is a real crossing, checked by the independent edge test.
   for (const auto& [f, g] : found.pairs) {
     Vec3 t[3], u[3];
