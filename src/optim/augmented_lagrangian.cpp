@@ -472,6 +472,12 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
         meas.complementarity <= params.complementarity_tolerance)
       return fill_result(AlStatus::Converged, meas);
     if (ev.count >= params.max_evaluations) return fill_result(AlStatus::MaxEvaluations, meas);
+    // The subproblem stopped at the budget this loop left it, not at its own cap. Its count
+    // includes its start point, which the evaluator had cached and does not count again, so the
+    // total can end just below the cap: every later subproblem would then stop at its start
+    // point while the penalty kept growing, and the stagnation would read as infeasibility.
+    if (sub.status == LbfgsbStatus::MaxEvaluations && budget <= params.inner.max_evaluations)
+      return fill_result(AlStatus::MaxEvaluations, meas);
     const bool inner_stuck = sub.status == LbfgsbStatus::SmallReduction ||
                              sub.status == LbfgsbStatus::LineSearchFailed;
     if (feas <= feas_tol && meas.complementarity <= params.complementarity_tolerance && inner_stuck) {

@@ -316,6 +316,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   Json repairs = Json::array();
   SurfaceDefects final_defects;  // of the final surfaces, when the last round looked for them
   bool final_defects_known = false;
+  int last_round_met = -1;  // the last round whose solve met the goal's constraints
   for (int round = 0;; ++round) {
     ReducedProblem problem(normalized, band, basis, k == 0, goal, reduced_options);
     variables = problem.num_variables();
@@ -355,6 +356,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
     // repairs cannot help, and the report says why.
     const bool constraints_met = solved.status != AlStatus::Infeasible &&
                                  solved.max_violation <= 100.0 * settings.solver.feasibility_tolerance;
+    if (constraints_met) last_round_met = round;
     if (round == settings.max_repair_rounds || !constraints_met) break;
     const SurfaceDefects defects = find_surface_defects(result.outer, result.inner, band.fixed, thin, wall);
     if (defects.empty()) {
@@ -529,6 +531,13 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
             std::to_string(thin_count_initial) +
             " vertices lie in parts thinner than two walls, where no offset is both above the wall and below the "
             "skeleton (try --bounds clamp); " + why;
+    else if (constraints_unmet && last_round_met >= 0)
+      why = "the constraints were met before repair round " + std::to_string(last_round_met + 1) +
+            ", but not once the bounds were tightened there to remove folds and thin walls; " + why;
+    else if (constraints_unmet && solved.status == AlStatus::MaxEvaluations)
+      why = "the solver used its " + std::to_string(settings.solver.max_evaluations) +
+            " evaluations before meeting the constraints (violation " + format_double(solved.max_violation) +
+            ", normalised frame); " + why;
     else if (constraints_unmet)
       why = "no offset in this basis meets the constraints (k too small, or a goal no void can reach); " + why;
     result.message = why;

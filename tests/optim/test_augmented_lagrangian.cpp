@@ -385,3 +385,39 @@ TEST_CASE("gradient-check: accepts exact derivatives and pinpoints a wrong compo
   CHECK_FALSE(check_gradient(good, x, invalid).passed);
   CHECK_FALSE(check_gradient(good, x, invalid).message.empty());
 }
+
+TEST_CASE("augmented-lagrangian: an exhausted evaluation budget ends MaxEvaluations at once") {
+  // Rosenbrock in 10 variables on the sphere |x|² = 4: far more than the budget allows. When the
+  // budget runs out inside a subproblem, the next subproblem's only evaluation is the cached
+  // start point, so no outer iteration can move: the solve must stop there, not raise the
+  // penalty outer iteration after outer iteration and then call the problem infeasible.
+  ConstrainedProblem p;
+  p.num_variables = 10;
+  p.objective = [](const VectorXd& x, VectorXd& g) {
+    double f = 0.0;
+    g.setZero();
+    for (int i = 0; i + 1 < 10; ++i) {
+      const double a = x(i + 1) - x(i) * x(i), b = 1.0 - x(i);
+      f += 100.0 * a * a + b * b;
+      g(i) += -400.0 * a * x(i) - 2.0 * b;
+      g(i + 1) += 200.0 * a;
+    }
+    return f;
+  };
+  p.num_equality = 1;
+  p.equality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
+    c(0) = x.squaredNorm() - 4.0;
+    j.row(0) = 2.0 * x.transpose();
+  };
+  for (int budget : {7, 25, 60}) {
+    CAPTURE(budget);
+    AlParams params;
+    params.max_evaluations = budget;
+    const AlResult r = augmented_lagrangian_minimize(p, VectorXd::Constant(10, -1.0), params);
+    MESSAGE(describe(r));
+    CHECK(r.status == AlStatus::MaxEvaluations);
+    CHECK(r.evaluations <= budget);
+    // At most one outer iteration after the one that used up the budget (one each for 7 and 25).
+    CHECK(r.outer_iterations <= 3);
+  }
+}

@@ -1,0 +1,37 @@
+// Why `optimize` says a goal was not met: the reason must name what happened (the solver's
+// evaluation budget ran out, or the repairs of folds took away a goal the first solve had met)
+// rather than blame the basis. Run through the library on the bottle demo with settings the
+// command line does not expose.
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "mesh/demo_meshes.h"
+#include "shape/offset_optimization.h"
+
+using namespace offsetopt;
+
+TEST_CASE("optimize: a solve cut off by its evaluation budget says so") {
+  const Mesh bottle = make_demo_mesh("bottle");
+  OptimizeSettings settings = OptimizeSettings::defaults();
+  settings.goal = GoalKind::stand;
+  settings.solver.max_evaluations = 4;
+  const OptimizeResult r = optimize_offsets(bottle, settings);
+  MESSAGE(r.message);
+  CHECK(r.status == OptimizeStatus::goal_not_met);
+  CHECK(r.report.at("solver").at("status").as_string() == "max-evaluations");
+  CHECK(r.report.at("solver").at("evaluations").as_number() <= 4);
+  CHECK(r.message.find("the solver used its 4 evaluations before meeting the constraints") == 0);
+}
+
+TEST_CASE("optimize: repairs that make the goal unreachable say the first solve had met it") {
+  const Mesh bottle = make_demo_mesh("bottle");
+  OptimizeSettings settings = OptimizeSettings::defaults();
+  settings.goal = GoalKind::stand;
+  settings.repair_shrink = 0.01;
+  const OptimizeResult r = optimize_offsets(bottle, settings);
+  MESSAGE(r.message);
+  CHECK(r.status == OptimizeStatus::goal_not_met);
+  CHECK(r.report.at("solver").at("repair_rounds").as_number() >= 1);
+  CHECK(r.message.find("the constraints were met before repair round") == 0);
+}
