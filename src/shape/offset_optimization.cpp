@@ -354,7 +354,10 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
     }
     // Tightened bounds only shrink the feasible set: when the goal's constraints are not met,
     // repairs cannot help, and the report says why.
-    const bool constraints_met = solved.status != AlStatus::Infeasible &&
+    // A problem the solver refuses (hard bounds with an empty box) or cannot evaluate at the start
+    // is not changed by tighter bounds either.
+    const bool solver_refused = solved.status == AlStatus::InvalidInput || solved.status == AlStatus::NumericalIssue;
+    const bool constraints_met = !solver_refused && solved.status != AlStatus::Infeasible &&
                                  solved.max_violation <= 100.0 * settings.solver.feasibility_tolerance;
     if (constraints_met) last_round_met = round;
     if (round == settings.max_repair_rounds || !constraints_met) break;
@@ -531,6 +534,9 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
             std::to_string(thin_count_initial) +
             " vertices lie in parts thinner than two walls, where no offset is both above the wall and below the "
             "skeleton (try --bounds clamp); " + why;
+    else if (solved.status == AlStatus::InvalidInput || solved.status == AlStatus::NumericalIssue)
+      why = std::string("the solver could not start (") + to_string(solved.status) +
+            (solved.message.empty() ? "" : ": " + solved.message) + "); " + why;
     else if (constraints_unmet && last_round_met >= 0)
       why = "the constraints were met before repair round " + std::to_string(last_round_met + 1) +
             ", but not once the bounds were tightened there to remove folds and thin walls; " + why;
