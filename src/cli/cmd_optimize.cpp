@@ -61,6 +61,8 @@ const char* const kUsage =
     "                        sphere:X,Y,Z,R\n"
     "  --ground-tol T        ground contact tolerance (0.001 diag, >= 0)\n"
     "  --no-repair-ring      repairs tighten only the vertices on folds, not their one-ring too\n"
+    "  --threads N           threads per stage (2, 1..64); 1 runs the stages one after another\n"
+    "                        on one thread (lowest memory). The output is the same for any N.\n"
     "  --quiet               no progress on stderr\n"
     "  -v                    also every outer iteration of the solver on stderr\n"
     "  --help                show this help\n"
@@ -138,6 +140,8 @@ int run_optimize(const Args& args) {
       quiet = true;
     } else if (arg == "--no-repair-ring") {
       settings.repair_ring = false;
+    } else if (arg == "--threads") {
+      settings.threads = parse_int(cursor.value_of(arg), arg, 1, 64);
     } else if (arg == "-v" || arg == "--verbose") {
       settings.trace_solver = true;
     } else if (arg.size() > 1 && arg[0] == '-') {

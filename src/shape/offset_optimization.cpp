@@ -125,6 +125,7 @@ std::string check_optimize_settings(const OptimizeSettings& s) {
   if (!(s.gap >= 0.0 && s.gap < 1.0)) return "gap must be in [0, 1)";
   if (!(s.ramp > 0.0)) return "ramp must be > 0";
   if (s.outer && s.bounds == BoundsMode::hard && s.k == 0) return "--k all with --bounds hard and --outer is not supported";
+  if (s.threads < 1 || s.threads > 64) return "--threads must be in [1, 64]";
   return check_al_params(s.solver);
 }
 
@@ -223,9 +224,11 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   std::future<BasisOutcome> basis_future;
   say("skeleton: contracting " + std::to_string(n) + " vertices");
   if (k > 0) {
-    say("basis: " + std::to_string(k) + " manifold harmonics, alongside the skeleton");
+    const bool alongside = settings.threads > 1;
+    say("basis: " + std::to_string(k) + " manifold harmonics" + (alongside ? ", alongside the skeleton" : ""));
     ManifoldHarmonicsOptions basis_options;
     basis_options.kind = settings.basis;
+    basis_options.lanczos.threads = settings.threads;
     const auto compute_basis = [&normalized, k, basis_options]() {
       const auto start = Clock::now();
       BasisOutcome outcome;
@@ -234,18 +237,21 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
       return outcome;
     };
     try {
-      basis_future = std::async(std::launch::async, compute_basis);
+      if (alongside) basis_future = std::async(std::launch::async, compute_basis);
     } catch (const std::system_error&) {
-      basis_future = std::async(std::launch::deferred, compute_basis);  // no thread: computed at get()
     }
+    if (!basis_future.valid()) basis_future = std::async(std::launch::deferred, compute_basis);  // computed at get()
   }
 
   // Meso-skeleton and offset field (input units).
   stage_start = Clock::now();
-  const ContractionResult contraction = laplacian_contraction(input.V, input.F);
+  ContractionOptions contraction_options;
+  contraction_options.threads = settings.threads;
+  const ContractionResult contraction = laplacian_contraction(input.V, input.F, contraction_options);
   const TriangleBvh bvh(input.V, input.F);
   OffsetFieldOptions field_options;
   field_options.wall = wall;
+  field_options.threads = settings.threads;
   const OffsetField field = offset_field(input, contraction.V, bvh, field_options);
   timings["skeleton"] = seconds_since(stage_start);
 
@@ -306,6 +312,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   reduced_options.outer_penalty = settings.penalty;
   reduced_options.bounds = settings.bounds;
   reduced_options.start_fraction = settings.start_fraction;
+  reduced_options.threads = settings.threads;
   if (const std::string problem_text = check_reduced_options(reduced_options); !problem_text.empty())
     return failure(OptimizeStatus::bad_input, problem_text);
   OptimizeResult result;
@@ -361,7 +368,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
                                  solved.max_violation <= 100.0 * settings.solver.feasibility_tolerance;
     if (constraints_met) last_round_met = round;
     if (round == settings.max_repair_rounds || !constraints_met) break;
-    const SurfaceDefects defects = find_surface_defects(result.outer, result.inner, band.fixed, thin, wall);
+    const SurfaceDefects defects = find_surface_defects(result.outer, result.inner, band.fixed, thin, wall, settings.threads);
     if (defects.empty()) {
       final_defects = defects;
       final_defects_known = true;
@@ -420,6 +427,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   verify_input.thin = thin;
   verify_input.bound_violation = bound_violation;
   verify_input.defects = final_defects_known ? &final_defects : nullptr;
+  verify_input.threads = settings.threads;
   const Verification verification = verify_offsets(verify_input);
   timings["verify"] = seconds_since(stage_start);
   timings["total"] = seconds_since(total_start);

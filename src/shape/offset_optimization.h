@@ -57,6 +57,11 @@ struct OptimizeSettings {
   AlParams solver = default_solver_params();
   // Report every outer iteration of the solver through the progress callback (`-v`).
   bool trace_solver = false;
+  // Threads per stage (1..64). With more than one, the basis is computed alongside the skeleton
+  // and every stage cuts its work into fixed parts; with one, everything runs on the calling
+  // thread, one stage after another (the lowest peak memory). The output is bit for bit the same
+  // for any count.
+  int threads = 2;
 
   static AlParams default_solver_params() {
     AlParams p;

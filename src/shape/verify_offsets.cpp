@@ -53,10 +53,10 @@ Mesh without_fixed_faces(const Mesh& mesh, const std::vector<char>& fixed) {
 }  // namespace
 
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
-                                    const std::vector<char>& thin, double wall) {
+                                    const std::vector<char>& thin, double wall, int threads) {
   // The two trees, then the two intersection searches, on two threads when there are: the same
   // result either way.
-  WorkerPool pool(2);
+  WorkerPool pool(std::min(std::max(threads, 1), 2));
   const bool any_fixed = std::find(fixed.begin(), fixed.end(), char{1}) != fixed.end();
   Mesh inner_kept, outer_kept;
   if (any_fixed) {
@@ -221,7 +221,7 @@ Verification verify_offsets(const VerifyInput& in) {
   // Validity of the solid.
   const std::size_t goal_failures = out.failures.size();
   const SurfaceDefects defects =
-      in.defects ? *in.defects : find_surface_defects(outer, inner, in.fixed, in.thin, in.wall);
+      in.defects ? *in.defects : find_surface_defects(outer, inner, in.fixed, in.thin, in.wall, in.threads);
   m["inner_self_intersections"] = static_cast<long long>(defects.self_intersection_pairs);
   m["inner_outer_crossings"] = static_cast<long long>(defects.crossing_pairs);
   const std::string more = defects.truncated ? "+" : "";

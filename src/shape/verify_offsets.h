@@ -25,8 +25,10 @@ struct SurfaceDefects {
   int thinnest_vertex = -1;
   bool empty() const { return intersecting_vertices.empty() && thin_wall_vertices.empty(); }
 };
+// `threads` (>= 1) splits the tree builds and the intersection searches; the result is the same
+// for any count.
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
-                                    const std::vector<char>& thin, double wall);
+                                    const std::vector<char>& thin, double wall, int threads = 2);
 
 struct VerifyInput {
   const Mesh* outer = nullptr;  // outer surface (the input itself without outer offsets)
@@ -40,6 +42,7 @@ struct VerifyInput {
   double bound_violation = 0.0; // largest violation of the enforced band, input units
   const SurfaceDefects* defects = nullptr;  // optional: find_surface_defects already run on
                                            // exactly these meshes and settings
+  int threads = 2;                          // for find_surface_defects when it runs here
 };
 
 struct Verification {

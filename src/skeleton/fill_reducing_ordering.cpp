@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <numeric>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 
 namespace offsetopt {
@@ -192,22 +193,27 @@ CholeskyCounts cholesky_counts(const SparseMatrix& pattern, const std::vector<in
 }
 
 FillReducingOrdering fill_reducing_ordering(const SparseMatrix& pattern, const Vertices& positions, const SparseMatrix& graph,
-                                           int hops) {
+                                           int hops, bool second_thread) {
   const bool try_dissection = positions.rows() == pattern.rows() && graph.rows() == pattern.rows() && hops >= 1;
-  // The two candidates are independent: nested dissection runs on a second thread.
+  // The two candidates are independent: nested dissection may run on a second thread.
   FillReducingOrdering nd;
+  bool dissection_failed = false;
+  auto dissect = [&] {
+    try {
+      nd.method = "nested_dissection";
+      nd.new_to_old = NestedDissection(pattern, graph, hops, positions).run();
+      nd.counts = cholesky_counts(pattern, nd.new_to_old);
+    } catch (...) {
+      dissection_failed = true;
+    }
+  };
   std::thread worker;
-  bool worker_failed = false;
-  if (try_dissection)
-    worker = std::thread([&] {
-      try {
-        nd.method = "nested_dissection";
-        nd.new_to_old = NestedDissection(pattern, graph, hops, positions).run();
-        nd.counts = cholesky_counts(pattern, nd.new_to_old);
-      } catch (...) {
-        worker_failed = true;
-      }
-    });
+  if (try_dissection && second_thread) {
+    try {
+      worker = std::thread(dissect);
+    } catch (const std::system_error&) {  // no thread to be had: dissect below, on this one
+    }
+  }
   FillReducingOrdering amd;
   try {
     amd.method = "amd";
@@ -218,7 +224,8 @@ FillReducingOrdering fill_reducing_ordering(const SparseMatrix& pattern, const V
     throw;
   }
   if (worker.joinable()) worker.join();
-  if (worker_failed) throw std::runtime_error("fill_reducing_ordering: nested dissection failed (out of memory?)");
+  else if (try_dissection) dissect();
+  if (dissection_failed) throw std::runtime_error("fill_reducing_ordering: nested dissection failed (out of memory?)");
   if (!try_dissection) return amd;
   return nd.counts.flops < amd.counts.flops ? nd : amd;
 }

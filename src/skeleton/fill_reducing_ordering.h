@@ -37,8 +37,10 @@ struct FillReducingOrdering {
 
 // `positions` gives one point per row of `pattern` (#rows by 3) and `graph` the mesh's 1-ring
 // adjacency (any symmetric pattern, e.g. the Laplacian's), such that `pattern` links exactly the
-// vertices at most `hops` edges apart; both are used by nested dissection only.
+// vertices at most `hops` edges apart; both are used by nested dissection only. With
+// `second_thread` nested dissection runs beside the minimum-degree ordering (the same result).
 FillReducingOrdering fill_reducing_ordering(const Eigen::SparseMatrix<double>& pattern, const Vertices& positions,
-                                           const Eigen::SparseMatrix<double>& graph, int hops);
+                                           const Eigen::SparseMatrix<double>& graph, int hops,
+                                           bool second_thread = true);
 
 }  // namespace offsetopt

@@ -52,6 +52,7 @@ void check_contraction_options(const ContractionOptions& o) {
   require(o.max_steps >= 1 && o.max_steps <= 100, "max_steps must be in [1, 100]");
   require(o.cotan_sine_floor > 0.0 && o.cotan_sine_floor < 1.0, "cotan_sine_floor must be in (0, 1)");
   require(o.area_ratio_floor > 0.0 && o.area_ratio_floor < 1.0, "area_ratio_floor must be in (0, 1)");
+  require(o.threads >= 1 && o.threads <= 256, "threads must be in [1, 256]");
 }
 
 const char* to_string(ContractionStatus status) {
@@ -90,7 +91,7 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
   {
     const Eigen::SparseMatrix<double> L0 = cotan_laplacian(normalised, F, cotan_options);
     const Eigen::SparseMatrix<double> pattern = L0 * L0;
-    FillReducingOrdering ordering = fill_reducing_ordering(pattern, normalised, L0, 2);
+    FillReducingOrdering ordering = fill_reducing_ordering(pattern, normalised, L0, 2, options.threads > 1);
     new_to_old = std::move(ordering.new_to_old);
     result.ordering = ordering.method;
     result.predicted_factor_flops = ordering.counts.flops;
@@ -114,6 +115,7 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
   Eigen::VectorXd attraction = Eigen::VectorXd::Constant(n, options.attraction_weight);
 
   SupernodalCholesky solver;
+  solver.set_thread_count(options.threads);
   bool analysed = false;
   result.status = ContractionStatus::step_cap;
   for (int step = 1; step <= options.max_steps; ++step) {

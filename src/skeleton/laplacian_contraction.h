@@ -62,6 +62,9 @@ struct ContractionOptions {
   // Guards (see above).
   double cotan_sine_floor = 1e-3;
   double area_ratio_floor = 1e-8;
+  // Threads for the ordering and the factorisations (1..256); the result is bit for bit the
+  // same for any count.
+  int threads = 2;
 };
 
 // Throws std::invalid_argument naming the first out-of-range field.

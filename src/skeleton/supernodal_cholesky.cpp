@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 
 namespace offsetopt {
@@ -334,14 +335,16 @@ bool SupernodalCholesky::factor_supernode(int s, const SparseMatrix& A, Workspac
     auto right_part = [&] {
       trailing.bottomRightCorner(rest - cut, rest - cut).selfadjointView<Eigen::Lower>().rankUpdate(panel.bottomRows(rest - cut), -1.0);
     };
+    std::thread helper;
     if (split_across_threads) {
-      std::thread helper(right_part);
-      left_part();
-      helper.join();
-    } else {
-      left_part();
-      right_part();
+      try {
+        helper = std::thread(right_part);
+      } catch (const std::system_error&) {  // no thread to be had: both parts on this one
+      }
     }
+    left_part();
+    if (helper.joinable()) helper.join();
+    else right_part();
   }
   if (ok && r > 0) {
     std::vector<double>& update = updates[u];
@@ -380,10 +383,16 @@ bool SupernodalCholesky::factorize(const SparseMatrix& A) {
     }
   };
   if (threads > 1) {
+    // Lists whose thread cannot be started run on this one afterwards (the same numbers).
     std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(run_list, t);
+    int started = 1;
+    try {
+      for (; started < threads; ++started) pool.emplace_back(run_list, started);
+    } catch (const std::system_error&) {
+    }
     run_list(0);
     for (auto& thread : pool) thread.join();
+    for (int t = started; t < threads; ++t) run_list(t);
   } else if (threads == 1) {
     run_list(0);
   }

@@ -157,6 +157,28 @@ TEST_CASE("two runs write byte-identical meshes and reports") {
   CHECK(ra == rb);
 }
 
+TEST_CASE("--threads 1 and --threads 3 write what the default two threads write") {
+  // One thread runs the basis after the skeleton and every stage unsplit; three split the offset
+  // field and the eigensolver differently again. The parts and their sums are fixed, so nothing
+  // may move by a bit.
+  const std::string options = "--goal stand-filled --fill-density 0.8 --outer";
+  const Outcome two = optimize("threads_2", "bottle.obj", options);
+  REQUIRE(two.exit_code == 0);
+  for (const char* count : {"1", "3"}) {
+    CAPTURE(count);
+    const std::string name = std::string("threads_") + count;
+    const Outcome other = optimize(name, "bottle.obj", options + " --threads " + count);
+    CHECK(other.exit_code == 0);
+    CHECK(read_file(other.solid) == read_file(two.solid));
+    CHECK(read_file(temp_dir() + "/" + name + "_inner.obj") == read_file(temp_dir() + "/threads_2_inner.obj"));
+    // The reports differ only in the output paths they name: --threads is not reported.
+    std::string report = read_file(temp_dir() + "/" + name + ".json");
+    for (std::size_t at = report.find(name); at != std::string::npos; at = report.find(name, at + 9))
+      report.replace(at, name.size(), "threads_2");
+    CHECK(report == read_file(temp_dir() + "/threads_2.json"));
+  }
+}
+
 TEST_CASE("a goal met within its tolerances but not the solver's is verified, with a warning that says so") {
   // k = 4 on the coarse top: the solver stops at a violation near 2e-5 of the diagonal, above
   // its 1e-8, but the spin goal's own tolerances (1e-4) hold on the written object.
@@ -181,4 +203,6 @@ TEST_CASE("usage errors exit 2 with one line") {
   CHECK(run(kBinary + " optimize " + kMeshes + "bottle.obj --goal stand --fix 'q>3' -o " + temp_dir() + "/u.obj") == 2);
   CHECK(run(kBinary + " optimize " + kMeshes + "bottle.obj --goal stand -o " + kMeshes + "bottle.obj") == 2);
   CHECK(run(kBinary + " optimize " + kMeshes + "sphere.obj --goal volume --target-volume 1e9 -o " + temp_dir() + "/u.obj") == 2);
+  CHECK(run(kBinary + " optimize " + kMeshes + "bottle.obj --goal stand --threads 0 -o " + temp_dir() + "/u.obj") == 2);
+  CHECK(run(kBinary + " optimize " + kMeshes + "bottle.obj --goal stand --threads 65 -o " + temp_dir() + "/u.obj") == 2);
 }

@@ -200,5 +200,6 @@ TEST_CASE("degenerate input and option checks") {
   rejects([](ContractionOptions& o) { o.max_steps = 0; });
   rejects([](ContractionOptions& o) { o.cotan_sine_floor = 0.0; });
   rejects([](ContractionOptions& o) { o.area_ratio_floor = 2.0; });
+  rejects([](ContractionOptions& o) { o.threads = 0; });
   CHECK_NOTHROW(check_contraction_options(ContractionOptions{}));
 }
