@@ -10,6 +10,9 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Restarts of the least-violation solve while each halves the violation (see the infeasibility
+// test in the outer loop).
+constexpr int kMaxLeastViolationRestarts = 10;
 
 double clamp_to(double v, double lo, double hi) { return std::min(hi, std::max(lo, v)); }
 
@@ -504,23 +507,42 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
     const bool clearly_infeasible = params.clear_violation_factor > 0.0 && stagnant >= 1 &&
                                     feas > params.clear_violation_factor * feas_tol;
     if (feas > feas_tol && (stagnant >= params.infeasibility_patience || clearly_infeasible || rho >= params.max_penalty)) {
-      LbfgsbParams lv = params.inner;
       // Relative to the violation: at a least-violation point J^T c vanishes while c does not, so
       // a tiny violation with a clear descent direction (|J^T c| ≫ tol |c|) is not stationary.
-      lv.gradient_tolerance = params.stationarity_tolerance * feas;
-      lv.relative_gradient_tolerance = 0.0;
-      lv.max_evaluations = std::max(1, std::min(lv.max_evaluations, params.max_evaluations - ev.count));
-      const LbfgsbResult least = lbfgsb_minimize(violation, x, lower, upper, lv);
-      evaluate_all(least.x);
-      const Measures at_least = measures();
-      const double least_feas = std::max(at_least.violation, at_least.scaled_violation);
+      // The tolerance is fixed for one L-BFGS-B run, so the run starts again from where it
+      // stopped, relative to the violation there, as long as the violation keeps halving: a
+      // problem whose violation fell tenfold in the first run is not shown infeasible by it (the
+      // per-vertex top: 6.4e-4 to 6.6e-5 in 3 iterations, then feasible).
+      Eigen::VectorXd least_x = x;
+      double least_feas = feas;
+      Measures at_least = meas;
+      double least_stationarity = sub.projected_gradient_norm;
+      for (int restart = 0; restart < kMaxLeastViolationRestarts; ++restart) {
+        LbfgsbParams lv = params.inner;
+        lv.gradient_tolerance = params.stationarity_tolerance * least_feas;
+        lv.relative_gradient_tolerance = 0.0;
+        lv.max_evaluations = std::max(1, std::min(lv.max_evaluations, params.max_evaluations - ev.count));
+        const LbfgsbResult least = lbfgsb_minimize(violation, least_x, lower, upper, lv);
+        evaluate_all(least.x);
+        const Measures now = measures();
+        const double now_feas = std::max(now.violation, now.scaled_violation);
+        const bool halved = now_feas <= 0.5 * least_feas;
+        if (now_feas <= least_feas) {
+          least_x = least.x;
+          at_least = now;
+          least_stationarity = least.projected_gradient_norm;
+        }
+        least_feas = std::min(least_feas, now_feas);
+        if (least_feas <= feas_tol || !halved || ev.count >= params.max_evaluations) break;
+      }
+      evaluate_all(least_x);
       if (least_feas > feas_tol) {
         // The multipliers stay those of the last subproblem; the violation is this point's.
-        res.stationarity = least.projected_gradient_norm;
+        res.stationarity = least_stationarity;
         return fill_result(AlStatus::Infeasible, at_least);
       }
       // A feasible point exists: continue from it.
-      x = least.x;
+      x = least_x;
       stagnant = 0;
       feas_prev = kInf;
     }
