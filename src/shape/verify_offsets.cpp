@@ -94,8 +94,9 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   TriangleBvh outer_whole;
   if (any_fixed) outer_whole = TriangleBvh(outer.V, outer.F);
   const TriangleBvh& outer_full = any_fixed ? outer_whole : outer_bvh;
-  // In vertex order on one thread: the thinnest wall found so far prunes every later search
-  // (split in halves, the second half searched 7x longer without the first half's bound).
+  // In vertex order on one thread: the thinnest wall found so far prunes every later search.
+  // Split in two halves, the second half starts without that bound: on the 100k-vertex bottle
+  // the halves on two threads took 0.22 s, one pass 0.055 s.
   d.thinnest_wall = std::numeric_limits<double>::infinity();
   for (Eigen::Index i = 0; i < inner.V.rows(); ++i) {
     const std::size_t u = static_cast<std::size_t>(i);

@@ -18,6 +18,8 @@
 #include <utility>
 #include <vector>
 
+#include "../temp_dir.h"
+
 #include "mesh/mesh.h"
 #include "util/format_double.h"
 
@@ -153,24 +155,6 @@ inline EdgeCensus edge_census(const Mesh& m) {
   }
   return out;
 }
-
-// A private temporary directory, removed with its contents at destruction.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "offsetopt_meshio_XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  std::string file(const std::string& name) const { return (std::filesystem::path(path_) / name).string(); }
-
- private:
-  std::string path_;
-};
 
 inline void write_file(const std::string& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary);

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "../temp_dir.h"
 #include "io/json.h"
 #include "mesh/read_raw_mesh.h"
 
@@ -38,14 +39,10 @@ std::string read_file(const std::string& path) {
   return s.str();
 }
 
-std::string temp_dir() {
-  static const std::string dir = [] {
-    char pattern[] = "/tmp/offsetopt-golden-XXXXXX";
-    const char* made = mkdtemp(pattern);
-    REQUIRE(made != nullptr);
-    return std::string(made);
-  }();
-  return dir;
+// Removed with everything in it when the test executable exits.
+const std::string& temp_dir() {
+  static const TempDir dir("offsetopt-golden");
+  return dir.path();
 }
 
 int run(const std::string& command) {

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "../temp_dir.h"
 #include "io/json.h"
 
 using offsetopt::Json;
@@ -19,14 +20,10 @@ namespace {
 const std::string kBinary = OFFSETOPT_BINARY;
 const std::string kMeshes = std::string(OFFSETOPT_SOURCE_DIR) + "/meshes/";
 
-std::string temp_dir() {
-  static const std::string dir = [] {
-    char pattern[] = "/tmp/offsetopt-optimize-XXXXXX";
-    const char* made = mkdtemp(pattern);
-    REQUIRE(made != nullptr);
-    return std::string(made);
-  }();
-  return dir;
+// Removed with everything in it when the test executable exits.
+const std::string& temp_dir() {
+  static const TempDir dir("offsetopt-optimize");
+  return dir.path();
 }
 
 int run(const std::string& command) {
