@@ -3,10 +3,11 @@
 #include <Eigen/OrderingMethods>
 #include <algorithm>
 #include <cstdint>
+#include <exception>
 #include <numeric>
 #include <stdexcept>
-#include <system_error>
-#include <thread>
+
+#include "spectral/worker_pool.h"
 
 namespace offsetopt {
 
@@ -195,36 +196,29 @@ CholeskyCounts cholesky_counts(const SparseMatrix& pattern, const std::vector<in
 FillReducingOrdering fill_reducing_ordering(const SparseMatrix& pattern, const Vertices& positions, const SparseMatrix& graph,
                                            int hops, bool second_thread) {
   const bool try_dissection = positions.rows() == pattern.rows() && graph.rows() == pattern.rows() && hops >= 1;
-  // The two candidates are independent: nested dissection may run on a second thread.
-  FillReducingOrdering nd;
+  // The two candidates are independent: with `second_thread` nested dissection runs beside the
+  // minimum-degree ordering (the pool runs both parts on this thread when it gets no other).
+  FillReducingOrdering nd, amd;
   bool dissection_failed = false;
-  auto dissect = [&] {
+  std::exception_ptr amd_error;
+  WorkerPool pool(try_dissection && second_thread ? 2 : 1);
+  pool.run_parts(try_dissection ? 2 : 1, [&](int part) {
     try {
-      nd.method = "nested_dissection";
-      nd.new_to_old = NestedDissection(pattern, graph, hops, positions).run();
-      nd.counts = cholesky_counts(pattern, nd.new_to_old);
+      if (part == 0) {
+        amd.method = "amd";
+        amd.new_to_old = amd_order(pattern);
+        amd.counts = cholesky_counts(pattern, amd.new_to_old);
+      } else {
+        nd.method = "nested_dissection";
+        nd.new_to_old = NestedDissection(pattern, graph, hops, positions).run();
+        nd.counts = cholesky_counts(pattern, nd.new_to_old);
+      }
     } catch (...) {
-      dissection_failed = true;
+      if (part == 0) amd_error = std::current_exception();
+      else dissection_failed = true;
     }
-  };
-  std::thread worker;
-  if (try_dissection && second_thread) {
-    try {
-      worker = std::thread(dissect);
-    } catch (const std::system_error&) {  // no thread to be had: dissect below, on this one
-    }
-  }
-  FillReducingOrdering amd;
-  try {
-    amd.method = "amd";
-    amd.new_to_old = amd_order(pattern);
-    amd.counts = cholesky_counts(pattern, amd.new_to_old);
-  } catch (...) {
-    if (worker.joinable()) worker.join();
-    throw;
-  }
-  if (worker.joinable()) worker.join();
-  else if (try_dissection) dissect();
+  });
+  if (amd_error) std::rethrow_exception(amd_error);
   if (dissection_failed) throw std::runtime_error("fill_reducing_ordering: nested dissection failed (out of memory?)");
   if (!try_dissection) return amd;
   return nd.counts.flops < amd.counts.flops ? nd : amd;
