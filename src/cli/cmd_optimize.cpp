@@ -60,7 +60,13 @@ const char* const kUsage =
     "  --fix REGION          keep the surface (an opening) where REGION holds: x>V, z<V, ... or\n"
     "                        sphere:X,Y,Z,R\n"
     "  --ground-tol T        ground contact tolerance (0.001 diag, >= 0)\n"
-    "  --no-repair-ring      repairs tighten only the vertices on folds, not their one-ring too\n"
+    "  --cavity MODE         auto | offset | contour (auto): the cavity written: the inner offset\n"
+    "                        surface (offset: the paper's, with repair rounds), the contoured\n"
+    "                        implicit cavity (contour: closed, embedded, the wall kept exactly), or\n"
+    "                        the offset surface when it verifies as it is and the contour otherwise\n"
+    "  --cavity-cells C      contour grid cells per wall thickness (2, 1.25..8)\n"
+    "  --no-repair-ring      --cavity offset: repairs tighten only the vertices on folds, not\n"
+    "                        their one-ring too\n"
     "  --threads N           threads per stage (2, 1..64); 1 runs the stages one after another\n"
     "                        on one thread (lowest memory). The output is the same for any N.\n"
     "  --quiet               no progress on stderr\n"
@@ -134,6 +140,12 @@ int run_optimize(const Args& args) {
       const std::string& value = cursor.value_of(arg);
       if (const std::string problem = parse_fix_region(value, settings.fix); !problem.empty())
         throw UsageError("--fix: " + problem);
+    } else if (arg == "--cavity") {
+      const std::string& value = cursor.value_of(arg);
+      if (!parse_cavity_mode(value, settings.cavity))
+        throw UsageError("--cavity must be auto, offset or contour, got '" + value + "'");
+    } else if (arg == "--cavity-cells") {
+      settings.cavity_cells_per_wall = parse_double(cursor.value_of(arg), arg, 1.25, 8.0);
     } else if (arg == "--ground-tol") {
       settings.ground_tol = parse_double(cursor.value_of(arg), arg, 0.0, big);
     } else if (arg == "--quiet") {

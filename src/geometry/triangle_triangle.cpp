@@ -3,6 +3,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "geometry/closest_point.h"
 
 namespace offsetopt {
 
@@ -99,9 +102,35 @@ bool canonical_second(const Vec3& p1, const Vec3& q1, const Vec3& r1, const Vec3
   return coplanar_triangles_intersect(p1, q1, r1, p2, q2, r2, normal1);
 }
 
+bool orientation_test(const Vec3& p1, const Vec3& q1, const Vec3& r1, const Vec3& p2, const Vec3& q2, const Vec3& r2);
+
 }  // namespace
 
 bool triangles_intersect(const Vec3& p1, const Vec3& q1, const Vec3& r1, const Vec3& p2, const Vec3& q2, const Vec3& r2) {
+  if (!orientation_test(p1, q1, r1, p2, q2, r2)) return false;
+  // The orientation test decides signs of determinants in doubles; where a corner of one lies
+  // exactly in the other's plane (contoured cavities put many corners on one grid plane) those
+  // signs can be rounding and report a contact between triangles a visible distance apart. Two
+  // closed triangles meet only where an edge of one meets the other: the pair counts when one of
+  // the six edge tests agrees, or when they are closer than rounding anyway.
+  const Vec3 first[3] = {p1, q1, r1}, second[3] = {p2, q2, r2};
+  for (int e = 0; e < 3; ++e) {
+    if (segment_intersects_triangle(first[e], first[(e + 1) % 3], p2, q2, r2)) return true;
+    if (segment_intersects_triangle(second[e], second[(e + 1) % 3], p1, q1, r1)) return true;
+  }
+  double size = 0.0, nearest = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) size = std::max(size, (first[a] - second[b]).norm());
+  for (int a = 0; a < 3; ++a) {
+    nearest = std::min(nearest, (closest_point_on_triangle(first[a], p2, q2, r2) - first[a]).norm());
+    nearest = std::min(nearest, (closest_point_on_triangle(second[a], p1, q1, r1) - second[a]).norm());
+  }
+  return nearest <= 1e-12 * size;
+}
+
+namespace {
+
+bool orientation_test(const Vec3& p1, const Vec3& q1, const Vec3& r1, const Vec3& p2, const Vec3& q2, const Vec3& r2) {
   const Vec3 normal2 = (p2 - r2).cross(q2 - r2);
   const double dp1 = (p1 - r2).dot(normal2), dq1 = (q1 - r2).dot(normal2), dr1 = (r1 - r2).dot(normal2);
   if (dp1 * dq1 > 0.0 && dp1 * dr1 > 0.0) return false;
@@ -132,6 +161,8 @@ bool triangles_intersect(const Vec3& p1, const Vec3& q1, const Vec3& r1, const V
   if (dr1 < 0.0) return canonical_second(r1, p1, q1, p2, r2, q2, dp2, dr2, dq2, normal1);
   return coplanar_triangles_intersect(p1, q1, r1, p2, q2, r2, normal1);
 }
+
+}  // namespace
 
 bool segment_intersects_triangle(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r) {
   const Vec3 normal = (q - p).cross(r - p);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <future>
 #include <limits>
+#include <memory>
 #include <set>
 #include <system_error>
 
@@ -13,6 +14,7 @@
 #include "mass/mass_properties.h"
 #include "mass/stability.h"
 #include "mass/volume_integrals.h"
+#include "shape/contour_cavity.h"
 #include "shape/offset_field.h"
 #include "shape/printable_solid.h"
 #include "shape/verify_offsets.h"
@@ -111,6 +113,24 @@ OptimizeResult failure(OptimizeStatus status, const std::string& message) {
 
 }  // namespace
 
+const char* to_string(CavityMode mode) {
+  switch (mode) {
+    case CavityMode::automatic: return "auto";
+    case CavityMode::offset: return "offset";
+    case CavityMode::contour: return "contour";
+  }
+  return "auto";
+}
+
+bool parse_cavity_mode(const std::string& text, CavityMode& mode) {
+  for (CavityMode m : {CavityMode::automatic, CavityMode::offset, CavityMode::contour})
+    if (text == to_string(m)) {
+      mode = m;
+      return true;
+    }
+  return false;
+}
+
 std::string check_optimize_settings(const OptimizeSettings& s) {
   if (s.k < 0) return "--k must be >= 1 or 'all'";
   auto finite_or_default = [](double v) { return std::isfinite(v); };
@@ -126,6 +146,12 @@ std::string check_optimize_settings(const OptimizeSettings& s) {
   if (!(s.ramp > 0.0)) return "ramp must be > 0";
   if (s.outer && s.bounds == BoundsMode::hard && s.k == 0) return "--k all with --bounds hard and --outer is not supported";
   if (s.threads < 1 || s.threads > 64) return "--threads must be in [1, 64]";
+  if (s.max_correction_rounds < 0 || s.max_correction_rounds > 20) return "correction rounds must be in [0, 20]";
+  ContourCavityOptions cavity;
+  cavity.wall = 1.0;
+  cavity.cells_per_wall = s.cavity_cells_per_wall;
+  cavity.margin_cells = s.cavity_margin_cells;
+  if (const std::string problem = check_contour_cavity_options(cavity); !problem.empty()) return "cavity: " + problem;
   return check_al_params(s.solver);
 }
 
@@ -303,8 +329,9 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   }
   timings["basis"] = basis_seconds;
 
-  // Solve; where the result is not printable (the inner surface folds onto itself or comes too
-  // close to the outside), tighten those vertices' bounds and solve again from there.
+  // Solve. With `--cavity offset`, where the offset surfaces are not printable (the inner surface
+  // folds onto itself or comes too close to the outside), tighten those vertices' bounds and solve
+  // again from there; the other modes write a contoured cavity instead (below).
   stage_start = Clock::now();
   ReducedOptions reduced_options;
   reduced_options.ramp_width = settings.ramp;
@@ -321,19 +348,14 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   Eigen::VectorXd x;
   int variables = 0, repair_rounds = 0, total_evaluations = 0;
   Json repairs = Json::array();
-  SurfaceDefects final_defects;  // of the final surfaces, when the last round looked for them
-  bool final_defects_known = false;
   int last_round_met = -1;  // the last round whose solve met the goal's constraints
-  for (int round = 0;; ++round) {
-    ReducedProblem problem(normalized, band, basis, k == 0, goal, reduced_options);
-    variables = problem.num_variables();
-    if (round == 0) {
-      x = problem.start_point();
-      say("solve: " + std::to_string(variables) + " variables, goal " + to_string(settings.goal));
-    }
+  bool constraints_met = false;
+  std::unique_ptr<ReducedProblem> problem;
+  const int max_repair_rounds = settings.cavity == CavityMode::offset ? settings.max_repair_rounds : 0;
+  auto warm_params = [&](int round) {
     AlParams solver_params = settings.solver;
     if (round > 0) {
-      // A repair round solves a nearby problem: start from the last round's multipliers and
+      // A later round solves a nearby problem: start from the last round's multipliers and
       // penalty (measured on the bottle with --outer: 3605 evaluations without, 1124 with), the
       // penalty capped, because a huge one makes the first subproblem ill-conditioned (roly-poly:
       // 523 evaluations uncapped, 270 capped at 1e3).
@@ -342,38 +364,48 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
       solver_params.initial_penalty = std::min(solved.penalty, settings.warm_penalty_cap);
     }
     if (settings.trace_solver)
-      solver_params.on_outer_iteration = [&](const AlIterationInfo& info) {
+      solver_params.on_outer_iteration = [&say, round](const AlIterationInfo& info) {
         say("  round " + std::to_string(round) + " outer " + std::to_string(info.outer_iteration) + ": f " +
             format_double(info.f) + ", violation " + format_double(info.max_violation) + ", stationarity " +
             format_double(info.stationarity) + ", penalty " + format_double(info.penalty) + ", inner " +
             to_string(info.inner_status) + " after " + std::to_string(info.inner_iterations) + " iterations, " +
             std::to_string(info.evaluations) + " evaluations");
       };
-    solved = augmented_lagrangian_minimize(problem.constrained_problem(), x, solver_params);
+    return solver_params;
+  };
+  // Solves from x and sets the surfaces; false when the goal's constraints are not met.
+  auto solve = [&](int round) {
+    solved = augmented_lagrangian_minimize(problem->constrained_problem(), x, warm_params(round));
     total_evaluations += solved.evaluations;
     if (solved.x.size() == x.size()) x = solved.x;  // an invalid problem leaves x where it was
-    final_eval = problem.evaluate(x);
+    final_eval = problem->evaluate(x);
     result.inner = input;
     result.outer = input;
     for (Eigen::Index i = 0; i < n; ++i) {
       result.inner.V.row(i) += (final_eval.inner_offset(i) / scale) * band.inner_direction.row(i);
       if (settings.outer) result.outer.V.row(i) += (final_eval.outer_offset(i) / scale) * band.outer_direction.row(i);
     }
+    // A problem the solver refuses (hard bounds with an empty box) or cannot evaluate at the start
+    // is not changed by tighter bounds or a correction either.
+    const bool solver_refused = solved.status == AlStatus::InvalidInput || solved.status == AlStatus::NumericalIssue;
+    constraints_met = !solver_refused && solved.status != AlStatus::Infeasible &&
+                      solved.max_violation <= 100.0 * settings.solver.feasibility_tolerance;
+    return constraints_met;
+  };
+  for (int round = 0;; ++round) {
+    problem = std::make_unique<ReducedProblem>(normalized, band, basis, k == 0, goal, reduced_options);
+    variables = problem->num_variables();
+    if (round == 0) {
+      x = problem->start_point();
+      say("solve: " + std::to_string(variables) + " variables, goal " + to_string(settings.goal));
+    }
     // Tightened bounds only shrink the feasible set: when the goal's constraints are not met,
     // repairs cannot help, and the report says why.
-    // A problem the solver refuses (hard bounds with an empty box) or cannot evaluate at the start
-    // is not changed by tighter bounds either.
-    const bool solver_refused = solved.status == AlStatus::InvalidInput || solved.status == AlStatus::NumericalIssue;
-    const bool constraints_met = !solver_refused && solved.status != AlStatus::Infeasible &&
-                                 solved.max_violation <= 100.0 * settings.solver.feasibility_tolerance;
-    if (constraints_met) last_round_met = round;
-    if (round == settings.max_repair_rounds || !constraints_met) break;
-    const SurfaceDefects defects = find_surface_defects(result.outer, result.inner, band.fixed, thin, wall, settings.threads);
-    if (defects.empty()) {
-      final_defects = defects;
-      final_defects_known = true;
-      break;
-    }
+    if (solve(round)) last_round_met = round;
+    if (round == max_repair_rounds || !constraints_met) break;
+    const SurfaceDefects defects =
+        find_surface_defects(result.outer, result.inner, band.fixed, thin, 0.5 * wall, settings.threads);
+    if (defects.empty()) break;
     ++repair_rounds;
     Json entry = Json::object();
     entry["intersecting_vertices"] = static_cast<long long>(defects.intersecting_vertices.size());
@@ -403,7 +435,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   }
   timings["solve"] = seconds_since(stage_start);
 
-  // Final surfaces in input units.
+  // The offset surfaces as they are, verified on the user's numbers.
   stage_start = Clock::now();
   double bound_violation = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -413,9 +445,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
     const double offset = final_eval.inner_offset(i) / scale;
     bound_violation = std::max({bound_violation, offset - upper, lower - offset});
   }
-  result.printable = printable_solid(result.outer, result.inner, band.fixed);
   result.skeleton = Mesh{contraction.V, input.F};
-
   VerifyInput verify_input;
   verify_input.outer = &result.outer;
   verify_input.inner = &result.inner;
@@ -424,12 +454,99 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   verify_input.ground_tol = ground_tol;
   verify_input.wall = wall;
   verify_input.fixed = band.fixed;
-  verify_input.thin = thin;
   verify_input.bound_violation = bound_violation;
-  verify_input.defects = final_defects_known ? &final_defects : nullptr;
   verify_input.threads = settings.threads;
-  const Verification verification = verify_offsets(verify_input);
+  Verification verification = verify_offsets(verify_input);
   timings["verify"] = seconds_since(stage_start);
+  Json cavity_json = Json::object();
+  cavity_json["mode"] = to_string(settings.cavity);
+  cavity_json["offset_goal_met"] = verification.goal_met;
+  cavity_json["offset_valid"] = verification.valid;
+  Json offset_failures = Json::array();
+  for (const auto& f : verification.failures) offset_failures.push_back(f);
+  cavity_json["offset_failures"] = offset_failures;
+  const bool offset_verified = verification.goal_met && verification.valid;
+  const bool want_contour = settings.cavity == CavityMode::contour ||
+                            (settings.cavity == CavityMode::automatic && !offset_verified);
+  std::string cavity_problem;
+  if (want_contour && fixed_count > 0) {
+    cavity_problem = "with an opening (--fix) only the offset surfaces can be written, and they do not verify";
+  } else if (want_contour) {
+    // The contoured cavity, corrected in moment space (DESIGN.md "The written cavity", step 4):
+    // the goal is solved again on the offset model's integrals plus the difference the contour
+    // made, warm-started, until the written solid verifies.
+    stage_start = Clock::now();
+    ContourCavityOptions cavity_options;
+    cavity_options.wall = wall;
+    cavity_options.cells_per_wall = settings.cavity_cells_per_wall;
+    cavity_options.margin_cells = settings.cavity_margin_cells;
+    cavity_options.threads = settings.threads;
+    Json rounds = Json::array();
+    double contour_seconds = 0.0;
+    for (int round = 0;; ++round) {
+      const auto contour_start = Clock::now();
+      const TriangleBvh outer_offset_bvh = settings.outer ? TriangleBvh(result.outer.V, result.outer.F) : TriangleBvh();
+      const ContourCavity contoured =
+          contour_cavity(result.outer, settings.outer ? outer_offset_bvh : bvh, result.inner, cavity_options);
+      contour_seconds += seconds_since(contour_start);
+      if (!contoured.ok) {
+        cavity_problem = "the cavity could not be contoured: " + contoured.message;
+        break;
+      }
+      Mesh framed = contoured.cavity;
+      for (Eigen::Index i = 0; i < framed.V.rows(); ++i) framed.V.row(i) = to_frame(framed.V.row(i).transpose()).transpose();
+      const Vector10d delta = volume_integrals(framed, Eigen::Vector3d::Zero()).values - final_eval.inner_integrals;
+      VerifyInput contour_input = verify_input;
+      contour_input.inner = &contoured.cavity;
+      contour_input.fixed.clear();
+      contour_input.bound_violation = 0.0;  // the band bounds the offset model, not the contour
+      verification = verify_offsets(contour_input);
+      Json entry = Json::object();
+      Json delta_json = Json::array();
+      for (int r = 0; r < 10; ++r) delta_json.push_back(delta(r));
+      entry["delta_in_frame"] = delta_json;
+      entry["void_volume_offset"] = final_eval.inner_integrals(kIntVolume) / (scale * scale * scale);
+      entry["void_volume_contour"] = (final_eval.inner_integrals(kIntVolume) + delta(kIntVolume)) / (scale * scale * scale);
+      entry["grid"] = Json::array_of({static_cast<double>(contoured.grid.nx), static_cast<double>(contoured.grid.ny),
+                                      static_cast<double>(contoured.grid.nz)});
+      entry["spacing"] = contoured.grid.spacing;
+      entry["contoured_cells"] = static_cast<long long>(contoured.active_cells);
+      entry["distance_nodes"] = static_cast<long long>(contoured.distance_nodes);
+      entry["shells"] = contoured.shells;
+      entry["shells_filled"] = contoured.shells_dropped;
+      entry["vertices_moved_for_wall"] = contoured.vertices_moved_for_wall;
+      entry["vertices"] = static_cast<long long>(contoured.cavity.V.rows());
+      entry["faces"] = static_cast<long long>(contoured.cavity.F.rows());
+      entry["goal_met"] = verification.goal_met;
+      entry["valid"] = verification.valid;
+      rounds.push_back(entry);
+      say("cavity round " + std::to_string(round) + ": " + std::to_string(contoured.active_cells) + " cells contoured, " +
+          std::to_string(contoured.shells) + " shells, goal " + (verification.goal_met ? "met" : "not met") + ", " +
+          (verification.valid ? "valid" : "not valid"));
+      result.inner = contoured.cavity;
+      // A correction cannot mend an invalid contour or a goal whose constraints the solver
+      // could not meet.
+      if ((verification.goal_met && verification.valid) || !verification.valid || !constraints_met ||
+          round == settings.max_correction_rounds)
+        break;
+      problem->set_inner_integral_shift(delta);
+      if (solve(round + 1)) last_round_met = round + 1;
+    }
+    cavity_json["rounds"] = rounds;
+    timings["contour"] = contour_seconds;
+    timings["correct"] = seconds_since(stage_start) - contour_seconds;
+  }
+  const bool contoured = want_contour && cavity_problem.empty();
+  cavity_json["written"] = contoured ? "contour" : "offset";
+  result.printable = contoured ? hollow_solid(result.outer, result.inner) : printable_solid(result.outer, result.inner, band.fixed);
+  if (!cavity_problem.empty()) {
+    verification.valid = false;
+    verification.failures.insert(verification.failures.begin(), cavity_problem);
+    Json failures = Json::array();
+    for (const auto& f : verification.failures) failures.push_back(f);
+    verification.metrics["failures"] = failures;
+    verification.metrics["valid"] = false;
+  }
   timings["total"] = seconds_since(total_start);
 
   // Report.
@@ -454,6 +571,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   params["ramp"] = settings.ramp;
   params["start_fraction"] = settings.start_fraction;
   params["repair_ring"] = settings.repair_ring;
+  params["cavity"] = to_string(settings.cavity);
   report["parameters"] = params;
   report["goal"] = goal_json;
   Json frame = Json::object();
@@ -512,6 +630,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   report["before"]["stability"] = Json::object();
   report["before"]["stability"]["com_margin"] = stability_before.com_margin;
   report["before"]["stability"]["stands"] = stability_before.stands;
+  report["cavity"] = cavity_json;
   report["after"] = verification.metrics;
   report["goal_met"] = verification.goal_met;
   report["valid"] = verification.valid;

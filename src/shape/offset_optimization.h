@@ -18,6 +18,14 @@
 
 namespace offsetopt {
 
+// Which cavity is written (DESIGN.md "The written cavity"): the smooth inner offset surface
+// (the paper's result, the input's connectivity), the contour of the implicit cavity
+// (shape/contour_cavity.h, corrected in moment space), or the offset surface when it verifies as
+// it is and the contour otherwise.
+enum class CavityMode { automatic, offset, contour };
+const char* to_string(CavityMode mode);
+bool parse_cavity_mode(const std::string& text, CavityMode& mode);
+
 struct OptimizeSettings {
   GoalKind goal = GoalKind::stand;
   int k = 36;                    // basis size; 0 means every vertex (`--k all`, paper eq. 1)
@@ -39,9 +47,17 @@ struct OptimizeSettings {
   double gap = 0.05;             // s: inner offsets stop at (1 - s) of the skeleton distance
   double ramp = 2e-3;            // τ of the smooth clamp, fraction of the diagonal
   double start_fraction = 0.5;   // start inside the band (see ReducedOptions)
-  // After a solve, vertices on folds of the inner surface get their upper bound multiplied by
-  // repair_shrink and vertices on too thin walls their lower bound raised by half the wall;
-  // then the problem is solved again, at most max_repair_rounds times.
+  CavityMode cavity = CavityMode::automatic;
+  // The contoured cavity: grid spacing wall / cavity_cells_per_wall, interpolation margin
+  // cavity_margin_cells · h (shape/contour_cavity.h); at most max_correction_rounds solves again
+  // with the contour's moments.
+  double cavity_cells_per_wall = 2.0;
+  double cavity_margin_cells = 0.5;
+  int max_correction_rounds = 6;
+  // `--cavity offset` only: after a solve, vertices on folds of the inner surface get their upper
+  // bound multiplied by repair_shrink and vertices on walls thinner than half the requested one
+  // their lower bound raised by half the wall; then the problem is solved again, at most
+  // max_repair_rounds times.
   int max_repair_rounds = 8;
   // The upper bound is lowered to rise at most this much per unit of surface distance, so
   // neighbouring vertices cannot stop at very different depths (a fold).

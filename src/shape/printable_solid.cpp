@@ -35,4 +35,21 @@ Mesh printable_solid(const Mesh& outer, const Mesh& inner, const std::vector<cha
   return solid;
 }
 
+Mesh hollow_solid(const Mesh& outer, const Mesh& cavity) {
+  Mesh solid;
+  const Eigen::Index n = outer.V.rows();
+  solid.V.resize(n + cavity.V.rows(), 3);
+  solid.V.topRows(n) = outer.V;
+  solid.V.bottomRows(cavity.V.rows()) = cavity.V;
+  solid.F.resize(outer.F.rows() + cavity.F.rows(), 3);
+  solid.F.topRows(outer.F.rows()) = outer.F;
+  for (Eigen::Index f = 0; f < cavity.F.rows(); ++f) {
+    const Eigen::Index row = outer.F.rows() + f;
+    solid.F(row, 0) = static_cast<int>(n) + cavity.F(f, 0);
+    solid.F(row, 1) = static_cast<int>(n) + cavity.F(f, 2);
+    solid.F(row, 2) = static_cast<int>(n) + cavity.F(f, 1);
+  }
+  return solid;
+}
+
 }  // namespace offsetopt

@@ -13,4 +13,8 @@ namespace offsetopt {
 // `outer` and `inner` have identical F; `fixed` has one flag per vertex (may be all zero).
 Mesh printable_solid(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed);
 
+// The outer surface plus every shell of a cavity of its own connectivity (normals out of the
+// void), each face reversed: one closed solid with closed cavities.
+Mesh hollow_solid(const Mesh& outer, const Mesh& cavity);
+
 }  // namespace offsetopt

@@ -274,7 +274,7 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
     inner_by_beta.topRows(R) = projected.middleRows(R, R);
     outer_by_beta.topRows(R) = projected.middleRows(2 * R, R);
   }
-  e.goal = evaluate_goal(goal_, e.outer_integrals, e.inner_integrals);
+  e.goal = evaluate_goal(goal_, e.outer_integrals, Vector10d(e.inner_integrals + inner_integral_shift_));
 
   const int nv = num_variables();
   auto chain = [&](const Eigen::Matrix<double, 1, 20>& weights) {
@@ -303,6 +303,11 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
     e.inequality_jacobian.row(r) = chain(e.goal.inequality_jacobian.row(r));
   cache_valid_ = true;
   return e;
+}
+
+void ReducedProblem::set_inner_integral_shift(const Vector10d& shift) {
+  inner_integral_shift_ = shift;
+  cache_valid_ = false;
 }
 
 Eigen::VectorXd ReducedProblem::start_point() const {

@@ -90,6 +90,11 @@ class ReducedProblem {
 
   Eigen::VectorXd start_point() const;
 
+  // A constant added to the inner surface's integrals before the goal reads them: the moment-space
+  // correction (DESIGN.md "The written cavity", step 4), the written cavity's integrals less the
+  // offset surface's. It does not depend on the variables, so no derivative changes.
+  void set_inner_integral_shift(const Vector10d& shift);
+
   // The problem for the augmented Lagrangian; it refers to *this, which must outlive the solve.
   ConstrainedProblem constrained_problem();
 
@@ -117,6 +122,7 @@ class ReducedProblem {
   int integral_rows_;                // goal_integral_rows(goal_)
   ReducedOptions options_;
   Vector10d fixed_outer_integrals_;  // the input's integrals, when there is no outer offset
+  Vector10d inner_integral_shift_ = Vector10d::Zero();
   Eigen::VectorXd outer_inward_limit_;  // per vertex, see the constructor
   Eigen::MatrixXd hard_matrix_;      // hard mode: the linear block
   Eigen::VectorXd hard_lower_, hard_upper_;

@@ -50,14 +50,33 @@ Mesh without_fixed_faces(const Mesh& mesh, const std::vector<char>& fixed) {
   return out;
 }
 
+// Directed edges without their opposite, and edges used more than once in one direction: 0 for a
+// closed, consistently oriented, edge-manifold mesh.
+long long unmatched_edges(const Mesh& mesh) {
+  std::vector<std::pair<int, int>> directed;
+  directed.reserve(static_cast<std::size_t>(3 * mesh.F.rows()));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) directed.emplace_back(mesh.F(f, c), mesh.F(f, (c + 1) % 3));
+  std::sort(directed.begin(), directed.end());
+  long long bad = 0;
+  for (std::size_t e = 0; e < directed.size(); ++e) {
+    if (e + 1 < directed.size() && directed[e + 1] == directed[e]) ++bad;
+    const std::pair<int, int> opposite(directed[e].second, directed[e].first);
+    if (!std::binary_search(directed.begin(), directed.end(), opposite)) ++bad;
+  }
+  return bad;
+}
+
 }  // namespace
 
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
-                                    const std::vector<char>& thin, double wall, int threads) {
+                                    const std::vector<char>& thin, double thin_below, int threads) {
   // The two trees, then the two intersection searches, on two threads when there are: the same
   // result either way.
   WorkerPool pool(std::min(std::max(threads, 1), 2));
   const bool any_fixed = std::find(fixed.begin(), fixed.end(), char{1}) != fixed.end();
+  auto is_fixed = [&](std::size_t u) { return !fixed.empty() && fixed[u]; };
+  auto is_thin = [&](std::size_t u) { return !thin.empty() && thin[u]; };
   Mesh inner_kept, outer_kept;
   if (any_fixed) {
     inner_kept = without_fixed_faces(inner, fixed);
@@ -100,17 +119,17 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   d.thinnest_wall = std::numeric_limits<double>::infinity();
   for (Eigen::Index i = 0; i < inner.V.rows(); ++i) {
     const std::size_t u = static_cast<std::size_t>(i);
-    if (fixed[u] || thin[u]) continue;
-    // Only distances below the thinnest so far or below half the wall matter: the search radius
+    if (is_fixed(u) || is_thin(u)) continue;
+    // Only distances below the thinnest so far or below thin_below matter: the search radius
     // prunes the BVH (same results as an unbounded search, measured 4x faster at 100k vertices).
-    const double radius = std::max(0.5 * wall, d.thinnest_wall);
+    const double radius = std::max(thin_below, d.thinnest_wall);
     const ClosestPoint c = closest_point(outer_full, inner.V.row(i).transpose(), radius);
     if (!c.found) continue;
     if (c.distance < d.thinnest_wall) {
       d.thinnest_wall = c.distance;
       d.thinnest_vertex = static_cast<int>(i);
     }
-    if (c.distance < 0.5 * wall) d.thin_wall_vertices.push_back(static_cast<int>(i));
+    if (c.distance < thin_below) d.thin_wall_vertices.push_back(static_cast<int>(i));
   }
   return d;
 }
@@ -221,8 +240,9 @@ Verification verify_offsets(const VerifyInput& in) {
 
   // Validity of the solid.
   const std::size_t goal_failures = out.failures.size();
-  const SurfaceDefects defects =
-      in.defects ? *in.defects : find_surface_defects(outer, inner, in.fixed, in.thin, in.wall, in.threads);
+  // The wall is met up to rounding: 1e-9 of it.
+  const double thin_below = in.wall * (1.0 - 1e-9);
+  const SurfaceDefects defects = find_surface_defects(outer, inner, in.fixed, {}, thin_below, in.threads);
   m["inner_self_intersections"] = static_cast<long long>(defects.self_intersection_pairs);
   m["inner_outer_crossings"] = static_cast<long long>(defects.crossing_pairs);
   const std::string more = defects.truncated ? "+" : "";
@@ -230,18 +250,19 @@ Verification verify_offsets(const VerifyInput& in) {
                 "the inner surface intersects itself (" + std::to_string(defects.self_intersection_pairs) + more + " face pairs)");
   check.require(defects.crossing_pairs == 0,
                 "the inner surface crosses the outer surface (" + std::to_string(defects.crossing_pairs) + more + " face pairs)");
-  int thin_count = 0;
-  for (char t : in.thin) thin_count += t ? 1 : 0;
   const bool measured = std::isfinite(defects.thinnest_wall);
+  const long long open_edges = unmatched_edges(inner);
+  m["cavity_unmatched_edges"] = open_edges;
+  check.require(open_edges == 0, "the cavity is not closed: " + std::to_string(open_edges) +
+                                     " of its edges are not shared by exactly two faces in opposite directions");
   m["requested_wall"] = in.wall;
   m["min_wall_measured"] = measured ? Json(defects.thinnest_wall) : Json();
   m["min_wall_vertex"] = defects.thinnest_vertex;
-  m["vertices_in_parts_left_solid"] = thin_count;
   m["largest_bound_violation"] = in.bound_violation;
   if (measured)
     check.require(defects.thin_wall_vertices.empty(), "the wall is " + format_double(defects.thinnest_wall) +
                                                           " thin at inner vertex " + std::to_string(defects.thinnest_vertex) +
-                                                          ", less than half the requested " + format_double(in.wall));
+                                                          ", less than the requested " + format_double(in.wall));
   check.require(in.bound_violation <= 1e-6 * diag, "the offsets leave their bounds by " + format_double(in.bound_violation));
   out.valid = out.failures.size() == goal_failures;
   m["goal_met"] = out.goal_met;

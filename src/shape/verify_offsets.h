@@ -14,8 +14,10 @@ namespace offsetopt {
 
 // Where the surfaces are not printable as they are: vertices of inner faces that intersect other
 // inner faces or cross the outer surface, and inner vertices closer to the outer surface than
-// half the wall (away from fixed vertices and parts left solid). The optimiser tightens the
-// bounds of these vertices and solves again.
+// `thin_below` (away from fixed vertices and parts left solid). With `--cavity offset` the
+// optimiser tightens the bounds of these vertices and solves again. `fixed` and `thin` are per
+// vertex of a shared connectivity (inner and outer offsets of one mesh), or empty when the inner
+// mesh is a cavity of its own.
 struct SurfaceDefects {
   std::vector<int> intersecting_vertices;  // sorted, unique
   std::vector<int> thin_wall_vertices;     // sorted
@@ -28,21 +30,19 @@ struct SurfaceDefects {
 // `threads` (>= 1) splits the tree builds and the intersection searches; the result is the same
 // for any count.
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
-                                    const std::vector<char>& thin, double wall, int threads = 2);
+                                    const std::vector<char>& thin, double thin_below, int threads = 2);
 
 struct VerifyInput {
   const Mesh* outer = nullptr;  // outer surface (the input itself without outer offsets)
-  const Mesh* inner = nullptr;  // inner surface, same connectivity
+  const Mesh* inner = nullptr;  // the cavity's shells, normals out of the void: the inner offset
+                                // surface (same connectivity as outer) or a contoured cavity
   GoalSpec goal;                // in input units (support polygon, axis point, target volume, ε)
   double diagonal = 1.0;        // input bounding-box diagonal
   double ground_tol = 0.0;      // input units
   double wall = 0.0;            // requested wall, input units
-  std::vector<char> fixed;      // per vertex
-  std::vector<char> thin;       // per vertex: band collapsed (a part thinner than two walls)
+  std::vector<char> fixed;      // per vertex of a shared connectivity (the opening), or empty
   double bound_violation = 0.0; // largest violation of the enforced band, input units
-  const SurfaceDefects* defects = nullptr;  // optional: find_surface_defects already run on
-                                           // exactly these meshes and settings
-  int threads = 2;                          // for find_surface_defects when it runs here
+  int threads = 2;              // for the intersection and wall searches; same result for any count
 };
 
 struct Verification {
@@ -54,8 +54,9 @@ struct Verification {
 
 // Tolerances (relative to the diagonal unless stated): centre-of-mass positions 1e-4,
 // inertia products 1e-4 of Izz, principal-axis tilt 0.5°, volume 1e-4 relative, buoyancy
-// balance 1e-3 of the mass; the measured wall at least half the requested one away from thin
-// parts; no self-intersection of the inner surface and no inner/outer crossing.
+// balance 1e-3 of the mass; the wall measured from every cavity vertex (but those of the opening,
+// which lie on the outer surface) to the outer surface at least the requested one (1e-9 relative
+// for rounding), no exemptions; no self-intersection of the cavity and no cavity/outer crossing.
 Verification verify_offsets(const VerifyInput& input);
 
 }  // namespace offsetopt

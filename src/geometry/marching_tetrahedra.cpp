@@ -1,0 +1,134 @@
+#include "geometry/marching_tetrahedra.h"
+
+#include <algorithm>
+#include <array>
+#include <unordered_map>
+
+#include <Eigen/Geometry>
+
+namespace offsetopt {
+
+namespace {
+
+// Cube corners as bit masks: x = 1, y = 2, z = 4. Kuhn tetrahedra: 0 -> a -> a|b -> 7 for every
+// order of the three axes, each stored with positive orientation.
+struct KuhnTable {
+  std::array<std::array<int, 4>, 6> tets;
+  KuhnTable() {
+    const int axes[6][3] = {{1, 2, 4}, {1, 4, 2}, {2, 1, 4}, {2, 4, 1}, {4, 1, 2}, {4, 2, 1}};
+    for (int t = 0; t < 6; ++t) {
+      std::array<int, 4> tet = {0, axes[t][0], axes[t][0] | axes[t][1], 7};
+      auto corner = [](int c) { return Eigen::Vector3d(c & 1, (c >> 1) & 1, (c >> 2) & 1); };
+      const Eigen::Vector3d a = corner(tet[0]);
+      const double orientation = (corner(tet[1]) - a).cross(corner(tet[2]) - a).dot(corner(tet[3]) - a);
+      if (orientation < 0) std::swap(tet[1], tet[2]);
+      tets[static_cast<std::size_t>(t)] = tet;
+    }
+  }
+};
+
+// An even permutation of (0, 1, 2, 3) that starts with `first` (and, when second >= 0, continues
+// with `second`): even permutations keep a positively oriented tetrahedron positive.
+std::array<int, 4> even_order(int first, int second) {
+  static const int starts[4][4] = {{0, 1, 2, 3}, {1, 0, 3, 2}, {2, 3, 0, 1}, {3, 2, 1, 0}};
+  std::array<int, 4> p = {starts[first][0], starts[first][1], starts[first][2], starts[first][3]};
+  if (second >= 0)
+    for (int r = 0; r < 3 && p[1] != second; ++r) {  // rotating the last three is even
+      const int keep = p[1];
+      p[1] = p[2];
+      p[2] = p[3];
+      p[3] = keep;
+    }
+  return p;
+}
+
+}  // namespace
+
+TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
+                               const std::function<double(std::int64_t)>& value, double min_fraction) {
+  static const KuhnTable kuhn;
+  TetContour out;
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> faces;
+  std::unordered_map<std::int64_t, int> edge_vertex;  // looked up only: the order never matters
+  const std::int64_t corner_offset[8] = {0,
+                                         1,
+                                         grid.nx,
+                                         1 + grid.nx,
+                                         grid.nx * grid.ny,
+                                         1 + grid.nx * grid.ny,
+                                         grid.nx + grid.nx * grid.ny,
+                                         1 + grid.nx + grid.nx * grid.ny};
+  for (const std::int64_t cell : cells) {
+    std::array<double, 8> values;
+    bool any_positive = false, any_negative = false;
+    for (int c = 0; c < 8; ++c) {
+      values[static_cast<std::size_t>(c)] = value(cell + corner_offset[c]);
+      (values[static_cast<std::size_t>(c)] >= 0.0 ? any_positive : any_negative) = true;
+    }
+    if (!any_positive || !any_negative) continue;
+    // The vertex on the edge between cube corners a and b (either order).
+    auto edge = [&](int a, int b) {
+      const int low = (a & b) == a ? a : b, high = low == a ? b : a;  // Kuhn edges: low ⊂ high
+      const std::int64_t key = (cell + corner_offset[low]) * 8 + (high ^ low);
+      const auto found = edge_vertex.find(key);
+      if (found != edge_vertex.end()) return found->second;
+      const bool a_positive = values[static_cast<std::size_t>(a)] >= 0.0;
+      const int p = a_positive ? a : b, q = a_positive ? b : a;
+      const double vp = values[static_cast<std::size_t>(p)], vq = values[static_cast<std::size_t>(q)];
+      const double t = std::clamp(vp / (vp - vq), min_fraction, 1.0 - min_fraction);
+      const std::int64_t np = cell + corner_offset[p], nq = cell + corner_offset[q];
+      const Eigen::Vector3d xp = grid.position(np), xq = grid.position(nq);
+      const int index = static_cast<int>(vertices.size());
+      vertices.push_back(xp + t * (xq - xp));
+      out.positive_node.push_back(np);
+      out.negative_node.push_back(nq);
+      out.fraction.push_back(t);
+      edge_vertex.emplace(key, index);
+      return index;
+    };
+    for (const auto& tet : kuhn.tets) {
+      int positives = 0, first_positive = -1, second_positive = -1, first_negative = -1;
+      for (int v = 0; v < 4; ++v) {
+        if (values[static_cast<std::size_t>(tet[static_cast<std::size_t>(v)])] >= 0.0) {
+          ++positives;
+          (first_positive < 0 ? first_positive : second_positive) = v;
+        } else if (first_negative < 0) {
+          first_negative = v;
+        }
+      }
+      if (positives == 0 || positives == 4) continue;
+      auto corner = [&](int local) { return tet[static_cast<std::size_t>(local)]; };
+      if (positives == 1 || positives == 3) {
+        const int lone = positives == 1 ? first_positive : first_negative;
+        const std::array<int, 4> p = even_order(lone, -1);
+        const int e1 = edge(corner(p[0]), corner(p[1])), e2 = edge(corner(p[0]), corner(p[2])),
+                  e3 = edge(corner(p[0]), corner(p[3]));
+        // One positive corner: the face opposite it, shrunk towards it, faces away from it.
+        if (positives == 1) faces.push_back({e1, e2, e3});
+        else faces.push_back({e1, e3, e2});
+        continue;
+      }
+      const std::array<int, 4> p = even_order(first_positive, second_positive);
+      const int x = corner(p[0]), y = corner(p[1]), z = corner(p[2]), w = corner(p[3]);
+      const int q0 = edge(x, w), q1 = edge(y, w), q2 = edge(y, z), q3 = edge(x, z);
+      const double d02 = (vertices[static_cast<std::size_t>(q0)] - vertices[static_cast<std::size_t>(q2)]).squaredNorm();
+      const double d13 = (vertices[static_cast<std::size_t>(q1)] - vertices[static_cast<std::size_t>(q3)]).squaredNorm();
+      if (d02 <= d13) {
+        faces.push_back({q0, q1, q2});
+        faces.push_back({q0, q2, q3});
+      } else {
+        faces.push_back({q0, q1, q3});
+        faces.push_back({q1, q2, q3});
+      }
+    }
+  }
+  out.mesh.V.resize(static_cast<Eigen::Index>(vertices.size()), 3);
+  for (std::size_t v = 0; v < vertices.size(); ++v) out.mesh.V.row(static_cast<Eigen::Index>(v)) = vertices[v].transpose();
+  out.mesh.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (int c = 0; c < 3; ++c) out.mesh.F(static_cast<Eigen::Index>(f), c) = faces[f][static_cast<std::size_t>(c)];
+  return out;
+}
+
+}  // namespace offsetopt

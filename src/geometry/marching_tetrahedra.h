@@ -1,0 +1,41 @@
+// Marching tetrahedra on a regular grid (Doi and Koide 1991; Treece, Prager and Gee 1999): the
+// boundary of { value >= 0 } over the cells listed, each cube cut into the six Kuhn tetrahedra
+// around its main diagonal. Unlike marching cubes there is no ambiguous case, and the Kuhn cut is
+// the same in every cube, so neighbouring cubes cut their common face the same way. A value
+// equal to 0 counts as positive, so no vertex ever sits on a node.
+//
+// What the output is, whatever the values (tests/geometry/test_marching_tetrahedra.cpp):
+// - every vertex lies strictly inside one grid edge, between a positive and a negative node, and
+//   is shared by every triangle that uses that edge, so every shell is closed and 2-manifold;
+// - triangles are oriented with their right-hand normal pointing from the positive side to the
+//   negative side (out of { value >= 0 });
+// - any placement of the vertices strictly inside their edges keeps the surface embedded (each
+//   triangle stays inside its tetrahedron, which only shares faces with the others), which is why
+//   a caller may move a vertex along its edge afterwards (the cavity does, to keep the wall).
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "geometry/node_grid.h"
+#include "mesh/mesh.h"
+
+namespace offsetopt {
+
+struct TetContour {
+  Mesh mesh;
+  // Per vertex: the edge it lies on, as its positive node and its negative node.
+  std::vector<std::int64_t> positive_node, negative_node;
+  std::vector<double> fraction;  // per vertex: t of positive + t (negative - positive)
+};
+
+// `cells`: lowest-node indices of the cells to contour, ascending; every cell whose eight nodes do
+// not all have the same sign must be listed (others may be). `value(node)` is asked for the nodes
+// of listed cells. The vertex on an edge is at the linear zero crossing, its fraction t clamped
+// to [min_fraction, 1 - min_fraction] (0 < min_fraction < 0.5), so no triangle degenerates.
+// Vertices are numbered in the order the cells, tetrahedra and edges are visited: the output is a
+// function of the input alone.
+TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
+                               const std::function<double(std::int64_t)>& value, double min_fraction = 1e-3);
+
+}  // namespace offsetopt

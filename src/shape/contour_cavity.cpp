@@ -1,0 +1,277 @@
+#include "shape/contour_cavity.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "geometry/closest_point.h"
+#include "geometry/grid_winding.h"
+#include "geometry/marching_tetrahedra.h"
+#include "spectral/worker_pool.h"
+
+namespace offsetopt {
+
+namespace {
+
+constexpr double kMinFraction = 1e-3;  // marching tetrahedra: how close to a node a vertex may sit
+constexpr int kBlock = 4;              // nodes per block side in the distance pass
+constexpr int kParts = 2;              // every parallel loop is cut into this many fixed parts
+
+Aabb mesh_box(const Mesh& mesh) {
+  Aabb box;
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) box.extend(mesh.V.row(i).transpose());
+  return box;
+}
+
+// Connected shells of a closed mesh (faces joined through shared vertices), numbered by their
+// lowest face; per face the shell.
+std::vector<int> shell_of_faces(const Mesh& mesh, int& shell_count) {
+  std::vector<int> parent(static_cast<std::size_t>(mesh.V.rows()));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int v) {
+    while (parent[static_cast<std::size_t>(v)] != v) {
+      parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
+      v = parent[static_cast<std::size_t>(v)];
+    }
+    return v;
+  };
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 1; c < 3; ++c) {
+      const int a = find(mesh.F(f, 0)), b = find(mesh.F(f, c));
+      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    }
+  std::vector<int> shell_of_root(parent.size(), -1), shell(static_cast<std::size_t>(mesh.F.rows()));
+  shell_count = 0;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    int& id = shell_of_root[static_cast<std::size_t>(find(mesh.F(f, 0)))];
+    if (id < 0) id = shell_count++;
+    shell[static_cast<std::size_t>(f)] = id;
+  }
+  return shell;
+}
+
+}  // namespace
+
+std::string check_contour_cavity_options(const ContourCavityOptions& o) {
+  if (!(o.wall > 0.0) || !std::isfinite(o.wall)) return "the wall must be > 0";
+  if (!(o.cells_per_wall >= 1.25 && o.cells_per_wall <= 8.0)) return "cells per wall must be in [1.25, 8]";
+  if (!(o.margin_cells >= 0.25 && o.margin_cells <= 2.0)) return "the margin must be in [0.25, 2] cells";
+  if (o.max_nodes < 1000) return "the node cap must be >= 1000";
+  if (!(o.min_shell_fraction >= 0.0 && o.min_shell_fraction < 1.0)) return "the shell fraction must be in [0, 1)";
+  if (o.threads < 1 || o.threads > 64) return "threads must be in [1, 64]";
+  return "";
+}
+
+ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Mesh& inner,
+                             const ContourCavityOptions& options) {
+  ContourCavity out;
+  if (const std::string problem = check_contour_cavity_options(options); !problem.empty()) {
+    out.message = problem;
+    return out;
+  }
+  const double wall = options.wall;
+  Aabb box = mesh_box(inner);
+  const Aabb outer_box = mesh_box(outer);
+  box.lo = box.lo.cwiseMax(outer_box.lo);
+  box.hi = box.hi.cwiseMin(outer_box.hi);
+  out.ok = true;
+  if (box.empty() || inner.F.rows() == 0) return out;  // no void
+
+  // The spacing: wall / cells_per_wall, coarser when the box would need too many nodes. A grid
+  // edge (at most √3 h) must stay shorter than wall + c·h, or a contoured triangle could reach
+  // the outer surface.
+  double h = wall / options.cells_per_wall;
+  const Eigen::Vector3d extent = box.hi - box.lo;
+  auto nodes_for = [&](double spacing) {
+    double count = 1.0;
+    for (int a = 0; a < 3; ++a) count *= std::ceil(extent(a) / spacing) + 6.0;
+    return count;
+  };
+  for (int grow = 0; grow < 60 && nodes_for(h) > static_cast<double>(options.max_nodes); ++grow) h *= 1.05;
+  if (!(std::sqrt(3.0) * h < wall + options.margin_cells * h) || nodes_for(h) > static_cast<double>(options.max_nodes)) {
+    out.ok = false;
+    out.message = "the cavity grid would need more than " + std::to_string(options.max_nodes) +
+                  " nodes at a spacing that keeps the wall";
+    return out;
+  }
+  const double margin = options.margin_cells * h;
+  NodeGrid& grid = out.grid;
+  grid.spacing = h;
+  // Offsets by odd fractions of h: grid rows and nodes then miss the round coordinates of CAD
+  // meshes (the tie-breaking in grid_winding makes such hits correct anyway, but rarer is cheaper).
+  grid.origin = box.lo - Eigen::Vector3d(2.2371, 2.3119, 2.4243) * h;
+  grid.nx = static_cast<std::int64_t>(std::ceil(extent.x() / h)) + 6;
+  grid.ny = static_cast<std::int64_t>(std::ceil(extent.y() / h)) + 6;
+  grid.nz = static_cast<std::int64_t>(std::ceil(extent.z() / h)) + 6;
+  const std::int64_t node_count = grid.node_count();
+
+  WorkerPool pool(std::max(1, std::min(options.threads, kParts)));
+  // Inside the outer surface and inside the inner one: the candidates for the cavity.
+  const std::vector<std::int8_t> outer_winding = grid_winding(outer, grid, options.threads);
+  const std::vector<std::int8_t> inner_winding = grid_winding(inner, grid, options.threads);
+  std::vector<std::int8_t> sign(static_cast<std::size_t>(node_count));  // becomes 1: cavity
+  for (std::int64_t v = 0; v < node_count; ++v)
+    sign[static_cast<std::size_t>(v)] = outer_winding[static_cast<std::size_t>(v)] >= 1 && inner_winding[static_cast<std::size_t>(v)] >= 1;
+
+  // Distance pass: a candidate stays cavity when d_out >= wall + c·h. One query per block of 4³
+  // nodes decides most of them by the Lipschitz bound.
+  const std::int64_t bx = (grid.nx + kBlock - 1) / kBlock, by = (grid.ny + kBlock - 1) / kBlock,
+                     bz = (grid.nz + kBlock - 1) / kBlock;
+  const double level = wall + margin;
+  std::int64_t per_node[kParts] = {0, 0};
+  pool.run_parts(kParts, [&](int part) {
+    for (std::int64_t kb = split_point(bz, kParts, part); kb < split_point(bz, kParts, part + 1); ++kb)
+      for (std::int64_t jb = 0; jb < by; ++jb)
+        for (std::int64_t ib = 0; ib < bx; ++ib) {
+          const std::int64_t i0 = ib * kBlock, j0 = jb * kBlock, k0 = kb * kBlock;
+          const std::int64_t i1 = std::min(i0 + kBlock, grid.nx), j1 = std::min(j0 + kBlock, grid.ny),
+                             k1 = std::min(k0 + kBlock, grid.nz);
+          bool any = false;
+          for (std::int64_t k = k0; k < k1 && !any; ++k)
+            for (std::int64_t j = j0; j < j1 && !any; ++j)
+              for (std::int64_t i = i0; i < i1 && !any; ++i) any = sign[static_cast<std::size_t>(grid.index(i, j, k))] != 0;
+          if (!any) continue;
+          const Eigen::Vector3d lo(grid.x(i0), grid.y(j0), grid.z(k0)), hi(grid.x(i1 - 1), grid.y(j1 - 1), grid.z(k1 - 1));
+          const double half_diagonal = 0.5 * (hi - lo).norm();
+          const ClosestPoint centre = closest_point(outer_bvh, 0.5 * (lo + hi), level + half_diagonal);
+          if (!centre.found) continue;  // every node of the block is further than the level
+          const bool all_near = centre.distance + half_diagonal < level;
+          for (std::int64_t k = k0; k < k1; ++k)
+            for (std::int64_t j = j0; j < j1; ++j)
+              for (std::int64_t i = i0; i < i1; ++i) {
+                std::int8_t& s = sign[static_cast<std::size_t>(grid.index(i, j, k))];
+                if (!s) continue;
+                if (all_near) {
+                  s = 0;
+                  continue;
+                }
+                ++per_node[part];
+                if (closest_point(outer_bvh, Eigen::Vector3d(grid.x(i), grid.y(j), grid.z(k)), level).found) s = 0;
+              }
+        }
+  });
+  out.distance_nodes = per_node[0] + per_node[1];
+
+  // Cells whose nodes disagree, in index order.
+  std::vector<std::int64_t> cells_part[kParts];
+  pool.run_parts(kParts, [&](int part) {
+    for (std::int64_t k = split_point(grid.nz - 1, kParts, part); k < split_point(grid.nz - 1, kParts, part + 1); ++k)
+      for (std::int64_t j = 0; j + 1 < grid.ny; ++j)
+        for (std::int64_t i = 0; i + 1 < grid.nx; ++i) {
+          const std::int64_t c = grid.index(i, j, k);
+          const std::int8_t s0 = sign[static_cast<std::size_t>(c)];
+          bool mixed = false;
+          for (int corner = 1; corner < 8 && !mixed; ++corner) {
+            const std::int64_t n = c + (corner & 1) + ((corner >> 1) & 1) * grid.nx + ((corner >> 2) & 1) * grid.nx * grid.ny;
+            mixed = sign[static_cast<std::size_t>(n)] != s0;
+          }
+          if (mixed) cells_part[part].push_back(c);
+        }
+  });
+  std::vector<std::int64_t> cells = std::move(cells_part[0]);
+  cells.insert(cells.end(), cells_part[1].begin(), cells_part[1].end());
+  out.active_cells = static_cast<std::int64_t>(cells.size());
+
+  // φ at the nodes of those cells. Distances are capped a little beyond where they matter for
+  // the interpolation; the sign always comes from the passes above.
+  std::vector<std::int64_t> nodes;
+  nodes.reserve(cells.size() * 4);
+  for (const std::int64_t c : cells)
+    for (int corner = 0; corner < 8; ++corner)
+      nodes.push_back(c + (corner & 1) + ((corner >> 1) & 1) * grid.nx + ((corner >> 2) & 1) * grid.nx * grid.ny);
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  const TriangleBvh inner_bvh(inner.V, inner.F);
+  std::vector<double> phi(nodes.size());
+  const double cap = 2.0 * h;
+  pool.run_parts(kParts, [&](int part) {
+    const long count = static_cast<long>(nodes.size());
+    for (long n = split_point(count, kParts, part); n < split_point(count, kParts, part + 1); ++n) {
+      const std::int64_t node = nodes[static_cast<std::size_t>(n)];
+      const Eigen::Vector3d p = grid.position(node);
+      const ClosestPoint to_outer = closest_point(outer_bvh, p, level + cap);
+      const double d_out = to_outer.found ? to_outer.distance : level + cap;
+      const double signed_out = outer_winding[static_cast<std::size_t>(node)] >= 1 ? d_out : -d_out;
+      const ClosestPoint to_inner = closest_point(inner_bvh, p, cap);
+      const double d_in = to_inner.found ? to_inner.distance : cap;
+      const double signed_in = inner_winding[static_cast<std::size_t>(node)] >= 1 ? d_in : -d_in;
+      double value = std::min(signed_out - level, signed_in);
+      if (sign[static_cast<std::size_t>(node)]) value = std::max(value, 0.0);
+      else value = std::min(value, -1e-9 * h);
+      phi[static_cast<std::size_t>(n)] = value;
+    }
+  });
+  const auto value_of = [&](std::int64_t node) {
+    const auto it = std::lower_bound(nodes.begin(), nodes.end(), node);
+    return phi[static_cast<std::size_t>(it - nodes.begin())];
+  };
+  TetContour contour = marching_tetrahedra(grid, cells, value_of, kMinFraction);
+
+  // The wall, exactly, at every vertex: move it along its edge towards the cavity node.
+  int moved[kParts] = {0, 0};
+  pool.run_parts(kParts, [&](int part) {
+    const long count = static_cast<long>(contour.mesh.V.rows());
+    for (long v = split_point(count, kParts, part); v < split_point(count, kParts, part + 1); ++v) {
+      const Eigen::Vector3d p = grid.position(contour.positive_node[static_cast<std::size_t>(v)]);
+      const Eigen::Vector3d q = grid.position(contour.negative_node[static_cast<std::size_t>(v)]);
+      double good = kMinFraction, bad = contour.fraction[static_cast<std::size_t>(v)];
+      if (!closest_point(outer_bvh, p + bad * (q - p), wall).found) continue;
+      for (int step = 0; step < 40; ++step) {
+        const double mid = 0.5 * (good + bad);
+        (closest_point(outer_bvh, p + mid * (q - p), wall).found ? bad : good) = mid;
+      }
+      contour.mesh.V.row(v) = (p + good * (q - p)).transpose();
+      ++moved[part];
+    }
+  });
+  out.vertices_moved_for_wall = moved[0] + moved[1];
+
+  // Shells: keep those that enclose void of some size.
+  int shell_count = 0;
+  const std::vector<int> shell = shell_of_faces(contour.mesh, shell_count);
+  std::vector<double> volume(static_cast<std::size_t>(shell_count), 0.0);
+  const Eigen::Vector3d o = grid.origin;
+  for (Eigen::Index f = 0; f < contour.mesh.F.rows(); ++f) {
+    const Eigen::Vector3d a = contour.mesh.V.row(contour.mesh.F(f, 0)).transpose() - o;
+    const Eigen::Vector3d b = contour.mesh.V.row(contour.mesh.F(f, 1)).transpose() - o;
+    const Eigen::Vector3d c = contour.mesh.V.row(contour.mesh.F(f, 2)).transpose() - o;
+    volume[static_cast<std::size_t>(shell[static_cast<std::size_t>(f)])] += a.dot(b.cross(c)) / 6.0;
+  }
+  double total = 0.0;
+  for (double v : volume) total += std::max(v, 0.0);
+  std::vector<char> keep(volume.size(), 0);
+  for (std::size_t s = 0; s < volume.size(); ++s) {
+    keep[s] = volume[s] > options.min_shell_fraction * total && volume[s] > 0.0;
+    if (keep[s]) ++out.shells;
+    else {
+      ++out.shells_dropped;
+      out.dropped_volume += volume[s];
+    }
+  }
+  std::vector<int> new_index(static_cast<std::size_t>(contour.mesh.V.rows()), -1);
+  int vertex_count = 0, face_count = 0;
+  for (Eigen::Index f = 0; f < contour.mesh.F.rows(); ++f) {
+    if (!keep[static_cast<std::size_t>(shell[static_cast<std::size_t>(f)])]) continue;
+    ++face_count;
+    for (int c = 0; c < 3; ++c) {
+      int& index = new_index[static_cast<std::size_t>(contour.mesh.F(f, c))];
+      if (index < 0) index = vertex_count++;
+    }
+  }
+  out.cavity.V.resize(vertex_count, 3);
+  out.cavity.F.resize(face_count, 3);
+  for (Eigen::Index v = 0; v < contour.mesh.V.rows(); ++v)
+    if (new_index[static_cast<std::size_t>(v)] >= 0) out.cavity.V.row(new_index[static_cast<std::size_t>(v)]) = contour.mesh.V.row(v);
+  int row = 0;
+  for (Eigen::Index f = 0; f < contour.mesh.F.rows(); ++f) {
+    if (!keep[static_cast<std::size_t>(shell[static_cast<std::size_t>(f)])]) continue;
+    for (int c = 0; c < 3; ++c) out.cavity.F(row, c) = new_index[static_cast<std::size_t>(contour.mesh.F(f, c))];
+    ++row;
+  }
+  return out;
+}
+
+}  // namespace offsetopt

@@ -1,0 +1,64 @@
+// The written cavity, valid by construction (DESIGN.md "The written cavity"): the optimised inner
+// offset surface may fold, cross itself or cross the outer surface, and keeps no wall where parts
+// are thin, so the cavity that is written is the contour of
+//   φ(p) = min( d_out(p) − wall − c·h ,  s_in(p) ),
+// d_out the distance to the outer surface (positive inside it), s_in the distance to the inner
+// offset surface with the sign of its winding number (inside where w >= 1), h the grid spacing,
+// by marching tetrahedra (geometry/marching_tetrahedra.h) over the cells where φ changes sign.
+// Prusa's SLA hollowing contours a level set of the interior in the same spirit.
+//
+// Why every output is printable (tests/shape/test_contour_cavity.cpp):
+// - the shells are closed, embedded, oriented 2-manifolds (marching tetrahedra);
+// - a node counts as cavity only when d_out >= wall + c·h, and every contoured triangle lies in a
+//   tetrahedron (diameter √3·h < wall + c·h) with such a node, so no shell reaches the outer
+//   surface; each vertex is then moved along its grid edge, towards the cavity node, until its
+//   exact distance to the outer surface is at least `wall` (bisection on the edge, whose cavity
+//   end has wall + c·h), so the wall holds at every vertex exactly;
+// - parts thinner than two walls have no node with d_out >= wall + c·h: they stay solid;
+// - shells enclosing less than min_shell_fraction of the void, and shells that bound an island of
+//   material inside the void (negative volume), are dropped: the specks are filled, the islands
+//   join the void.
+// Cost: node signs from one line per grid row (geometry/grid_winding.h), distances only in blocks
+// of 4³ nodes that the Lipschitz bound cannot decide (|φ(centre)| > half the block's diagonal),
+// exact values only at the nodes of cells that change sign.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "geometry/bvh.h"
+#include "geometry/node_grid.h"
+#include "mesh/mesh.h"
+
+namespace offsetopt {
+
+struct ContourCavityOptions {
+  double wall = 0.0;               // the wall to keep, mesh units, > 0
+  double cells_per_wall = 2.0;     // h = wall / cells_per_wall, in [1.25, 8]
+  double margin_cells = 0.5;       // c, in [0.25, 2]
+  std::int64_t max_nodes = std::int64_t{1} << 25;  // h grows when the box needs more nodes
+  double min_shell_fraction = 1e-3;  // shells below this fraction of the void are filled
+  int threads = 2;                 // 1..64; the result is the same for any count
+};
+
+// Empty when the options are valid, else what is wrong.
+std::string check_contour_cavity_options(const ContourCavityOptions& options);
+
+struct ContourCavity {
+  bool ok = false;
+  std::string message;             // why not, when !ok
+  Mesh cavity;                     // closed shells, normals out of the void (into the material)
+  NodeGrid grid;
+  std::int64_t active_cells = 0;   // cells where φ changes sign (the contoured ones)
+  std::int64_t distance_nodes = 0; // nodes whose distance to the outer surface was computed one by one
+  int shells = 0;                  // kept
+  int shells_dropped = 0;
+  double dropped_volume = 0.0;     // signed sum of the dropped shells' volumes
+  int vertices_moved_for_wall = 0; // moved along their edge to keep the wall exactly
+};
+
+// `outer` is the closed outer surface and `outer_bvh` its tree; `inner` the inner offset surface
+// (closed as a mesh, possibly folded or crossing `outer`). Both in the same units as the wall.
+ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Mesh& inner,
+                             const ContourCavityOptions& options);
+
+}  // namespace offsetopt
