@@ -175,7 +175,10 @@ bool segment_intersects_triangle(const Vec3& a, const Vec3& b, const Vec3& p, co
   const double on_plane = 1e-12 * normal.norm() * size;
   const bool a_on = std::fabs(da) <= on_plane, b_on = std::fabs(db) <= on_plane;
   if (!a_on && !b_on && ((da > 0.0 && db > 0.0) || (da < 0.0 && db < 0.0))) return false;
-  if (a_on && b_on) {
+  // Where both ends lie within 1e-6 of the segment's length from the plane (coplanar cavity
+  // triangles along a flat wall), signs across the plane are rounding: decide in 2-D as well.
+  const bool nearly_in_plane = std::max(std::fabs(da), std::fabs(db)) < 1e-6 * normal.norm() * (b - a).norm();
+  if ((a_on && b_on) || nearly_in_plane) {
     const int axis = dominant_axis(normal);
     const Vec2 a2 = project(a, axis), b2 = project(b, axis);
     const Vec2 t[3] = {project(p, axis), project(q, axis), project(r, axis)};
@@ -191,7 +194,17 @@ bool segment_intersects_triangle(const Vec3& a, const Vec3& b, const Vec3& p, co
   const double s3 = ab.dot((p - a).cross(r - a));
   const bool has_negative = s1 < 0 || s2 < 0 || s3 < 0;
   const bool has_positive = s1 > 0 || s2 > 0 || s3 > 0;
-  return !(has_negative && has_positive);
+  if (has_negative && has_positive) return false;
+  // The signs above are rounding where the crossing point is near an edge of the triangle or the
+  // segment's end is near its plane (grid-aligned corners of a contoured cavity): construct the
+  // crossing point and measure. Where the segment is steep enough for that point to be accurate
+  // (sine of the angle to the plane >= 1e-6) a point clearly off the triangle is no contact.
+  const double across = std::fabs(da - db);
+  if (across >= 1e-6 * normal.norm() * ab.norm() && across > 0.0) {
+    const Vec3 crossing = a + (da / (da - db)) * ab;
+    if ((closest_point_on_triangle(crossing, p, q, r) - crossing).norm() > 1e-9 * size) return false;
+  }
+  return true;
 }
 
 }  // namespace offsetopt
