@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Rewrites the golden files from a build of the binary (default build/offsetopt): for every line
-# of cases.txt, NAME.json and NAME.ply, and BUILD.txt (`offsetopt --version`: the build they are
+# of cases.txt, NAME.json and NAME.ply.sha256 (the digest of the printable solid), and BUILD.txt (`offsetopt --version`: the build they are
 # exact for). Run it after a change that is meant to change results, and commit what it writes
 # together with that change; the golden test (tests/optimize/test_golden.cpp) says which case
 # differs and where.
@@ -20,6 +20,7 @@ while IFS='|' read -r name expected mesh options; do
     echo "regenerate: $name exited $status, cases.txt expects $expected" >&2
     exit 1
   fi
+  (cd "$golden" && sha256sum "$name.ply" >"$name.ply.sha256" && rm "$name.ply")
   echo "$name: exit $status"
 done <"$golden/cases.txt"
 "$binary" --version >"$golden/BUILD.txt"
