@@ -1,0 +1,145 @@
+// The contoured cavity (shape/contour_cavity.h) against geometric answers: a sphere inside a
+// sphere gives one closed cavity whose volume lies between the balls shrunk and grown by the grid's
+// error bound, and whose smallest wall (measured exactly, vertex by vertex) is at least the one
+// requested; an inner offset surface that folds through itself and crosses the outer surface
+// still gives a closed, embedded cavity that keeps the wall; a part thinner than two walls gets
+// no cavity at all.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <map>
+
+#include "../mass/geometry_checks.h"
+#include "geometry/bvh.h"
+#include "geometry/closest_point.h"
+#include "geometry/intersecting_faces.h"
+#include "mass/volume_integrals.h"
+#include "mesh/primitives.h"
+#include "shape/contour_cavity.h"
+
+using namespace offsetopt;
+
+namespace {
+
+bool closed_and_oriented(const Mesh& mesh) {
+  std::map<std::pair<int, int>, int> directed;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) ++directed[{mesh.F(f, c), mesh.F(f, (c + 1) % 3)}];
+  for (const auto& [edge, count] : directed)
+    if (count != 1 || directed.count({edge.second, edge.first}) != 1) return false;
+  return true;
+}
+
+double smallest_wall(const TriangleBvh& outer, const Mesh& cavity) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (Eigen::Index v = 0; v < cavity.V.rows(); ++v)
+    smallest = std::min(smallest, closest_point(outer, cavity.V.row(v).transpose()).distance);
+  return smallest;
+}
+
+// Every check that makes a cavity printable, on the mesh alone.
+void check_printable(const Mesh& outer, const TriangleBvh& outer_bvh, const ContourCavity& c, double wall) {
+  REQUIRE(c.ok);
+  CHECK(closed_and_oriented(c.cavity));
+  const TriangleBvh cavity_bvh(c.cavity.V, c.cavity.F);
+  CHECK(self_intersections(cavity_bvh, 10).pairs.empty());
+  CHECK(intersecting_faces(cavity_bvh, outer_bvh, 10).pairs.empty());
+  CHECK(smallest_wall(outer_bvh, c.cavity) >= wall);
+  // Every cavity vertex is inside the outer surface.
+  for (Eigen::Index v = 0; v < c.cavity.V.rows(); v += 97)
+    CHECK(test::winding_number(outer, c.cavity.V.row(v).transpose()) > 0.5);
+}
+
+}  // namespace
+
+TEST_CASE("a sphere inside a sphere: one closed cavity within the grid's error bound, the wall kept") {
+  const double R = 10.0, r = 7.0, wall = 1.0;
+  const Mesh outer = make_icosphere(R, 4);
+  const Mesh inner = make_icosphere(r, 4);
+  const TriangleBvh outer_bvh(outer.V, outer.F);
+  ContourCavityOptions options;
+  options.wall = wall;
+  for (int threads : {1, 2}) {
+    options.threads = threads;
+    const ContourCavity c = contour_cavity(outer, outer_bvh, inner, options);
+    check_printable(outer, outer_bvh, c, wall);
+    CHECK(c.shells == 1);
+    // Every cavity vertex lies on a grid edge with a cavity node at one end and a non-cavity node
+    // at the other, so within √3 h of the inner surface (the only place φ changes sign here); the
+    // inner polyhedron lies between radius r cos(θ) (its face centres) and r.
+    const double h = c.grid.spacing;
+    const double inscribed = r * inner.V.row(inner.F(0, 0)).normalized().dot(
+                                     (inner.V.row(inner.F(0, 0)) + inner.V.row(inner.F(0, 1)) + inner.V.row(inner.F(0, 2))).normalized());
+    const double volume = volume_integrals(c.cavity).values(kIntVolume);
+    const double pi = 3.141592653589793;
+    CHECK(volume >= 4.0 / 3.0 * pi * std::pow(inscribed * 0.999 - std::sqrt(3.0) * h, 3));
+    CHECK(volume <= 4.0 / 3.0 * pi * std::pow(r + std::sqrt(3.0) * h, 3));
+    // Closer than that in fact: within 2% of the inner polyhedron's volume.
+    CHECK(std::fabs(volume / volume_integrals(inner).values(kIntVolume) - 1.0) < 0.02);
+  }
+}
+
+TEST_CASE("an inner offset surface that folds and crosses the outer one gives a closed embedded cavity") {
+  const double R = 10.0, wall = 1.2;
+  const Mesh outer = make_icosphere(R, 4);
+  Mesh inner = make_icosphere(R, 4);
+  // Inward by 3 everywhere, but a cap pushed out through the outer surface (a crossing) and a band
+  // pushed in through the centre to the other side (a fold: the surface passes through itself).
+  for (Eigen::Index v = 0; v < inner.V.rows(); ++v) {
+    const Eigen::Vector3d p = inner.V.row(v).transpose();
+    const Eigen::Vector3d n = p.normalized();
+    double depth = 3.0;
+    if (n.z() > 0.8) depth = -2.0;
+    else if (std::fabs(n.x()) < 0.15) depth = 14.0;
+    inner.V.row(v) = (p - depth * n).transpose();
+  }
+  {
+    const TriangleBvh inner_bvh(inner.V, inner.F);
+    REQUIRE(!self_intersections(inner_bvh, 10).pairs.empty());  // the offset surface does fold
+  }
+  const TriangleBvh outer_bvh(outer.V, outer.F);
+  ContourCavityOptions options;
+  options.wall = wall;
+  const ContourCavity c = contour_cavity(outer, outer_bvh, inner, options);
+  check_printable(outer, outer_bvh, c, wall);
+  CHECK(c.cavity.F.rows() > 0);
+  // No cavity point comes closer to the outer surface than the wall, so none is above the
+  // outer surface's top less the wall.
+  CHECK(c.cavity.V.col(2).maxCoeff() <= R - wall + 1e-9);
+}
+
+TEST_CASE("a part thinner than two walls gets no cavity") {
+  const double wall = 1.0;
+  const Mesh outer = make_box({0, 0, 0}, {20, 20, 1.8});
+  const Mesh inner = make_box({0.2, 0.2, 0.2}, {19.8, 19.8, 1.6});  // an offset surface, 0.2 inside
+  const TriangleBvh outer_bvh(outer.V, outer.F);
+  ContourCavityOptions options;
+  options.wall = wall;
+  const ContourCavity c = contour_cavity(outer, outer_bvh, inner, options);
+  REQUIRE(c.ok);
+  CHECK(c.cavity.F.rows() == 0);
+  CHECK(c.shells == 0);
+  // The same slab at 2.6 + 2 c h thick has room for a cavity: the test above is not vacuous.
+  const Mesh thick = make_box({0, 0, 0}, {20, 20, 4.0});
+  const Mesh thick_inner = make_box({0.2, 0.2, 0.2}, {19.8, 19.8, 3.8});
+  const TriangleBvh thick_bvh(thick.V, thick.F);
+  const ContourCavity t = contour_cavity(thick, thick_bvh, thick_inner, options);
+  check_printable(thick, thick_bvh, t, wall);
+  CHECK(t.shells == 1);
+}
+
+TEST_CASE("the contoured cavity is the same for any thread count") {
+  const Mesh outer = make_icosphere(10.0, 3);
+  const Mesh inner = make_icosphere(8.0, 3);
+  const TriangleBvh outer_bvh(outer.V, outer.F);
+  ContourCavityOptions options;
+  options.wall = 0.9;
+  options.threads = 1;
+  const ContourCavity one = contour_cavity(outer, outer_bvh, inner, options);
+  options.threads = 3;
+  const ContourCavity three = contour_cavity(outer, outer_bvh, inner, options);
+  REQUIRE(one.cavity.V.rows() == three.cavity.V.rows());
+  REQUIRE(one.cavity.F.rows() == three.cavity.F.rows());
+  CHECK(one.cavity.V == three.cavity.V);
+  CHECK(one.cavity.F == three.cavity.F);
+}
