@@ -407,22 +407,28 @@ PreviewResult preview_svg(const Mesh& solid, const PreviewInput& input, const Pr
       return v.map(q.x(), q.y());
     };
     if (i < 2) {
-      // Ground, then the section: cavities first, the material (nonzero fill: islands inside a
-      // cavity come back) on top, outlines of the material's outer boundaries last.
+      // Ground, then the section. Loops do not cross, and a loop inside another is smaller, so
+      // painting them from the largest area down nests them right: material loops (counter-
+      // clockwise) in the material colour, cavity loops over them in the cavity colour, islands
+      // inside a cavity over those. Each edge pixel then blends exactly the two colours that meet
+      // there (filling the material with holes over the cavity would let the background bleed
+      // into every edge pixel). Outlines of the material loops last.
       svg.line(v.map(v.umin, stability.ground_z), v.map(v.umax, stability.ground_z), kGround, 1.5);
       const PlaneSection section = plane_section(solid, i == 0 ? xz_plane(com.y()) : yz_plane(com.x()));
-      std::string material, outline;
-      for (const SectionLoop& loop : section.loops) {
-        if (loop.points.size() < 2) continue;
+      std::vector<std::size_t> order;
+      for (std::size_t k = 0; k < section.loops.size(); ++k)
+        if (section.loops[k].points.size() >= 3) order.push_back(k);
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return std::fabs(section.loops[a].signed_area) > std::fabs(section.loops[b].signed_area);
+      });
+      std::string outline;
+      for (const std::size_t k : order) {
+        const SectionLoop& loop = section.loops[k];
         const std::string d = loop_path(v, loop.points);
-        material += d + " ";
-        if (loop.signed_area < 0.0)
-          out += "<path d=\"" + d + "\" fill=\"" + kPreviewCavityColour + "\" stroke=\"none\"/>\n";
-        else
-          outline += d + " ";
+        out += "<path d=\"" + d + "\" fill=\"" + (loop.signed_area < 0.0 ? kPreviewCavityColour : kPreviewMaterialColour) +
+               "\" stroke=\"none\"/>\n";
+        if (loop.signed_area >= 0.0) outline += d + " ";
       }
-      if (!material.empty())
-        out += "<path d=\"" + material + "\" fill=\"" + kPreviewMaterialColour + "\" fill-rule=\"nonzero\" stroke=\"none\"/>\n";
       if (!outline.empty())
         out += "<path d=\"" + outline + "\" fill=\"none\" stroke=\"" + kOutline + "\" stroke-width=\"1\"/>\n";
       // Goal extras in the sections.
