@@ -435,6 +435,14 @@ PreviewResult preview_svg(const Mesh& solid, const PreviewInput& input, const Pr
       if (stand_goal) {
         const Eigen::Vector3d foot(pivot.x(), pivot.y(), stability.ground_z);
         svg.line(at(com), at(foot), kGoalMark, 1.5, "5 3");
+        // The angle where the tipping direction lies mostly in this view's plane.
+        const Eigen::Vector2d towards = pivot - com_xy;
+        if ((i == 0) == (std::fabs(towards.x()) >= std::fabs(towards.y()))) {
+          const Eigen::Vector2d label = at(foot);
+          const bool right_half = label.x() > v.x + 0.5 * v.w;
+          svg.text(label.x() + (right_half ? -4 : 4), label.y() - 6, "tips at " + fixed(stability.tipping_angle_deg, 1) + " deg",
+                   10, right_half ? "end" : "start", kGoalMark);
+        }
       }
       if (input.has_sphere && input.goal == GoalKind::roly_poly) {
         const double off = i == 0 ? com.y() - input.sphere_center.y() : com.x() - input.sphere_center.x();

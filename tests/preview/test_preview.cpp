@@ -240,6 +240,60 @@ TEST_CASE("preview_svg: the same input gives the same bytes; bad reports are ref
   CHECK(parsed.before_com == Eigen::Vector3d(1, 2, 3));
 }
 
+// The number printed right after `label` in the SVG's text.
+double number_after(const std::string& svg, const std::string& label) {
+  const std::size_t at = svg.find(label);
+  REQUIRE_MESSAGE(at != std::string::npos, label);
+  return std::stod(svg.substr(at + label.size(), 40));
+}
+
+TEST_CASE("preview_svg: the goals' figures agree with closed forms (tipping angle, waterline, moments, void)") {
+  SUBCASE("stand: a 20 x 10 x 20 box tips over its long edge at atan(5 / 10)") {
+    const Mesh box = make_box(Eigen::Vector3d(-10, -5, 0), Eigen::Vector3d(10, 5, 20));
+    PreviewInput input;
+    input.goal = GoalKind::stand;
+    input.margin = 1.0;
+    const PreviewResult r = preview_svg(box, input);
+    REQUIRE(r.status == PreviewStatus::ok);
+    CHECK(number_after(r.svg, "tipping angle ") == doctest::Approx(std::atan(0.5) * 180.0 / kPi).epsilon(1e-3));
+    CHECK(number_after(r.svg, "centre of mass inside it by ") == doctest::Approx(5.0).epsilon(1e-3));
+  }
+  const double R = 30.0, r = 18.0;
+  const Eigen::Vector3d centre(0, 0, 30);
+  const Mesh ball = sphere_in_sphere(R, centre, r, centre, 5);
+  const Vector10d P = mass_properties(ball);
+  SUBCASE("float: a concentric shell in fluid of density m / (V_out / 2) floats with the waterline through its centre") {
+    const Mesh outer = make_icosphere(R, 5);
+    const double v_out = mass_properties(outer)(kMass);
+    PreviewInput input;
+    input.goal = GoalKind::floating;
+    input.fluid_density = P(kMass) / (0.5 * v_out);
+    const PreviewResult res = preview_svg(ball, input);
+    REQUIRE(res.status == PreviewStatus::ok);
+    CHECK(number_after(res.svg, "waterline z = ") == doctest::Approx(30.0).epsilon(1e-3));
+    // Centre of buoyancy of a half ball: 3R/8 below the centre.
+    const std::string cob = "centre of buoyancy (";
+    const std::size_t at = res.svg.find(cob);
+    REQUIRE(at != std::string::npos);
+    const double z = std::stod(res.svg.substr(res.svg.find(", ", res.svg.find(", ", at) + 2) + 2, 20));
+    CHECK(z == doctest::Approx(30.0 - 3.0 * R / 8.0).epsilon(2e-3));
+  }
+  SUBCASE("spin: Izz of a concentric shell is 8 pi (R^5 - r^5) / 15; volume: the void is 4 pi r^3 / 3") {
+    PreviewInput input;
+    input.goal = GoalKind::spin;
+    input.has_tip = true;
+    input.tip = Eigen::Vector3d(0, 0, 0);
+    const PreviewResult res = preview_svg(ball, input);
+    REQUIRE(res.status == PreviewStatus::ok);
+    const double izz = 8.0 * kPi * (std::pow(R, 5) - std::pow(r, 5)) / 15.0;
+    CHECK(number_after(res.svg, "Izz ") == doctest::Approx(izz).epsilon(3e-3));  // icosphere vs sphere
+    CHECK(res.svg.find(">Izz</text>") != std::string::npos);                     // the bar chart
+    input.goal = GoalKind::volume;
+    const PreviewResult vol = preview_svg(ball, input);
+    CHECK(number_after(vol.svg, "void volume ") == doctest::Approx(4.0 * kPi * r * r * r / 3.0).epsilon(3e-3));
+  }
+}
+
 TEST_CASE("preview renders: markers where the coordinates map, the cavity's shaded area is pi r^2") {
   if (!have_renderer()) {
     MESSAGE("skipped: rsvg-convert (Debian librsvg2-bin) or python3 is not installed");
