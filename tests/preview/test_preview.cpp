@@ -207,7 +207,7 @@ TEST_CASE("plane_section: a cavity's loop runs clockwise, the material between t
   CHECK(section.loops[1].signed_area == doctest::Approx(-kPi * 324.0).epsilon(0.005));
 }
 
-TEST_CASE("preview_svg: the same input gives the same bytes; bad reports are refused with the field named") {
+TEST_CASE("preview_svg: the same input gives the same bytes, and bad reports are refused with the field named") {
   const Mesh m = sphere_in_sphere(30.0, Eigen::Vector3d(0, 0, 30), 18.0, Eigen::Vector3d(6, 0, 32), 3);
   PreviewInput input;
   input.goal = GoalKind::volume;
@@ -373,7 +373,7 @@ TEST_CASE("preview renders: markers where the coordinates map, the cavity's shad
   CHECK(section_px / scale2 == doctest::Approx(kPi * R * R).epsilon(0.03));
 }
 
-TEST_CASE("optimize --preview draws the same bytes as preview of the written solid and report; bad usage exits 2") {
+TEST_CASE("optimize --preview draws the same bytes as preview of the written solid and report, and bad usage exits 2") {
   const std::string source = OFFSETOPT_SOURCE_DIR;
   const std::string solid = scratch().file("s.ply"), report = scratch().file("s.json"), a = scratch().file("a.svg"),
                     b = scratch().file("b.svg");
