@@ -345,6 +345,7 @@ TEST_CASE("preview renders: markers where the coordinates map, the cavity's shad
       const Eigen::Vector2d found = colour_centroid(image, v, hex_colour(colour), count);
       CHECK(count >= 20);  // a disc of radius ~4 px, not a stray pixel
       const Eigen::Vector2d expected(v.ox + v.s * point(c.u), v.oy - v.s * point(c.v));
+      MESSAGE(std::string(c.id) << " " << std::string(colour) << ": " << count << " pixels, centre " << (found - expected).norm() << " px from the mapped point");
       CHECK((found - expected).norm() < 1.0);
     }
   }
