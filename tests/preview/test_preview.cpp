@@ -357,6 +357,7 @@ TEST_CASE("preview renders: markers where the coordinates map, the cavity's shad
   const ViewBox v = view_box(text, "view-xz");
   const Eigen::Vector3d M = hex_colour(kPreviewMaterialColour), C = hex_colour(kPreviewCavityColour);
   double cavity_px = 0.0, section_px = 0.0;
+  Eigen::Vector2d cavity_moment = Eigen::Vector2d::Zero();
   for (int y = static_cast<int>(v.y) + 1; y < static_cast<int>(v.y + v.h) - 1; ++y)
     for (int x = static_cast<int>(v.x) + 1; x < static_cast<int>(v.x + v.w) - 1; ++x) {
       const Eigen::Vector3d p = image.pixel(x, y);
@@ -364,12 +365,19 @@ TEST_CASE("preview renders: markers where the coordinates map, the cavity's shad
       if (t < -0.05 || t > 1.05 || (p - (M + t * (C - M))).norm() > 12.0) continue;
       const double tc = std::min(std::max(t, 0.0), 1.0);
       cavity_px += tc;
+      cavity_moment += tc * Eigen::Vector2d(x + 0.5, y + 0.5);
       section_px += 1.0;
     }
   const double scale2 = v.s * v.s;
   MESSAGE("cavity area " << cavity_px / scale2 << " vs pi r^2 = " << kPi * r * r << "; section (material + cavity) "
                          << section_px / scale2 << " vs pi R^2 = " << kPi * R * R << "; scale " << v.s << " px per unit");
   CHECK(cavity_px / scale2 == doctest::Approx(kPi * r * r).epsilon(0.02));
+  // The mapping itself, from geometry alone: the yellow disc is centred where the cavity's
+  // centre maps.
+  const Eigen::Vector2d cavity_centre = cavity_moment / cavity_px;
+  const Eigen::Vector2d mapped(v.ox + v.s * cavity.x(), v.oy - v.s * cavity.z());
+  MESSAGE("cavity disc centred " << (cavity_centre - mapped).norm() << " px from where (6, 32) maps");
+  CHECK((cavity_centre - mapped).norm() < 1.0);
   // The whole disk (the outline's 1 px stroke on the outer circle takes a sliver).
   CHECK(section_px / scale2 == doctest::Approx(kPi * R * R).epsilon(0.03));
 }
