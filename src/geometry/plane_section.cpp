@@ -73,10 +73,14 @@ PlaneSection plane_section(const Mesh& mesh, const SectionPlane& plane) {
   std::map<EdgeKey, int> starting_at;
   for (std::size_t s = 0; s < segments.size(); ++s) starting_at.emplace(segments[s].from, static_cast<int>(s));
 
+  // Measured from the endpoint on the positive side: the same bits for both faces of the edge and
+  // for any numbering of the vertices (a file read back may drop unused vertices).
   auto crossing = [&](const EdgeKey& key) {
-    const double va = value[static_cast<std::size_t>(key.first)], vb = value[static_cast<std::size_t>(key.second)];
-    const Eigen::Vector3d a = mesh.V.row(key.first).transpose(), b = mesh.V.row(key.second).transpose();
-    const double t = va / (va - vb);  // va and vb lie on opposite sides, so va != vb
+    int from = key.first, to = key.second;
+    if (!positive(from)) std::swap(from, to);
+    const double va = value[static_cast<std::size_t>(from)], vb = value[static_cast<std::size_t>(to)];
+    const Eigen::Vector3d a = mesh.V.row(from).transpose(), b = mesh.V.row(to).transpose();
+    const double t = va / (va - vb);  // va >= 0 > vb
     const Eigen::Vector3d p = a + t * (b - a);
     return Eigen::Vector2d(plane.u.dot(p), plane.v.dot(p));
   };

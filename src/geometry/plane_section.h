@@ -6,8 +6,9 @@
 // Edelsbrunner and Mücke 1990): a vertex whose signed distance is 0 counts as lying on the
 // positive side. Every edge is then either crossed or not, each crossed triangle gives exactly one
 // segment, and the segments of a closed 2-manifold chain into closed loops. A crossing point is
-// computed from its edge with the lower vertex index first, so the two triangles sharing the edge
-// get the same bits. Loops touching a vertex on the plane may contain zero-length segments.
+// computed from its edge's endpoint on the positive side, so the two triangles sharing the edge
+// get the same bits whatever the vertex numbering. Loops touching a vertex on the plane may
+// contain zero-length segments.
 //
 // Orientation: with the plane's normal m pointing at the viewer and 2-D coordinates (u, v),
 // u × v = m, each loop runs with the material on its left: a loop bounding material from outside

@@ -145,6 +145,27 @@ Shells split_shells(const Mesh& mesh) {
   return shells;
 }
 
+Mesh without_unused_vertices(const Mesh& mesh) {
+  std::vector<int> index(static_cast<std::size_t>(mesh.V.rows()), -1);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int v = mesh.F(f, k);
+      index[static_cast<std::size_t>(v)] = 0;
+    }
+  int used = 0;
+  for (int& i : index)
+    if (i == 0) i = used++;
+  if (used == mesh.V.rows()) return mesh;
+  Mesh out;
+  out.V.resize(used, 3);
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+    if (index[static_cast<std::size_t>(v)] >= 0) out.V.row(index[static_cast<std::size_t>(v)]) = mesh.V.row(v);
+  out.F.resize(mesh.F.rows(), 3);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) out.F(f, k) = index[static_cast<std::size_t>(mesh.F(f, k))];
+  return out;
+}
+
 // The convex polygon shrunk by `margin`: clipped against each edge's line moved inwards
 // (Sutherland and Hodgman 1974). Empty when nothing is left.
 std::vector<Eigen::Vector2d> shrink_polygon(const std::vector<Eigen::Vector2d>& polygon, double margin) {
@@ -263,8 +284,17 @@ std::string preview_input_from_report(const Json& report, PreviewInput& input) {
   return {};
 }
 
-PreviewResult preview_svg(const Mesh& solid, const PreviewInput& input, const PreviewSettings& settings) {
+PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const PreviewSettings& settings) {
   PreviewResult result;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (mesh.F(f, k) < 0 || mesh.F(f, k) >= mesh.V.rows()) {
+        result.message = "face " + std::to_string(f) + " refers to a vertex that does not exist";
+        return result;
+      }
+  // Vertices no face uses are left out (the reader drops them too), so the picture drawn from a
+  // result in memory and from its file read back are the same.
+  const Mesh solid = without_unused_vertices(mesh);
   if (const std::string problem = check_preview_settings(settings); !problem.empty()) {
     result.message = problem;
     return result;
