@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the build needs, only those missing (root or sudo).
-#   scripts/deps.sh          the normal and the sanitizer build (g++: ASan and UBSan come with it)
+#   scripts/deps.sh          the normal and the sanitizer build (g++: ASan and UBSan come with it);
+#                            librsvg2-bin (rsvg-convert) and python3 render and decode the preview
+#                            picture in tests/preview
 #   scripts/deps.sh fuzz     also clang and its runtime libraries (libFuzzer), and python3 for
 #                            the hostile-scale inputs (fuzz/make_hostile.py)
 set -euo pipefail
-packages=(g++ cmake make libeigen3-dev libtinyobjloader-dev doctest-dev)
+packages=(g++ cmake make libeigen3-dev libtinyobjloader-dev doctest-dev librsvg2-bin python3)
 if [[ ${1:-} == fuzz ]]; then
   packages+=(clang libclang-rt-14-dev python3)
 fi

@@ -7,6 +7,7 @@
 
 #include "cli/cli_support.h"
 #include "cli/commands.h"
+#include "cli/write_preview.h"
 #include "io/json.h"
 #include "mesh/load_mesh.h"
 #include "mesh/write_mesh.h"
@@ -40,6 +41,8 @@ const char* const kUsage =
     "  --inner FILE        the inner surface alone, outward-oriented\n"
     "  --outer-mesh FILE   the outer surface alone (the input itself without --outer)\n"
     "  --skeleton FILE     the contracted meso-skeleton (same connectivity)\n"
+    "  --preview FILE      an SVG picture of the result: sections, support polygon, centres of\n"
+    "                      mass, the goal's figures (as 'offsetopt preview' draws it)\n"
     "\n"
     "options (default, range):\n"
     "  --goal GOAL           (required) one of the goals above\n"
@@ -81,7 +84,7 @@ const char* const kUsage =
 int run_optimize(const Args& args) {
   const auto start = std::chrono::steady_clock::now();
   ArgCursor cursor(args);
-  std::string mesh_path, output, report_path, inner_path, outer_path, skeleton_path;
+  std::string mesh_path, output, report_path, inner_path, outer_path, skeleton_path, preview_path;
   bool quiet = false, timings_in_report = true, goal_given = false;
   OptimizeSettings settings = OptimizeSettings::defaults();
   const double big = 1e12;
@@ -100,6 +103,8 @@ int run_optimize(const Args& args) {
       outer_path = cursor.value_of(arg);
     } else if (arg == "--skeleton") {
       skeleton_path = cursor.value_of(arg);
+    } else if (arg == "--preview") {
+      preview_path = cursor.value_of(arg);
     } else if (arg == "--no-timings") {
       timings_in_report = false;
     } else if (arg == "--goal") {
@@ -171,7 +176,7 @@ int run_optimize(const Args& args) {
     throw UsageError("--goal float needs --fluid-density R in (0, 1)");
   if (settings.goal == GoalKind::volume && settings.target_volume < 0)
     throw UsageError("--goal volume needs --target-volume V");
-  for (const std::string* path : {&output, &report_path, &inner_path, &outer_path, &skeleton_path})
+  for (const std::string* path : {&output, &report_path, &inner_path, &outer_path, &skeleton_path, &preview_path})
     if (!path->empty()) refuse_overwriting_input(*path, {mesh_path});
 
   const auto load_start = std::chrono::steady_clock::now();
@@ -211,6 +216,7 @@ int run_optimize(const Args& args) {
   timings["write"] = seconds_since(write_start);
   if (timings_in_report) report["timings"] = timings;
   if (!report_path.empty()) write_text(report_path, report.dump(2), {mesh_path});
+  if (!preview_path.empty()) write_preview(preview_path, result.printable, report, "the report", {mesh_path});
   if (!quiet) {
     std::fprintf(stderr, "stages:");
     for (const auto& item : timings.items()) std::fprintf(stderr, " %s %.3f s;", item.first.c_str(), item.second.as_number());

@@ -21,5 +21,6 @@ int run_basis(const Args& args);
 int run_skeleton(const Args& args);
 int run_optimize(const Args& args);
 int run_generate(const Args& args);
+int run_preview(const Args& args);
 
 }  // namespace offsetopt::cli

@@ -31,6 +31,7 @@ void print_usage(std::FILE* out) {
       "  basis    MESH --k N           manifold-harmonic eigenpairs\n"
       "  skeleton MESH -o FILE         meso-skeleton with the same connectivity\n"
       "  optimize MESH --goal GOAL -o FILE   carve/thicken to meet a goal\n"
+      "  preview  SOLID --report REPORT -o FILE.svg   picture of a result\n"
       "  generate NAME -o FILE         write a demo mesh\n"
       "\n"
       "'offsetopt COMMAND --help' lists a command's options.\n"
@@ -78,6 +79,7 @@ int main(int argc, char** argv) {
     if (!std::strcmp(command, "skeleton")) return run_skeleton(args);
     if (!std::strcmp(command, "optimize")) return run_optimize(args);
     if (!std::strcmp(command, "generate")) return run_generate(args);
+    if (!std::strcmp(command, "preview")) return run_preview(args);
   } catch (const offsetopt::MeshInputError& e) {
     std::fprintf(stderr, "Error: %s\n", e.what());
     return kExitBadInput;
