@@ -11,6 +11,7 @@
 #include <Eigen/Cholesky>
 
 #include "geometry/bvh.h"
+#include "geometry/intersecting_faces.h"
 #include "mass/mass_properties.h"
 #include "mass/stability.h"
 #include "mass/volume_integrals.h"
@@ -275,6 +276,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   contraction_options.threads = settings.threads;
   const ContractionResult contraction = laplacian_contraction(input.V, input.F, contraction_options);
   const TriangleBvh bvh(input.V, input.F);
+  const IntersectingFaces input_self = self_intersections(bvh, 100000);
   OffsetFieldOptions field_options;
   field_options.wall = wall;
   field_options.threads = settings.threads;
@@ -630,6 +632,10 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   report["before"]["stability"] = Json::object();
   report["before"]["stability"]["com_margin"] = stability_before.com_margin;
   report["before"]["stability"]["stands"] = stability_before.stands;
+  // The input's own defects: the written solid keeps its outer surface, so they are the input's,
+  // not the cavity's (the cavity's own intersections are counted in "after").
+  report["before"]["self_intersecting_pairs"] = static_cast<long long>(input_self.pairs.size());
+  report["before"]["self_intersections_truncated"] = input_self.truncated;
   report["cavity"] = cavity_json;
   report["after"] = verification.metrics;
   report["goal_met"] = verification.goal_met;
@@ -637,6 +643,12 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
 
   result.report = report;
   result.timings = timings;
+  if (!input_self.pairs.empty())
+    result.warnings.push_back("the input intersects itself (" + std::to_string(input_self.pairs.size()) +
+                              (input_self.truncated ? "+" : "") + " face pairs, the first " +
+                              std::to_string(input_self.pairs.front().first) + " and " +
+                              std::to_string(input_self.pairs.front().second) +
+                              "); the written solid keeps them, the cavity adds none");
   if (thin_count > 0)
     result.warnings.push_back(std::to_string(thin_count) + " vertices lie in parts thinner than two walls; those parts stay solid");
   if (field.fallback_count > 0)
