@@ -81,6 +81,7 @@ PosedInput pose_input(const Mesh& mesh, const PoseOptions& options, const std::s
     flatten["height"] = options.flatten;
     flatten["plane_z"] = cut.plane_z;
     flatten["removed_vertices"] = cut.removed_vertices;
+    flatten["snapped_vertices"] = cut.snapped_vertices;
     flatten["cut_edges"] = cut.cut_edges;
     flatten["cap_loops"] = cut.cap_loops;
     flatten["cap_holes"] = cut.cap_holes;

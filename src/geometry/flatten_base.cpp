@@ -13,6 +13,7 @@ namespace offsetopt {
 
 std::string FlattenSettings::check() const {
   if (!(height > 0.0) || !std::isfinite(height)) return "the base height must be a finite number > 0";
+  if (!(snap >= 0.0 && snap < 1e-3)) return "snap must be in [0, 1e-3)";
   return {};
 }
 
@@ -30,43 +31,52 @@ FlattenResult flatten_base(const Mesh& mesh, const FlattenSettings& settings) {
     return result;
   }
   const double zmin = mesh.V.col(2).minCoeff(), zmax = mesh.V.col(2).maxCoeff();
-  std::vector<double> heights(mesh.V.col(2).data(), mesh.V.col(2).data() + nv);
-  std::sort(heights.begin(), heights.end());
-  double plane = zmin + settings.height;
-  // The symbolic rule: a plane through vertices moves down past them (they count as above).
-  for (Eigen::Index step = 0; step <= nv && std::binary_search(heights.begin(), heights.end(), plane); ++step)
-    plane = std::nextafter(plane, -std::numeric_limits<double>::infinity());
+  const double plane = zmin + settings.height;
   if (!(plane < zmax)) {
     result.status = FlattenStatus::cuts_everything;
     result.message = "the base height " + std::to_string(settings.height) + " reaches the top of the mesh (height " +
                      std::to_string(zmax - zmin) + ")";
     return result;
   }
-  if (!(plane > zmin) || std::binary_search(heights.begin(), heights.end(), plane)) {
+  if (!(plane > zmin + 2.0 * settings.snap * (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm())) {
     result.status = FlattenStatus::bad_settings;
     result.message = "the base height is too small to cut anything";
     return result;
   }
   result.plane_z = plane;
 
+  // Vertices a hair off the plane are put on it first: a cut passing 1e-15 from a vertex would
+  // leave triangles of no area in double arithmetic next to it.
+  const double diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+  const double snap = settings.snap * diagonal;
+  Eigen::VectorXd z = mesh.V.col(2);
+  for (Eigen::Index v = 0; v < nv; ++v)
+    if (z[v] != plane && std::fabs(z[v] - plane) <= snap) {
+      z[v] = plane;
+      ++result.snapped_vertices;
+    }
+  // Kept: strictly above the plane, or on it (the symbolic rule).
+  auto kept = [&](int v) { return !(z[v] < plane); };
   std::vector<int> new_index(static_cast<std::size_t>(nv), -1);
   std::vector<Eigen::Vector3d> points;
   for (Eigen::Index v = 0; v < nv; ++v)
-    if (mesh.V(v, 2) > plane) {
+    if (kept(static_cast<int>(v))) {
       new_index[v] = static_cast<int>(points.size());
-      points.emplace_back(mesh.V.row(v).transpose());
+      points.emplace_back(mesh.V(v, 0), mesh.V(v, 1), z[v]);
     }
   result.removed_vertices = static_cast<int>(nv) - static_cast<int>(points.size());
-  const int first_crossing = static_cast<int>(points.size());
 
-  // One point per cut edge, interpolated from its lower end so both faces get the same double.
+  // The cut point of an edge from below to kept: the kept end itself when it is on the plane (the
+  // limit of a plane slightly below it), else one new point per edge, interpolated from the lower
+  // end so both faces get the same doubles.
   std::map<std::pair<int, int>, int> crossing_of_edge;
   auto crossing = [&](int u, int w) {
-    const int below = mesh.V(u, 2) < plane ? u : w, above = below == u ? w : u;
+    const int below = kept(u) ? w : u, above = below == u ? w : u;
+    if (z[above] == plane) return new_index[above];
     const auto key = std::make_pair(std::min(u, w), std::max(u, w));
     auto it = crossing_of_edge.find(key);
     if (it != crossing_of_edge.end()) return it->second;
-    const Eigen::Vector3d lo = mesh.V.row(below).transpose(), hi = mesh.V.row(above).transpose();
+    const Eigen::Vector3d lo(mesh.V(below, 0), mesh.V(below, 1), z[below]), hi(mesh.V(above, 0), mesh.V(above, 1), z[above]);
     const double t = (plane - lo.z()) / (hi.z() - lo.z());
     const Eigen::Vector3d x(lo.x() + t * (hi.x() - lo.x()), lo.y() + t * (hi.y() - lo.y()), plane);
     const int id = static_cast<int>(points.size());
@@ -76,24 +86,19 @@ FlattenResult flatten_base(const Mesh& mesh, const FlattenSettings& settings) {
   };
 
   std::vector<std::array<int, 3>> faces;
-  std::map<int, int> next_on_cut;  // directed boundary edges of the kept surface on the plane
-  bool manifold = true;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    int polygon[4], is_crossing[4], size = 0;
+    int polygon[4], size = 0;
     for (int k = 0; k < 3; ++k) {
       const int u = mesh.F(f, k), w = mesh.F(f, (k + 1) % 3);
-      const bool u_above = mesh.V(u, 2) > plane, w_above = mesh.V(w, 2) > plane;
-      if (u_above) polygon[size] = new_index[u], is_crossing[size++] = 0;
-      if (u_above != w_above) polygon[size] = crossing(u, w), is_crossing[size++] = 1;
+      // A cut at a vertex on the plane repeats it: keep one copy.
+      if (kept(u) && (size == 0 || polygon[size - 1] != new_index[u])) polygon[size++] = new_index[u];
+      if (kept(u) != kept(w)) {
+        const int x = crossing(u, w);
+        if (size == 0 || polygon[size - 1] != x) polygon[size++] = x;
+      }
     }
-    if (size == 3 && !is_crossing[0] && !is_crossing[1] && !is_crossing[2]) {
-      faces.push_back({polygon[0], polygon[1], polygon[2]});
-      continue;
-    }
-    if (size == 0) continue;
-    for (int k = 0; k < size; ++k)
-      if (is_crossing[k] && is_crossing[(k + 1) % size])
-        if (!next_on_cut.emplace(polygon[k], polygon[(k + 1) % size]).second) manifold = false;
+    if (size > 1 && polygon[size - 1] == polygon[0]) --size;  // cut at a vertex on the plane
+    if (size < 3) continue;  // nothing of it above the plane
     if (size == 3) {
       faces.push_back({polygon[0], polygon[1], polygon[2]});
     } else {
@@ -109,24 +114,38 @@ FlattenResult flatten_base(const Mesh& mesh, const FlattenSettings& settings) {
       }
     }
   }
-  const int crossings = static_cast<int>(points.size()) - first_crossing;
-  result.cut_edges = crossings;
-  if (!manifold || static_cast<int>(next_on_cut.size()) != crossings) {
+  // The kept surface's boundary: directed edges in the plane without their reverse.
+  std::map<std::pair<int, int>, int> in_plane_edges;
+  for (const auto& t : faces)
+    for (int k = 0; k < 3; ++k) {
+      const int u = t[k], w = t[(k + 1) % 3];
+      if (points[u].z() == plane && points[w].z() == plane) ++in_plane_edges[{u, w}];
+    }
+  std::map<int, int> next_on_cut;
+  bool manifold = true;
+  for (const auto& [edge, count] : in_plane_edges) {
+    if (count != 1) manifold = false;
+    if (in_plane_edges.count({edge.second, edge.first}) != 0) continue;
+    if (!next_on_cut.emplace(edge.first, edge.second).second) manifold = false;
+  }
+  result.cut_edges = static_cast<int>(next_on_cut.size());
+  if (!manifold) {
     result.status = FlattenStatus::cap_failed;
-    result.message = "the cut does not close into loops (is the mesh closed and manifold?)";
+    result.message = "the cut touches itself at a vertex on the plane (try another height)";
     return result;
   }
 
-  // Chain the cut edges into loops (each crossing has one successor and one predecessor).
-  std::vector<char> visited(static_cast<std::size_t>(crossings), 0);
-  std::vector<int> loop_point;  // global triangulation index -> mesh vertex
-  for (int start = first_crossing; start < first_crossing + crossings; ++start) {
-    if (visited[start - first_crossing]) continue;
+  // Chain the cut edges into loops (each cut point has one successor and one predecessor).
+  std::map<int, char> visited;
+  std::vector<int> loop_point;  // global triangulation index -> point
+  for (const auto& start_edge : next_on_cut) {
+    const int start = start_edge.first;
+    if (visited[start]) continue;
     std::vector<Eigen::Vector2d> loop;
     int p = start;
-    for (int step = 0; step <= crossings; ++step) {
-      if (visited[p - first_crossing]) break;
-      visited[p - first_crossing] = 1;
+    for (std::size_t step = 0; step <= next_on_cut.size(); ++step) {
+      if (visited[p]) break;
+      visited[p] = 1;
       loop.emplace_back(points[p].x(), points[p].y());
       loop_point.push_back(p);
       const auto it = next_on_cut.find(p);

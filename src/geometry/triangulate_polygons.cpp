@@ -74,7 +74,7 @@ class EarClipper {
       q = outer;
       do {
         const Node& c = nodes_[q];
-        if (q != target && c.p.x() > M.x() && c.p.x() <= T.x() && in_closed_triangle(M, hit, T, c.p) &&
+        if (q != target && c.p.x() > M.x() && c.p.x() <= T.x() && in_closed_triangle_either_way(M, hit, T, c.p) &&
             sees_inside(q, M)) {
           const double tan = std::fabs(c.p.y() - M.y()) / (c.p.x() - M.x());
           if (tan < best_tan || (tan == best_tan && c.p.x() < nodes_[target].p.x())) {
@@ -109,10 +109,15 @@ class EarClipper {
     long long steps = 0;
     const long long cap = 4LL * count * count + 64;
     int node = start, stop = start;
+    // Slivers first refused: a point nearly on the line of its neighbours (a planar quad's
+    // diagonal crossing the cut) would make an ear of almost no area; any ear is taken only
+    // when a whole turn finds no well-shaped one.
+    bool well_shaped_only = true;
     while (count > 3) {
       if (++steps > cap) return TriangulationStatus::too_many_steps;
       const int a = nodes_[node].prev, c = nodes_[node].next;
-      if (is_ear(node)) {
+      if (is_ear(node) && (!well_shaped_only || well_shaped(node))) {
+        well_shaped_only = true;
         triangles.push_back({nodes_[a].index, nodes_[node].index, nodes_[c].index});
         nodes_[a].next = c;
         nodes_[c].prev = a;
@@ -121,7 +126,10 @@ class EarClipper {
         continue;
       }
       node = c;
-      if (node == stop) return TriangulationStatus::no_ear;
+      if (node == stop) {
+        if (!well_shaped_only) return TriangulationStatus::no_ear;
+        well_shaped_only = false;
+      }
     }
     const int a = nodes_[node].prev, c = nodes_[node].next;
     if (!(orient2d(nodes_[a].p, nodes_[node].p, nodes_[c].p) > 0.0)) return TriangulationStatus::no_ear;
@@ -130,6 +138,12 @@ class EarClipper {
   }
 
  private:
+  static bool in_closed_triangle_either_way(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                                            const Eigen::Vector2d& p) {
+    const double o1 = orient2d(a, b, p), o2 = orient2d(b, c, p), o3 = orient2d(c, a, p);
+    return (o1 >= 0.0 && o2 >= 0.0 && o3 >= 0.0) || (o1 <= 0.0 && o2 <= 0.0 && o3 <= 0.0);
+  }
+
   static bool in_closed_triangle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
                                  const Eigen::Vector2d& p) {
     return orient2d(a, b, p) >= 0.0 && orient2d(b, c, p) >= 0.0 && orient2d(c, a, p) >= 0.0;
@@ -143,6 +157,15 @@ class EarClipper {
     const Eigen::Vector2d& b = nodes_[nodes_[q].next].p;
     if (orient2d(a, p, b) > 0.0) return orient2d(a, p, target) > 0.0 && orient2d(p, b, target) > 0.0;
     return orient2d(a, p, target) > 0.0 || orient2d(p, b, target) > 0.0;
+  }
+
+  // Twice the area at least 1e-6 times the longest side squared.
+  bool well_shaped(int node) const {
+    const Eigen::Vector2d& a = nodes_[nodes_[node].prev].p;
+    const Eigen::Vector2d& b = nodes_[node].p;
+    const Eigen::Vector2d& c = nodes_[nodes_[node].next].p;
+    const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    return orient2d(a, b, c) >= 1e-6 * longest;
   }
 
   bool is_ear(int node) const {

@@ -124,8 +124,9 @@ TEST_CASE("flatten_base: a sphere gets a closed base disk of the cut polygon's a
 
 TEST_CASE("flatten_base: a torus lying flat cut through its tube gives a ring cap (one hole)") {
   const Mesh torus = make_torus(30.0, 10.0, 64, 24);
-  const FlattenResult r = flatten_base(torus, FlattenSettings{5.0});
+  const FlattenResult r = flatten_base(torus, FlattenSettings{4.0});
   REQUIRE(r.status == FlattenStatus::ok);
+  CHECK(r.snapped_vertices == 0);
   CHECK(r.cap_loops == 2);
   CHECK(r.cap_holes == 1);
   CHECK(validate_mesh(r.mesh).valid());
@@ -142,6 +143,15 @@ TEST_CASE("flatten_base: a torus lying flat cut through its tube gives a ring ca
   const double annulus = kPi * ((30.0 + half_chord) * (30.0 + half_chord) - (30.0 - half_chord) * (30.0 - half_chord));
   CHECK(cap.area == doctest::Approx(annulus).epsilon(0.03));
   CHECK(volume_of(r.mesh) == doctest::Approx(volume_of(torus) - volume_below(torus, plane)).epsilon(1e-12));
+
+  // At H = 5 the plane passes within rounding of two rings of tube vertices (10 sin 210° = 10 sin 330° = −5):
+  // they are put on it, and no sliver is left.
+  const FlattenResult near = flatten_base(torus, FlattenSettings{5.0});
+  REQUIRE(near.status == FlattenStatus::ok);
+  CHECK(near.snapped_vertices == 128);  // the rings at 210° and 330°
+  CHECK(near.cap_holes == 1);
+  CHECK(validate_mesh(near.mesh).valid());
+  CHECK(cap_figures(near).faces_down);
 }
 
 TEST_CASE("flatten_base: a torus standing on its side cut above its hole gives two base pieces") {
@@ -168,17 +178,38 @@ TEST_CASE("flatten_base: a torus standing on its side cut above its hole gives t
   CHECK(volume_of(r.mesh) == doctest::Approx(volume_of(torus) - volume_below(torus, r.plane_z)).epsilon(1e-12));
 }
 
-TEST_CASE("flatten_base: a plane through a ring of vertices moves below them; bad heights are refused") {
-  const Mesh cylinder = make_cylinder(10.0, 0.0, 10.0, 32, 4, 3);
-  std::set<double> levels;
-  for (Eigen::Index i = 0; i < cylinder.V.rows(); ++i) levels.insert(cylinder.V(i, 2));
-  REQUIRE(levels.count(5.0) == 1);
+TEST_CASE("flatten_base: a plane through a ring of vertices cuts at them; bad heights are refused") {
+  const int segments = 32;
+  const Mesh cylinder = make_cylinder(10.0, 0.0, 10.0, segments, 4, 3);
+  int on_plane = 0;
+  for (Eigen::Index i = 0; i < cylinder.V.rows(); ++i) on_plane += cylinder.V(i, 2) == 5.0;
+  REQUIRE(on_plane == segments);
   const FlattenResult r = flatten_base(cylinder, FlattenSettings{5.0});
   REQUIRE(r.status == FlattenStatus::ok);
-  CHECK(r.plane_z == std::nextafter(5.0, 0.0));
-  for (Eigen::Index i = 0; i < r.mesh.V.rows(); ++i) CHECK(r.mesh.V(i, 2) >= r.plane_z);
+  CHECK(r.plane_z == 5.0);
+  CHECK(r.mesh.V.col(2).minCoeff() == 5.0);
+  CHECK(r.cut_edges == segments);  // the ring itself: no new point
+  CHECK(r.mesh.V.rows() == cylinder.V.rows() - r.removed_vertices);
   CHECK(validate_mesh(r.mesh).valid());
-  CHECK(volume_of(r.mesh) == doctest::Approx(volume_of(cylinder) - volume_below(cylinder, r.plane_z)).epsilon(1e-12));
+  CHECK(cap_figures(r).faces_down);
+  CHECK(volume_of(r.mesh) == doctest::Approx(volume_of(cylinder) - volume_below(cylinder, 5.0)).epsilon(1e-12));
+  CHECK(volume_of(r.mesh) == doctest::Approx(volume_of(cylinder) / 2).epsilon(1e-12));
+
+  // Two vertices on the plane on a sphere-like mesh: the bottom cap of a fine cylinder tilted a
+  // little, so the plane passes through one side vertex of a ring and crosses edges elsewhere.
+  Mesh tilted = cylinder;
+  for (Eigen::Index i = 0; i < tilted.V.rows(); ++i) tilted.V(i, 2) += 0.0625 * tilted.V(i, 0);
+  const double zmin = tilted.V.col(2).minCoeff();
+  double through = 0.0;  // the height of the ring-2 vertex at angle 0: x = 10
+  for (Eigen::Index i = 0; i < tilted.V.rows(); ++i)
+    if (cylinder.V(i, 2) == 5.0 && cylinder.V(i, 0) == 10.0) through = tilted.V(i, 2);
+  REQUIRE(through == 5.625);
+  const FlattenResult t = flatten_base(tilted, FlattenSettings{through - zmin});
+  REQUIRE(t.status == FlattenStatus::ok);
+  REQUIRE(t.plane_z == through);
+  CHECK(validate_mesh(t.mesh).valid());
+  CHECK(cap_figures(t).faces_down);
+  CHECK(volume_of(t.mesh) == doctest::Approx(volume_of(tilted) - volume_below(tilted, t.plane_z)).epsilon(1e-12));
 
   CHECK(flatten_base(cylinder, FlattenSettings{10.0}).status == FlattenStatus::cuts_everything);
   CHECK(flatten_base(cylinder, FlattenSettings{0.0}).status == FlattenStatus::bad_settings);
