@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "geometry/triangulate_polygons.h"
+#include "util/format_double.h"
 
 namespace offsetopt {
 
@@ -34,8 +35,8 @@ FlattenResult flatten_base(const Mesh& mesh, const FlattenSettings& settings) {
   const double plane = zmin + settings.height;
   if (!(plane < zmax)) {
     result.status = FlattenStatus::cuts_everything;
-    result.message = "the base height " + std::to_string(settings.height) + " reaches the top of the mesh (height " +
-                     std::to_string(zmax - zmin) + ")";
+    result.message = "the base height " + format_double(settings.height) + " reaches the top of the mesh (height " +
+                     format_double(zmax - zmin) + ")";
     return result;
   }
   if (!(plane > zmin + 2.0 * settings.snap * (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm())) {
