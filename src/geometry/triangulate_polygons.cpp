@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <utility>
 
 #include "geometry/convex_hull_2d.h"
 
@@ -189,6 +191,62 @@ class EarClipper {
   std::vector<Node> nodes_;
 };
 
+// Positive when d lies inside the circle through the counter-clockwise triangle a, b, c, with a
+// margin relative to the terms' size: nearly cocircular points (a cut through a round part)
+// are left alone instead of flipped back and forth.
+bool clearly_in_circle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
+  const Eigen::Vector2d p = a - d, q = b - d, r = c - d;
+  const double pp = p.squaredNorm(), qq = q.squaredNorm(), rr = r.squaredNorm();
+  const double t1 = pp * (q.x() * r.y() - q.y() * r.x());
+  const double t2 = qq * (r.x() * p.y() - r.y() * p.x());
+  const double t3 = rr * (p.x() * q.y() - p.y() * q.x());
+  const double scale = pp * (std::fabs(q.x() * r.y()) + std::fabs(q.y() * r.x())) +
+                       qq * (std::fabs(r.x() * p.y()) + std::fabs(r.y() * p.x())) +
+                       rr * (std::fabs(p.x() * q.y()) + std::fabs(p.y() * q.x()));
+  return t1 + t2 + t3 > 1e-9 * scale;
+}
+
+// Lawson's edge flips towards the constrained Delaunay triangulation (Lawson 1977): ear
+// clipping alone may leave a sliver over three nearly collinear cut points, which a flip to the
+// other diagonal of its (convex) quad removes. Loop edges have one triangle and never flip.
+void improve_by_flips(const std::vector<Eigen::Vector2d>& points, std::vector<std::array<int, 3>>& triangles,
+                      std::size_t first) {
+  std::map<std::pair<int, int>, int> triangle_of_edge;  // directed edge -> triangle
+  for (std::size_t t = first; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) triangle_of_edge[{triangles[t][k], triangles[t][(k + 1) % 3]}] = static_cast<int>(t);
+  std::vector<std::pair<int, int>> stack;
+  for (const auto& item : triangle_of_edge)
+    if (item.first.first < item.first.second && triangle_of_edge.count({item.first.second, item.first.first}))
+      stack.push_back(item.first);
+  const std::size_t cap = 50 * (triangles.size() - first) + 1000;
+  for (std::size_t flips = 0; !stack.empty() && flips < cap;) {
+    const auto [u, v] = stack.back();
+    stack.pop_back();
+    const auto e1 = triangle_of_edge.find({u, v}), e2 = triangle_of_edge.find({v, u});
+    if (e1 == triangle_of_edge.end() || e2 == triangle_of_edge.end()) continue;
+    const int t1 = e1->second, t2 = e2->second;
+    auto third = [&](int t, int a, int b) {
+      for (int k = 0; k < 3; ++k)
+        if (triangles[t][k] != a && triangles[t][k] != b) return triangles[t][k];
+      return -1;
+    };
+    const int w1 = third(t1, u, v), w2 = third(t2, u, v);
+    if (w1 < 0 || w2 < 0 || w1 == w2) continue;
+    if (!clearly_in_circle(points[u], points[v], points[w1], points[w2])) continue;
+    if (!(orient2d(points[w1], points[u], points[w2]) > 0.0 && orient2d(points[w2], points[v], points[w1]) > 0.0)) continue;
+    if (triangle_of_edge.count({w1, w2}) || triangle_of_edge.count({w2, w1})) continue;  // would duplicate an edge
+    for (int t : {t1, t2})
+      for (int k = 0; k < 3; ++k) triangle_of_edge.erase({triangles[t][k], triangles[t][(k + 1) % 3]});
+    triangles[t1] = {w1, u, w2};
+    triangles[t2] = {w2, v, w1};
+    for (int t : {t1, t2})
+      for (int k = 0; k < 3; ++k) triangle_of_edge[{triangles[t][k], triangles[t][(k + 1) % 3]}] = t;
+    for (const auto& [a, b] : {std::make_pair(u, w1), std::make_pair(w1, v), std::make_pair(v, w2), std::make_pair(w2, u)})
+      stack.emplace_back(std::min(a, b), std::max(a, b));
+    ++flips;
+  }
+}
+
 }  // namespace
 
 double twice_signed_area(const std::vector<Eigen::Vector2d>& loop) {
@@ -212,6 +270,8 @@ PolygonTriangulation triangulate_polygons(const std::vector<std::vector<Eigen::V
       return result;
     }
   }
+  std::vector<Eigen::Vector2d> all_points;
+  for (const auto& loop : loops) all_points.insert(all_points.end(), loop.begin(), loop.end());
   // Each hole belongs to the smallest outer boundary around it.
   std::vector<std::vector<int>> holes_of(n);
   for (int h = 0; h < n; ++h) {
@@ -250,12 +310,14 @@ PolygonTriangulation triangulate_polygons(const std::vector<std::vector<Eigen::V
         return result;
       }
     }
+    const std::size_t first_triangle = result.triangles.size();
     const TriangulationStatus status = clipper.clip(start, result.triangles);
     if (status != TriangulationStatus::ok) {
       result.status = status;
       result.message = "loop " + std::to_string(o) + (status == TriangulationStatus::no_ear ? ": no ear left to clip (the loops cross or touch)" : ": step cap reached");
       return result;
     }
+    improve_by_flips(all_points, result.triangles, first_triangle);
   }
   return result;
 }

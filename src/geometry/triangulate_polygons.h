@@ -1,7 +1,8 @@
 // Triangulation of planar polygons with holes by ear clipping (Meisters 1975, "Polygons have
 // ears") after joining each hole to its enclosing boundary by a bridge to a visible vertex
 // (Eberly 2002, "Triangulation by Ear Clipping"), on the exact orientation predicate of
-// geometry/convex_hull_2d.h. No point is added: every triangle corner is an input point.
+// geometry/convex_hull_2d.h, then Lawson edge flips (Lawson 1977) against slivers. No point is
+// added: every triangle corner is an input point.
 #pragma once
 #include <array>
 #include <string>
