@@ -183,7 +183,7 @@ TEST_CASE("flatten_base: a torus standing on its side cut above its hole gives t
   CHECK(volume_of(r.mesh) == doctest::Approx(volume_of(torus) - volume_below(torus, r.plane_z)).epsilon(1e-12));
 }
 
-TEST_CASE("flatten_base: a plane through a ring of vertices cuts at them; bad heights are refused") {
+TEST_CASE("flatten_base: a plane through a ring of vertices cuts at them, bad heights are refused") {
   const int segments = 32;
   const Mesh cylinder = make_cylinder(10.0, 0.0, 10.0, segments, 4, 3);
   int on_plane = 0;
@@ -200,8 +200,8 @@ TEST_CASE("flatten_base: a plane through a ring of vertices cuts at them; bad he
   CHECK(volume_of(r.mesh) == doctest::Approx(volume_of(cylinder) - volume_below(cylinder, 5.0)).epsilon(1e-12));
   CHECK(volume_of(r.mesh) == doctest::Approx(volume_of(cylinder) / 2).epsilon(1e-12));
 
-  // Two vertices on the plane on a sphere-like mesh: the bottom cap of a fine cylinder tilted a
-  // little, so the plane passes through one side vertex of a ring and crosses edges elsewhere.
+  // The cylinder tilted a little: the plane passes through one vertex of a ring and crosses
+  // edges everywhere else.
   Mesh tilted = cylinder;
   for (Eigen::Index i = 0; i < tilted.V.rows(); ++i) tilted.V(i, 2) += 0.0625 * tilted.V(i, 0);
   const double zmin = tilted.V.col(2).minCoeff();
