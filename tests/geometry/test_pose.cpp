@@ -78,6 +78,18 @@ TEST_CASE("convex_hull_3d: random points, a sphere and a box with interior and d
   }
   CHECK(area == doctest::Approx(2 * (8 + 4 + 2)).epsilon(1e-14));
 
+  // A 6 x 6 x 6 grid: most points are coplanar or collinear with hull faces and edges.
+  std::vector<Eigen::Vector3d> grid;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 6; ++k) grid.emplace_back(0.1 * i, 0.1 * j, 0.1 * k);
+  const ConvexHull3d grid_hull = convex_hull_3d(grid, 0.0);
+  check_hull(grid, grid_hull);
+  CHECK(grid_hull.facets.size() == 6);
+  double grid_area = 0.0;
+  for (const auto& facet : grid_hull.facets) grid_area += facet.area;
+  CHECK(grid_area == doctest::Approx(6 * 0.25).epsilon(1e-14));
+
   std::vector<Eigen::Vector3d> flat{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
   CHECK(convex_hull_3d(flat, 0.0).status == ConvexHullStatus::flat);
 }
