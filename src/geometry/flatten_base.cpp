@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "geometry/triangulate_polygons.h"
+#include "util/det_math.h"
 #include "util/format_double.h"
 
 namespace offsetopt {
@@ -122,44 +123,66 @@ FlattenResult flatten_base(const Mesh& mesh, const FlattenSettings& settings) {
       const int u = t[k], w = t[(k + 1) % 3];
       if (points[u].z() == plane && points[w].z() == plane) ++in_plane_edges[{u, w}];
     }
-  std::map<int, int> next_on_cut;
+  // Cut edges by start point. A vertex on the plane where the section touches itself (a saddle
+  // tangent to the plane) starts two of them.
+  std::map<int, std::vector<int>> cut_edges_from;
+  std::map<int, int> in_degree;
   bool manifold = true;
+  int edge_count = 0;
   for (const auto& [edge, count] : in_plane_edges) {
     if (count != 1) manifold = false;
     if (in_plane_edges.count({edge.second, edge.first}) != 0) continue;
-    if (!next_on_cut.emplace(edge.first, edge.second).second) manifold = false;
+    cut_edges_from[edge.first].push_back(edge.second);
+    ++in_degree[edge.second];
+    ++edge_count;
   }
-  result.cut_edges = static_cast<int>(next_on_cut.size());
-  if (!manifold) {
+  for (const auto& [point, targets] : cut_edges_from)
+    if (in_degree[point] != static_cast<int>(targets.size())) manifold = false;
+  result.cut_edges = edge_count;
+  if (!manifold || in_degree.size() != cut_edges_from.size()) {
     result.status = FlattenStatus::cap_failed;
-    result.message = "the cut touches itself at a vertex on the plane (try another height)";
+    result.message = "the cut does not close into loops (is the mesh closed and manifold?)";
     return result;
   }
 
-  // Chain the cut edges into loops (each cut point has one successor and one predecessor).
-  std::map<int, char> visited;
+  // Chain the cut edges into loops. Where a point starts several, take the sharpest left turn:
+  // the loops then touch there without crossing, each one simple.
+  std::map<std::pair<int, int>, char> used;
   std::vector<int> loop_point;  // global triangulation index -> point
-  for (const auto& start_edge : next_on_cut) {
-    const int start = start_edge.first;
-    if (visited[start]) continue;
-    std::vector<Eigen::Vector2d> loop;
-    int p = start;
-    for (std::size_t step = 0; step <= next_on_cut.size(); ++step) {
-      if (visited[p]) break;
-      visited[p] = 1;
-      loop.emplace_back(points[p].x(), points[p].y());
-      loop_point.push_back(p);
-      const auto it = next_on_cut.find(p);
-      if (it == next_on_cut.end()) break;
-      p = it->second;
+  auto turn_left = [&](int from, int at, int to) {
+    const Eigen::Vector2d d = (points[at] - points[from]).head<2>(), e = (points[to] - points[at]).head<2>();
+    return det_atan2(d.x() * e.y() - d.y() * e.x(), d.x() * e.x() + d.y() * e.y());
+  };
+  for (const auto& [first, targets] : cut_edges_from)
+    for (int second : targets) {
+      if (used[{first, second}]) continue;
+      std::vector<Eigen::Vector2d> loop;
+      int from = first, at = second;
+      used[{first, second}] = 1;
+      loop.emplace_back(points[first].x(), points[first].y());
+      loop_point.push_back(first);
+      for (int step = 0; step <= edge_count && at != first; ++step) {
+        loop.emplace_back(points[at].x(), points[at].y());
+        loop_point.push_back(at);
+        int next = -1;
+        double best = 0.0;
+        for (int candidate : cut_edges_from[at]) {
+          if (used[{at, candidate}]) continue;
+          const double turn = turn_left(from, at, candidate);
+          if (next < 0 || turn > best) next = candidate, best = turn;
+        }
+        if (next < 0) break;
+        used[{at, next}] = 1;
+        from = at;
+        at = next;
+      }
+      if (at != first) {
+        result.status = FlattenStatus::cap_failed;
+        result.message = "a cut polygon does not close (is the mesh closed and manifold?)";
+        return result;
+      }
+      result.loops.push_back(std::move(loop));
     }
-    if (p != start) {
-      result.status = FlattenStatus::cap_failed;
-      result.message = "a cut polygon does not close (is the mesh closed and manifold?)";
-      return result;
-    }
-    result.loops.push_back(std::move(loop));
-  }
   const PolygonTriangulation cap = triangulate_polygons(result.loops);
   if (cap.status != TriangulationStatus::ok) {
     result.status = FlattenStatus::cap_failed;

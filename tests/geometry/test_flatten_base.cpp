@@ -181,6 +181,19 @@ TEST_CASE("flatten_base: a torus standing on its side cut above its hole gives t
   const double shoelace = star_area(left, Eigen::Vector2d(centre_left, 0)) + star_area(right, Eigen::Vector2d(centre_right, 0));
   CHECK(cap.area == doctest::Approx(shoelace).epsilon(1e-9));
   CHECK(volume_of(r.mesh) == doctest::Approx(volume_of(torus) - volume_below(torus, r.plane_z)).epsilon(1e-12));
+
+  // Tangent to the top of the hole (z = 20, a saddle vertex on the plane): the two pieces of the
+  // section touch at that vertex, the solid above does not pinch, and the cut is a valid solid.
+  const FlattenResult top = flatten_base(torus, FlattenSettings{60.0});
+  REQUIRE(top.status == FlattenStatus::ok);
+  CHECK(top.cap_loops == 2);
+  CHECK(validate_mesh(top.mesh).valid());
+  CHECK(cap_figures(top).faces_down);
+  // Tangent to the bottom of the hole (z = −20): what is left above pinches at that vertex (two
+  // parts touching in a point), which validation names; pose_input refuses it with that message.
+  const FlattenResult bottom = flatten_base(torus, FlattenSettings{20.0});
+  REQUIRE(bottom.status == FlattenStatus::ok);
+  CHECK(validate_mesh(bottom.mesh).find(DefectKind::kNonManifoldVertex) != nullptr);
 }
 
 TEST_CASE("flatten_base: a plane through a ring of vertices cuts at them, bad heights are refused") {
