@@ -74,8 +74,14 @@ PosedInput pose_input(const Mesh& mesh, const PoseOptions& options, const std::s
     const MeshValidation validation = validate_mesh(cut.mesh);
     for (const Defect& defect : validation.defects) {
       if (defect.kind == DefectKind::kSeveralComponents && !single_component) continue;
+      // The cut mesh's numbers mean nothing to the user: say where, in the working frame.
+      std::string where;
+      const long long v = defect.vertex >= 0 ? defect.vertex : defect.face >= 0 ? cut.mesh.F(defect.face, 0) : -1;
+      if (v >= 0 && v < cut.mesh.V.rows())
+        where = ", near (" + format_double(cut.mesh.V(v, 0)) + ", " + format_double(cut.mesh.V(v, 1)) + ", " +
+                format_double(cut.mesh.V(v, 2)) + ") in the turned frame";
       throw UsageError(mesh_path + ": --flatten " + format_double(options.flatten) + " leaves no valid solid: " +
-                       defect_name(defect.kind) + ": " + describe_defect(defect));
+                       defect_name(defect.kind) + where + " (try another height)");
     }
     Json flatten = Json::object();
     flatten["height"] = options.flatten;
