@@ -52,7 +52,8 @@ PosedInput pose_input(const Mesh& mesh, const PoseOptions& options, const std::s
   if (options.stable) {
     const Vector10d P = mass_properties(posed.mesh);
     const StablePose pose = stable_pose(posed.mesh, P.segment<3>(kCx));
-    if (pose.status == StablePoseStatus::no_hull) throw UsageError(mesh_path + ": --pose stable: " + pose.message);
+    if (pose.status == StablePoseStatus::no_hull || pose.status == StablePoseStatus::bad_settings)
+      throw UsageError(mesh_path + ": --pose stable: " + pose.message);
     if (pose.status != StablePoseStatus::ok) posed.warnings.push_back("--pose stable: " + pose.message);
     posed.mesh = apply_rigid_motion(posed.mesh, pose.motion);
     posed.outputs_in_input_frame = false;

@@ -104,6 +104,11 @@ std::string StablePoseSettings::check() const {
 
 StablePose stable_pose(const Mesh& mesh, const Eigen::Vector3d& center_of_mass, const StablePoseSettings& settings) {
   StablePose pose;
+  if (const std::string problem = settings.check(); !problem.empty()) {
+    pose.status = StablePoseStatus::bad_settings;
+    pose.message = problem;
+    return pose;
+  }
   std::vector<Eigen::Vector3d> points(static_cast<std::size_t>(mesh.V.rows()));
   for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) points[i] = mesh.V.row(i).transpose();
   const double diagonal = (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();

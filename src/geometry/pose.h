@@ -43,7 +43,7 @@ Mesh apply_rigid_motion(const Mesh& mesh, const RigidMotion& motion);
 // (Rodrigues' formula in its rational form; a half turn about x first when `from` is near +z).
 Eigen::Matrix3d rotation_to_minus_z(const Eigen::Vector3d& from);
 
-enum class StablePoseStatus { ok, no_hull, falls_on_every_facet };
+enum class StablePoseStatus { ok, bad_settings, no_hull, falls_on_every_facet };
 
 struct StablePose {
   StablePoseStatus status = StablePoseStatus::ok;
