@@ -5,6 +5,7 @@
 
 #include "cli/cli_support.h"
 #include "cli/commands.h"
+#include "cli/pose_options.h"
 #include "io/json.h"
 #include "mass/mass_properties.h"
 #include "mass/stability.h"
@@ -18,7 +19,8 @@ namespace offsetopt::cli {
 namespace {
 
 const char* const kUsage =
-    "usage: offsetopt inspect MESH [--json FILE|-] [--ground-tol T]\n"
+    "usage: offsetopt inspect MESH [--json FILE|-] [--ground-tol T] [--up AXIS] [--pose as-is|stable]\n"
+    "                                [--flatten H]\n"
     "\n"
     "Mass properties (density 1: mass = volume; inertia about the centre of mass,\n"
     "Ixy = -integral (x-cx)(y-cy) dV) and static stability of the solid bounded by MESH\n"
@@ -29,6 +31,13 @@ const char* const kUsage =
     "                   (default: none; a readable summary goes to stdout)\n"
     "  --ground-tol T   vertices with z <= zmin + T touch the ground, in mesh units\n"
     "                   (default: 1e-3 x the bounding-box diagonal)\n"
+    "  --up AXIS        the input's up axis: +x, -x, +y, -y, +z (default) or -z; the mesh is\n"
+    "                   turned exactly (a signed permutation of the axes) so it becomes +z\n"
+    "  --pose MODE      as-is (default) | stable: rest on the convex-hull face that keeps the\n"
+    "                   centre of mass furthest inside it (lowest point moved to z = 0)\n"
+    "  --flatten H      cut a flat base H (mesh units) above the lowest point and cap it\n"
+    "                   (applied after --up, then --pose); the figures are of the result, in\n"
+    "                   the turned frame (the JSON's \"pose\" object gives the rotation)\n"
     "  --help           show this help\n";
 
 Json vec3(const Eigen::Vector3d& v) { return Json::array_of({v.x(), v.y(), v.z()}); }
@@ -49,6 +58,7 @@ int run_inspect(const Args& args) {
   std::string mesh_path, json_path;
   StabilityOptions stability_options;
   bool json_requested = false;
+  PoseOptions pose_options;
   while (!cursor.done()) {
     const std::string& arg = cursor.next();
     if (arg == "--help" || arg == "-h") {
@@ -59,6 +69,7 @@ int run_inspect(const Args& args) {
       json_requested = true;
     } else if (arg == "--ground-tol") {
       stability_options.ground_tol = parse_double(cursor.value_of(arg), arg, 0.0, 1e9);
+    } else if (parse_pose_option(arg, cursor, pose_options)) {
     } else if (arg.size() > 1 && arg[0] == '-') {
       throw UsageError("unknown option '" + arg + "' for inspect (try 'offsetopt inspect --help')");
     } else if (mesh_path.empty()) {
@@ -71,7 +82,9 @@ int run_inspect(const Args& args) {
 
   const LoadedMesh loaded = load_mesh(mesh_path);
   print_warnings(loaded.warnings);
-  const Mesh& mesh = loaded.mesh;
+  const PosedInput posed = pose_input(loaded.mesh, pose_options, mesh_path, false);
+  print_warnings(posed.warnings);
+  const Mesh& mesh = posed.mesh;
   const VolumeIntegrals integrals = volume_integrals(mesh);
   const double volume = integrals.values(kIntVolume);
   if (!(volume > 0.0) || !std::isfinite(volume))
@@ -120,12 +133,22 @@ int run_inspect(const Args& args) {
     stand.set("tipping_edge", stability.tipping_edge);
     stand.set("stands", stability.stands);
     report.set("stability", stand);
+    if (pose_options.any()) report.set("pose", posed.report);
     write_text(json_path, report.dump(2) + "\n", {mesh_path});
     return kExitOk;
   }
 
   std::string out;
   out += mesh_path + ": " + std::to_string(mesh.V.rows()) + " vertices, " + std::to_string(mesh.F.rows()) + " faces\n";
+  if (pose_options.any()) {
+    const Json& pose = posed.report;
+    out += "  pose               up " + pose_options.up;
+    if (pose_options.stable) out += ", resting on its most stable hull face (margin " + text(pose.at("stable").at("margin").as_number()) + ")";
+    if (pose_options.flatten > 0.0)
+      out += ", base cut at z = " + text(pose.at("flatten").at("plane_z").as_number()) + " (" +
+             std::to_string(pose.at("flatten").at("cap_loops").as_integer()) + " cap loops)";
+    out += "; figures below in the turned frame\n";
+  }
   out += "  area               " + text(area) + "\n";
   out += "  volume (= mass)    " + text(volume) + "\n";
   out += "  centre of mass     " + triple(com) + "\n";

@@ -7,6 +7,7 @@
 
 #include "cli/cli_support.h"
 #include "cli/commands.h"
+#include "cli/pose_options.h"
 #include "cli/write_preview.h"
 #include "io/json.h"
 #include "mesh/load_mesh.h"
@@ -22,7 +23,8 @@ const char* const kUsage =
     "\n"
     "Carves an inner offset surface (and with --outer thickens the outside) so the printed solid\n"
     "meets GOAL, verifies the result on the final meshes and writes them. Lengths are in the\n"
-    "mesh's units; 'diag' is its bounding-box diagonal. z is up; the object is never moved.\n"
+    "mesh's units; 'diag' is its bounding-box diagonal. z is up (or --up); the object is not\n"
+    "moved unless --pose stable asks for it.\n"
     "\n"
     "goals:\n"
     "  stand          stands on its ground contact polygon, centre of mass low (paper eq. 5)\n"
@@ -68,6 +70,16 @@ const char* const kUsage =
     "                        implicit cavity (contour: closed, embedded, the wall kept exactly), or\n"
     "                        the offset surface when it verifies as it is and the contour otherwise\n"
     "  --cavity-cells C      contour grid cells per wall thickness (2, 1.25..8)\n"
+    "  --up AXIS             the input's up axis: +x, -x, +y, -y, +z (default) or -z. The mesh is\n"
+    "                        turned exactly (a signed permutation of the axes) to z up, and every\n"
+    "                        output mesh is turned back to the input's frame\n"
+    "  --pose MODE           as-is (default) | stable: rest on the convex-hull face that keeps the\n"
+    "                        centre of mass furthest inside it, lowest point at z = 0; outputs\n"
+    "                        are written in that new pose\n"
+    "  --flatten H           cut a flat base H (mesh units, > 0) above the lowest point and cap\n"
+    "                        it, after --up and --pose (for objects touching the ground in a\n"
+    "                        point or a line). The report's coordinates are all in the turned\n"
+    "                        frame; its \"pose\" object gives the rotation and what was done\n"
     "  --no-repair-ring      --cavity offset: repairs tighten only the vertices on folds, not\n"
     "                        their one-ring too\n"
     "  --threads N           threads per stage (2, 1..64); 1 runs the stages one after another\n"
@@ -87,6 +99,7 @@ int run_optimize(const Args& args) {
   std::string mesh_path, output, report_path, inner_path, outer_path, skeleton_path, preview_path;
   bool quiet = false, timings_in_report = true, goal_given = false;
   OptimizeSettings settings = OptimizeSettings::defaults();
+  PoseOptions pose_options;
   const double big = 1e12;
   while (!cursor.done()) {
     const std::string& arg = cursor.next();
@@ -161,6 +174,7 @@ int run_optimize(const Args& args) {
       settings.threads = parse_int(cursor.value_of(arg), arg, 1, 64);
     } else if (arg == "-v" || arg == "--verbose") {
       settings.trace_solver = true;
+    } else if (parse_pose_option(arg, cursor, pose_options)) {
     } else if (arg.size() > 1 && arg[0] == '-') {
       throw UsageError("unknown option '" + arg + "' for optimize (try 'offsetopt optimize --help')");
     } else if (mesh_path.empty()) {
@@ -190,20 +204,23 @@ int run_optimize(const Args& args) {
   auto progress = [&](const std::string& line) {
     if (!quiet) std::fprintf(stderr, "%s (%.2f s)\n", line.c_str(), seconds_since(start));
   };
-  OptimizeResult result = optimize_offsets(loaded.mesh, settings, progress);
+  const PosedInput posed = pose_input(loaded.mesh, pose_options, mesh_path, true);
+  print_warnings(posed.warnings, quiet);
+  OptimizeResult result = optimize_offsets(posed.mesh, settings, progress);
   if (result.status == OptimizeStatus::bad_input) throw UsageError(mesh_path + ": " + result.message);
   print_warnings(result.warnings, quiet);
 
   const auto write_start = std::chrono::steady_clock::now();
-  write_mesh(output, result.printable);
-  if (!inner_path.empty()) write_mesh(inner_path, result.inner);
-  if (!outer_path.empty()) write_mesh(outer_path, result.outer);
-  if (!skeleton_path.empty()) write_mesh(skeleton_path, result.skeleton);
+  write_mesh(output, to_output_frame(result.printable, posed));
+  if (!inner_path.empty()) write_mesh(inner_path, to_output_frame(result.inner, posed));
+  if (!outer_path.empty()) write_mesh(outer_path, to_output_frame(result.outer, posed));
+  if (!skeleton_path.empty()) write_mesh(skeleton_path, to_output_frame(result.skeleton, posed));
   Json report = Json::object();
   report["input"] = mesh_path;
   report["format"] = loaded.format;
   report["vertices"] = static_cast<long long>(loaded.mesh.V.rows());
   report["faces"] = static_cast<long long>(loaded.mesh.F.rows());
+  if (pose_options.any()) report["pose"] = posed.report;
   for (const auto& item : result.report.items()) report[item.first] = item.second;
   Json outputs = Json::object();
   outputs["solid"] = output;
