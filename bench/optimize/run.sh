@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Per-stage seconds and peak memory of `offsetopt optimize` for each goal on the demo meshes, on
 # a generated 100k-vertex bottle and, when ../shared/meshes is present, on real meshes (a
-# figure, not a test). Evaluations and repair rounds are printed too: they explain the solve time.
+# figure, not a test). Evaluations, the cavity written, the number of contours and the contoured
+# cells of the last one are printed too: they explain the solve and contour times ("correct" is
+# the verification of each contour and the re-solves between them).
 # usage: bench/optimize/run.sh [BINARY]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -30,7 +32,7 @@ else
 fi
 
 echo "machine: $(nproc) cores, load: $(cut -d' ' -f1-3 /proc/loadavg)"
-printf '%-16s %-46s %6s %7s %7s %7s %7s %7s %8s %6s %6s %5s\n' mesh options verts skel basis solve verify total peakMB evals rounds exit
+printf '%-16s %-46s %6s %7s %7s %7s %7s %7s %7s %7s %8s %6s %7s %8s %9s %5s\n' mesh options verts skel basis solve verify contour correct total peakMB evals cavity contours cells exit
 for c in "${cases[@]}"; do
   mesh=${c%%|*}; opts=${c#*|}
   [[ $mesh == /* ]] || mesh=$root/meshes/$mesh
@@ -41,8 +43,10 @@ for c in "${cases[@]}"; do
   /usr/bin/python3 - "$out/r.json" "$out/mem" "$(basename "$mesh")" "$opts" "$code" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1])); t = r['timings']; mem = int(open(sys.argv[2]).read().split()[-1]) / 1024
+c = r['cavity']; rounds = c.get('rounds', [])
+cells = rounds[-1]['contoured_cells'] if rounds else 0
 print(f"{sys.argv[3]:16} {sys.argv[4]:46} {r['vertices']:6d} {t['skeleton']:7.3f} {t['basis']:7.3f} {t['solve']:7.3f} "
-      f"{t['verify']:7.3f} {t['total'] + t['load'] + t['write']:7.3f} {mem:8.1f} {r['solver']['evaluations']:6d} "
-      f"{r['solver']['repair_rounds']:6d} {sys.argv[5]:>5}")
+      f"{t['verify']:7.3f} {t.get('contour', 0):7.3f} {t.get('correct', 0):7.3f} {t['total'] + t['load'] + t['write']:7.3f} "
+      f"{mem:8.1f} {r['solver']['evaluations']:6d} {c['written']:>7} {len(rounds):8d} {cells:9d} {sys.argv[5]:>5}")
 PY
 done

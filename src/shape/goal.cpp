@@ -147,7 +147,7 @@ bool parse_goal_kind(const std::string& name, GoalKind& kind) {
 std::string check_goal_spec(const GoalSpec& spec) {
   const bool needs_polygon = spec.kind == GoalKind::stand || spec.kind == GoalKind::stand_filled;
   if (needs_polygon && spec.support_polygon.size() < 3)
-    return "the support polygon has fewer than 3 corners: the object touches the ground in a point or a line and cannot stand";
+    return "the support polygon has fewer than 3 corners: the object touches the ground in a point or a line and cannot stand (--pose stable rests it on a face, --flatten H cuts a flat base)";
   if (!(spec.margin >= 0.0)) return "margin must be >= 0";
   if (!(spec.fill_density > 0.0)) return "fill density must be > 0";
   if (!(spec.epsilon >= 0.0)) return "epsilon must be >= 0";
