@@ -20,7 +20,7 @@ for mesh in kitten_lowres.obj rocker_arm.off elephant.off fertility.off camel.of
   Armadillo.ply 20mm-xyz-cube.stl hinge.stl spinit_kitten.obj spinit_dolphin.obj; do
   [[ -f $shared/$mesh ]] || continue
   volume=$("$binary" inspect "$shared/$mesh" --json - 2>/dev/null |
-    python3 -c "import json,sys; print(json.load(sys.stdin)['mass'] * 0.3)" 2>/dev/null || echo 1)
+    python3 -c "import json,sys; print(json.load(sys.stdin)['volume'] * 0.3)" 2>/dev/null || echo 1)
   for goal in "stand" "stand-filled --fill-density 0.8" "roly-poly" "spin" "volume --target-volume $volume" \
     "float --fluid-density 0.8"; do
     start=$(date +%s.%N)
