@@ -32,7 +32,7 @@ constexpr std::int64_t kMaxFaces = std::int64_t{1} << 25;
 // Stored in F for a vertex index that does not fit in 32 bits (always out of range).
 constexpr int kIndexOverflow = std::numeric_limits<int>::min();
 
-enum class MeshFormat { kObj, kStlAscii, kStlBinary, kOff, kPlyAscii, kPlyBinaryLittle, kPlyBinaryBig };
+enum class MeshFormat { kObj, kStlAscii, kStlBinary, kOff, kPlyAscii, kPlyBinaryLittle, kPlyBinaryBig, k3mf };
 
 struct RawMesh {
   MeshFormat format = MeshFormat::kObj;
@@ -48,7 +48,7 @@ struct RawMesh {
 // Human-readable name of a format ("binary STL", "ASCII PLY", ...).
 const char* format_name(MeshFormat format);
 
-// Reads the file at `path`: format chosen by extension (.obj .stl .off .ply, any case), or by
+// Reads the file at `path`: format chosen by extension (.obj .stl .off .ply .3mf, any case), or by
 // content when the extension is unknown. Error messages start with `path` as given.
 RawMesh read_raw_mesh(const std::string& path);
 
