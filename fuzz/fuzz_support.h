@@ -102,13 +102,14 @@ class HeapWatch {
 // exception passes through, so a refusal that allocated too much is caught as well).
 class HeapBudget {
  public:
-  explicit HeapBudget(std::size_t input_size) : input_size_(input_size) {
+  explicit HeapBudget(std::size_t input_size, std::size_t budget = 0)
+      : input_size_(input_size), budget_(budget ? budget : kBytesPerInputByte * input_size + kFixedBytes) {
     HeapWatch::install();
     HeapWatch::arm();
   }
   ~HeapBudget() {
     const std::int64_t peak = HeapWatch::disarm();
-    const std::int64_t budget = static_cast<std::int64_t>(kBytesPerInputByte * input_size_ + kFixedBytes);
+    const std::int64_t budget = static_cast<std::int64_t>(budget_);
     // OFFSETOPT_FUZZ_HEAP=1: print the peak of every input (to size the budget).
     static const bool report = std::getenv("OFFSETOPT_FUZZ_HEAP") != nullptr;
     if (report) {
@@ -126,6 +127,7 @@ class HeapBudget {
 
  private:
   std::size_t input_size_;
+  std::size_t budget_;
 };
 
 // One line of printable ASCII, starting with `name`, at most 1024 characters.
@@ -167,10 +169,12 @@ inline bool is_text_format(MeshFormat format) {
 
 // The body of the four reader harnesses: `read(name, bytes)` either returns a RawMesh that passes
 // check_raw_mesh or throws MeshInputError with a clean message; memory stays within the budget.
+// `budget_bytes` replaces the default budget (0: kBytesPerInputByte * size + kFixedBytes).
 template <typename Reader>
-int fuzz_one_reader(const char* name, const std::uint8_t* data, std::size_t size, Reader read) {
+int fuzz_one_reader(const char* name, const std::uint8_t* data, std::size_t size, Reader read,
+                    std::size_t budget_bytes = 0) {
   const std::string bytes(reinterpret_cast<const char*>(data), size);
-  HeapBudget budget(size);
+  HeapBudget budget(size, budget_bytes);
   try {
     const RawMesh raw = read(name, bytes);
     check_raw_mesh(raw, is_text_format(raw.format));

@@ -17,19 +17,20 @@ namespace offsetopt::cli {
 
 namespace {
 
-const char* const kUsage =
+const CommandHelp kHelp = {
     "usage: offsetopt inspect MESH [--json FILE|-] [--ground-tol T]\n"
     "\n"
     "Mass properties (density 1: mass = volume; inertia about the centre of mass,\n"
     "Ixy = -integral (x-cx)(y-cy) dV) and static stability of the solid bounded by MESH\n"
-    "as posed (z up, resting on its lowest vertices).\n"
-    "\n"
-    "options:\n"
-    "  --json FILE|-    write the report as JSON to FILE, or to stdout with '-'\n"
-    "                   (default: none; a readable summary goes to stdout)\n"
-    "  --ground-tol T   vertices with z <= zmin + T touch the ground, in mesh units\n"
-    "                   (default: 1e-3 x the bounding-box diagonal)\n"
-    "  --help           show this help\n";
+    "as posed (z up, resting on its lowest vertices).\n",
+    {
+        {"--json", "FILE|-", "none (a readable summary goes to stdout)", "a path, or - for stdout",
+         "write the report as JSON to FILE, or to stdout with '-'", "-"},
+        {"--ground-tol", "T", "1e-3 x the bounding-box diagonal", "[0, 1e9] mesh units",
+         "vertices with z <= zmin + T touch the ground", "0.01"},
+        {"-h, --help", "", "off", "flag", "show this help", ""},
+    },
+    ""};
 
 Json vec3(const Eigen::Vector3d& v) { return Json::array_of({v.x(), v.y(), v.z()}); }
 
@@ -51,8 +52,9 @@ int run_inspect(const Args& args) {
   bool json_requested = false;
   while (!cursor.done()) {
     const std::string& arg = cursor.next();
+    require_known_option("inspect", kHelp.options, arg);
     if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
+      write_text("-", format_help(kHelp));
       return kExitOk;
     } else if (arg == "--json") {
       json_path = cursor.value_of(arg);

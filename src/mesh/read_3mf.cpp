@@ -19,6 +19,10 @@ constexpr int kMaxComponentDepth = 32;
 constexpr std::size_t kMaxParts = 4096;
 // Components form a DAG that can name one object exponentially often with no vertices in it.
 constexpr std::int64_t kMaxInstances = std::int64_t{1} << 20;
+// And the build may place at most this many times the vertices the parts store (plus a slack for
+// small files), so memory stays proportional to the inflated input, as for the other readers.
+constexpr std::int64_t kMaxRepeat = 64;
+constexpr std::int64_t kRepeatSlack = std::int64_t{1} << 16;
 const char* const kModelRelationship = "http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel";
 
 // A 3MF transform "m00 m01 m02 m10 m11 m12 m20 m21 m22 m30 m31 m32": points are row vectors,
@@ -151,6 +155,7 @@ class Reader {
     if (!entry) throw MeshInputError(name_ + ": model part '" + quote_bytes(key) + "' is not in the package");
     const std::string text = extract(*entry);
     Part part = parse(key, text);
+    for (const auto& entry_object : part.objects) stored_vertices_ += static_cast<std::int64_t>(entry_object.second.xyz.size() / 3);
     return parts_.emplace(lowered, std::move(part)).first->second;
   }
 
@@ -283,6 +288,10 @@ class Reader {
       ++skipped_;
       return;
     }
+    const std::int64_t count = static_cast<std::int64_t>(object.xyz.size() / 3);
+    if (builder_.vertex_count() + count > kMaxRepeat * stored_vertices_ + kRepeatSlack)
+      refuse(from, ref.line, "the build repeats its objects to more than " + std::to_string(kMaxRepeat) +
+                                 " times the vertices the file stores (" + std::to_string(stored_vertices_) + ")");
     const Transform m = compose(ref.transform, outer);
     const bool identity = m == kIdentity;
     const std::int64_t base = builder_.vertex_count();
@@ -313,6 +322,7 @@ class Reader {
   RawMeshBuilder builder_;
   std::int64_t skipped_ = 0;
   std::int64_t instances_ = 0;
+  std::int64_t stored_vertices_ = 0;
 };
 
 }  // namespace

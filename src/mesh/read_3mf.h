@@ -13,7 +13,8 @@
 // Limits as for the other readers (mesh/read_raw_mesh.h): the inflated parts together stay
 // within kMaxFileBytes, vertex and triangle counts within kMaxVertices and kMaxFaces (also per
 // part, before the build), components nest at most 32 deep (which also ends reference cycles), and the build places at
-// most 2^20 object instances.
+// most 2^20 object instances holding at most 64 times the vertices the parts store (plus 65,536),
+// so memory stays proportional to the inflated bytes.
 // A triangle index beyond its object's vertices is refused here, since after the objects are
 // merged it would silently name another object's vertex. Messages read
 // "<file>: <entry> line <n>: <what>" or "<file>: <what> (zip byte offset)".
