@@ -138,8 +138,12 @@ std::string format_help(const CommandHelp& help) {
       append_wrapped(out, o.help, indent, false);
     }
     std::string facts = std::string("default: ") + o.default_value + "; range: " + o.range;
-    if (*o.example) facts += std::string("; e.g. ") + o.example;
+    // "example: X" stays on one line (a placeholder for its space survives the wrapping).
+    if (*o.example) facts += std::string("; example:\x01") + o.example;
+    const std::size_t start = out.size();
     append_wrapped(out, facts, indent, false);
+    for (std::size_t i = start; i < out.size(); ++i)
+      if (out[i] == '\x01') out[i] = ' ';
   }
   if (*help.outro) {
     out += "\n";

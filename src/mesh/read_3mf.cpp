@@ -93,7 +93,7 @@ class Reader {
 
  private:
   [[noreturn]] void refuse(const std::string& part, int line, const std::string& what) const {
-    throw MeshInputError(name_ + ": " + part + (line > 0 ? " line " + std::to_string(line) : std::string()) + ": " + what);
+    throw MeshInputError(name_ + ": " + part + (line > 0 ? ": line " + std::to_string(line) : std::string()) + ": " + what);
   }
 
   const ZipEntryInfo* find(std::string_view part_name) const {

@@ -17,7 +17,7 @@
 // so memory stays proportional to the inflated bytes.
 // A triangle index beyond its object's vertices is refused here, since after the objects are
 // merged it would silently name another object's vertex. Messages read
-// "<file>: <entry> line <n>: <what>" or "<file>: <what> (zip byte offset)".
+// "<file>: <entry>: line <n>: <what>" or "<file>: <what> (... byte offset)".
 #pragma once
 #include <string>
 

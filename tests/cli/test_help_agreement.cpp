@@ -20,11 +20,11 @@ struct HelpOption {
   std::vector<std::string> names;
   std::string argument, block;
   std::string example() const {
-    const std::size_t at = block.find("e.g. ");
+    const std::size_t at = block.find("example: ");
     if (at == std::string::npos) return "";
-    std::size_t end = at + 5;
+    std::size_t end = at + 9;
     while (end < block.size() && block[end] != ' ' && block[end] != '\n') ++end;
-    return block.substr(at + 5, end - at - 5);
+    return block.substr(at + 9, end - at - 9);
   }
 };
 
@@ -83,9 +83,9 @@ const char* const kCommands[] = {"check", "inspect", "basis", "skeleton", "optim
 
 TEST_CASE("help and parser agree for every command, and every option states its default and range") {
   TempDir dir;
-  for (const char* command : kCommands) {
+  for (const std::string command : kCommands) {
     CAPTURE(command);
-    const RunResult help = run_offsetopt(std::string(command) + " --help", dir);
+    const RunResult help = run_offsetopt(command + " --help", dir);
     REQUIRE(help.exit_code == 0);
     const std::vector<HelpOption> options = parse_help(help.out);
     REQUIRE(options.size() >= 2);
@@ -99,7 +99,7 @@ TEST_CASE("help and parser agree for every command, and every option states its 
         listed.insert(name);
         CAPTURE(name);
         const std::string value = o.argument.empty() ? "" : " " + shell_quote(o.example());
-        const RunResult r = run_offsetopt(std::string(command) + " " + name + value + " --help", dir);
+        const RunResult r = run_offsetopt(command + " " + name + value + " --help", dir);
         CHECK(r.exit_code == 0);
         CHECK(r.err == "");
         if (name != "--list") CHECK(r.out == help.out);  // --help was reached: the option and its value were accepted
@@ -109,7 +109,7 @@ TEST_CASE("help and parser agree for every command, and every option states its 
       CAPTURE(name);
       CHECK(listed.count(name) == 1);
     }
-    const RunResult unknown = run_offsetopt(std::string(command) + " --no-such-option --help", dir);
+    const RunResult unknown = run_offsetopt(command + " --no-such-option --help", dir);
     CHECK(unknown.exit_code == 2);
     CHECK(unknown.err.find("unknown option '--no-such-option'") != std::string::npos);
   }
