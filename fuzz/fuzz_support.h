@@ -24,6 +24,7 @@
 
 #include "mesh/load_mesh.h"
 #include "mesh/read_raw_mesh.h"
+#include "mesh/zip_archive.h"
 
 namespace offsetopt::fuzz {
 
@@ -129,6 +130,18 @@ class HeapBudget {
   std::size_t input_size_;
   std::size_t budget_;
 };
+
+// For a zip (3MF) input: the bytes its entries can inflate to, as its central directory declares
+// them and capped at DEFLATE's largest ratio (1032:1); 0 for anything else. Budgets count these
+// bytes like input bytes, since a 3MF package legitimately holds its model compressed.
+inline std::size_t inflatable_bytes(const std::uint8_t* data, std::size_t size) {
+  std::vector<ZipEntryInfo> entries;
+  std::string error;
+  std::uint64_t total = 0;
+  if (list_zip(std::string_view(reinterpret_cast<const char*>(data), size), entries, error))
+    for (const ZipEntryInfo& e : entries) total += e.size < 1032 * e.compressed_size + 1024 ? e.size : 1032 * e.compressed_size + 1024;
+  return static_cast<std::size_t>(total);
+}
 
 // One line of printable ASCII, starting with `name`, at most 1024 characters.
 inline void check_error_message(const std::string& name, const char* what) {

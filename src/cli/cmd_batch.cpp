@@ -141,6 +141,7 @@ std::vector<Job> read_manifest(const std::string& path, const std::string& text)
   for (std::size_t i = 0; i < lines.size(); ++i) {
     std::string line = lines[i];
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (i == 0 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);  // a UTF-8 BOM, as spreadsheets write
     const int file_line = static_cast<int>(i + 1);
     const std::string where = path + ":" + std::to_string(file_line);
     if (line.empty() || line[0] == '#') continue;

@@ -83,7 +83,7 @@ class Reader {
     if (part.unit != "millimeter")
       builder_.warnings().push_back("3MF unit is " + part.unit + "; coordinates are kept in " + part.unit +
                                     " (pass --unit " + part.unit + " when writing 3MF again)");
-    if (part.items.empty()) throw MeshInputError(name_ + ": " + root + ": no <item> in <build>: nothing to print");
+    if (part.items.empty()) throw MeshInputError(name_ + ": " + quote_bytes(root) + ": no <item> in <build>: nothing to print");
     for (const Component& item : part.items) emit(root, item, kIdentity, 0, root);
     if (skipped_ > 0)
       builder_.warnings().push_back(std::to_string(skipped_) + " build item(s) or component(s) of type support, solidsupport, surface or other left out");
@@ -93,7 +93,7 @@ class Reader {
 
  private:
   [[noreturn]] void refuse(const std::string& part, int line, const std::string& what) const {
-    throw MeshInputError(name_ + ": " + part + (line > 0 ? ": line " + std::to_string(line) : std::string()) + ": " + what);
+    throw MeshInputError(name_ + ": " + quote_bytes(part) + (line > 0 ? ": line " + std::to_string(line) : std::string()) + ": " + what);
   }
 
   const ZipEntryInfo* find(std::string_view part_name) const {
@@ -219,7 +219,7 @@ class Reader {
       }
       path.push_back(x.local_name());
       if (path.size() == 1) {
-        if (path[0] != "model") refuse(key, line, "the root element is <" + std::string(x.name()) + ">, not <model>");
+        if (path[0] != "model") refuse(key, line, "the root element is <" + quote_bytes(x.name()) + ">, not <model>");
         if (const std::string* unit = x.attribute("unit")) {
           static const char* const kUnits[] = {"micron", "millimeter", "centimeter", "inch", "foot", "meter"};
           bool known = false;
@@ -282,7 +282,7 @@ class Reader {
     const Part& part = load(key);
     const auto found = part.objects.find(ref.object);
     if (found == part.objects.end())
-      refuse(from, ref.line, "object " + std::to_string(ref.object) + " is not defined in " + key);
+      refuse(from, ref.line, "object " + std::to_string(ref.object) + " is not defined in " + quote_bytes(key));
     const Object& object = found->second;
     if (object.type != "model") {
       ++skipped_;

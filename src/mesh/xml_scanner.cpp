@@ -2,6 +2,8 @@
 
 #include <cstdint>
 
+#include "mesh/read_text.h"
+
 namespace offsetopt {
 
 namespace {
@@ -159,7 +161,7 @@ bool XmlScanner::next() {
     if (!check_text(text_.substr(pos_, stop - pos_))) return false;
     advance(stop - pos_);
     if (lt == std::string_view::npos) {
-      if (!stack_.empty()) return fail("the file ends inside element <" + std::string(stack_.back()) + ">");
+      if (!stack_.empty()) return fail("the file ends inside element <" + quote_bytes(stack_.back()) + ">");
       if (!root_seen_) return fail("no root element");
       kind_ = XmlTokenKind::eof;
       return true;
@@ -187,11 +189,11 @@ bool XmlScanner::next() {
       std::string_view name;
       if (!read_name(name)) return fail("bad end tag");
       skip_whitespace();
-      if (peek() != '>') return fail("bad end tag </" + std::string(name) + ">");
+      if (peek() != '>') return fail("bad end tag </" + quote_bytes(name) + ">");
       advance(1);
       if (stack_.empty() || stack_.back() != name)
-        return fail("end tag </" + std::string(name) + "> does not match " +
-                    (stack_.empty() ? std::string("any open element") : "<" + std::string(stack_.back()) + ">"));
+        return fail("end tag </" + quote_bytes(name) + "> does not match " +
+                    (stack_.empty() ? std::string("any open element") : "<" + quote_bytes(stack_.back()) + ">"));
       name_ = name;
       kind_ = XmlTokenKind::end;
       stack_.pop_back();
@@ -202,27 +204,27 @@ bool XmlScanner::next() {
     advance(1);
     std::string_view name;
     if (!read_name(name)) return fail("bad tag name");
-    if (stack_.empty() && root_seen_) return fail("a second root element <" + std::string(name) + ">");
+    if (stack_.empty() && root_seen_) return fail("a second root element <" + quote_bytes(name) + ">");
     if (stack_.size() >= kMaxDepth) return fail("elements nested deeper than " + std::to_string(kMaxDepth));
     attribute_count_ = 0;
     for (;;) {
       const std::size_t before = pos_;
       skip_whitespace();
       if (peek() == '>' || (peek() == '/' && peek(1) == '>')) break;
-      if (pos_ == before) return fail("expected whitespace, '>' or '/>' in <" + std::string(name) + ">");
+      if (pos_ == before) return fail("expected whitespace, '>' or '/>' in <" + quote_bytes(name) + ">");
       std::string_view attr;
-      if (!read_name(attr)) return fail("bad attribute name in <" + std::string(name) + ">");
+      if (!read_name(attr)) return fail("bad attribute name in <" + quote_bytes(name) + ">");
       skip_whitespace();
-      if (peek() != '=') return fail("attribute '" + std::string(attr) + "' without '='");
+      if (peek() != '=') return fail("attribute '" + quote_bytes(attr) + "' without '='");
       advance(1);
       skip_whitespace();
       const char quote = peek();
-      if (quote != '"' && quote != '\'') return fail("attribute '" + std::string(attr) + "' value not quoted");
+      if (quote != '"' && quote != '\'') return fail("attribute '" + quote_bytes(attr) + "' value not quoted");
       const std::size_t close = text_.find(quote, pos_ + 1);
       if (close == std::string_view::npos) return fail("unterminated attribute value");
       if (attribute_count_ >= kMaxAttributes) return fail("more than " + std::to_string(kMaxAttributes) + " attributes");
       for (std::size_t i = 0; i < attribute_count_; ++i)
-        if (attributes_[i].name == attr) return fail("duplicate attribute '" + std::string(attr) + "'");
+        if (attributes_[i].name == attr) return fail("duplicate attribute '" + quote_bytes(attr) + "'");
       if (attributes_.size() <= attribute_count_) attributes_.emplace_back();
       XmlAttribute& a = attributes_[attribute_count_++];
       a.name = attr;

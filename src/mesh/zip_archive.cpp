@@ -4,6 +4,7 @@
 
 #include "mesh/crc32.h"
 #include "mesh/inflate.h"
+#include "mesh/read_text.h"
 
 namespace offsetopt {
 
@@ -148,17 +149,17 @@ bool list_zip(std::string_view archive, std::vector<ZipEntryInfo>& entries, std:
     }
     e.name.assign(archive.substr(at + 46, name_len));
     if (e.compressed_size == 0xFFFFFFFFu || e.size == 0xFFFFFFFFu || local == 0xFFFFFFFFu) {
-      error = "entry '" + e.name + "' needs zip64, which is not supported (central directory byte " + std::to_string(at) + ")";
+      error = "entry '" + quote_bytes(e.name) + "' needs zip64, which is not supported (central directory byte " + std::to_string(at) + ")";
       return false;
     }
     // The local header repeats name and extra field, with lengths of its own.
     if (static_cast<std::uint64_t>(local) + 30 > cd_offset || get32(archive, local) != kLocalSignature) {
-      error = "entry '" + e.name + "': no local header at byte " + std::to_string(local);
+      error = "entry '" + quote_bytes(e.name) + "': no local header at byte " + std::to_string(local);
       return false;
     }
     const std::uint64_t data = static_cast<std::uint64_t>(local) + 30 + get16(archive, local + 26) + get16(archive, local + 28);
     if (data + e.compressed_size > cd_offset) {
-      error = "entry '" + e.name + "': data (" + std::to_string(e.compressed_size) + " bytes at byte " + std::to_string(data) +
+      error = "entry '" + quote_bytes(e.name) + "': data (" + std::to_string(e.compressed_size) + " bytes at byte " + std::to_string(data) +
               ") runs past the central directory";
       return false;
     }
@@ -172,7 +173,7 @@ bool list_zip(std::string_view archive, std::vector<ZipEntryInfo>& entries, std:
 bool extract_zip_entry(std::string_view archive, const ZipEntryInfo& entry, std::size_t max_size, std::string& out,
                        std::string& error) {
   out.clear();
-  const std::string where = "entry '" + entry.name + "'";
+  const std::string where = "entry '" + quote_bytes(entry.name) + "'";
   if (entry.flags & 1u) {
     error = where + " is encrypted";
     return false;
