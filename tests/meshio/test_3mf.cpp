@@ -254,3 +254,62 @@ TEST_CASE("3MF: build transforms and components are applied") {
   const LoadedMesh loaded = load_raw_mesh("t.3mf", raw);
   CHECK(loaded.components == 2);
 }
+
+TEST_CASE("3MF: hostile packages are refused with one printable line naming the file") {
+  const auto refusal = [](const std::string& bytes) {
+    try {
+      read_raw_mesh_from_memory("h.3mf", bytes);
+    } catch (const MeshInputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const auto printable = [](const std::string& message) {
+    for (const char c : message)
+      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) return false;
+    return message.rfind("h.3mf: ", 0) == 0;
+  };
+  const std::string head = "<model xmlns=\"http://schemas.microsoft.com/3dmanufacturing/core/2015/02\"><resources>";
+  const std::string tail = "</resources><build><item objectid=\"1\"/></build></model>";
+  struct Case {
+    std::string bytes, expected;
+  };
+  // The model part, named with control bytes by the relationship, no longer matches its CRC.
+  std::string crc = write_zip({{"_rels/.rels", "<Relationships><Relationship Type=\"http://schemas.microsoft.com/3dmanufacturing/"
+                                               "2013/01/3dmodel\" Target=\"/\x01\x02name\x7f\"/></Relationships>"},
+                               {"\x01\x02name\x7f", head + tail}});
+  crc[crc.find("<resources>") + 1] ^= 1;
+  // Components that double at every level: 2^25 instances from 25 objects, no vertex in any.
+  std::string dag = head + "<object id=\"1\"><components><component objectid=\"2\"/><component objectid=\"2\"/></components></object>";
+  for (int id = 2; id < 25; ++id)
+    dag += "<object id=\"" + std::to_string(id) + "\"><components><component objectid=\"" + std::to_string(id + 1) +
+           "\"/><component objectid=\"" + std::to_string(id + 1) + "\"/></components></object>";
+  dag += "<object id=\"25\"><mesh><vertices/><triangles/></mesh></object>" + tail;
+  std::string deep = head;
+  for (int i = 0; i < 300; ++i) deep += "<x>";
+  const Case cases[] = {
+      {write_zip({{"3D/3dmodel.model", "<m\x80od" "\x01" "el/>"}}), "malformed XML"},
+      {write_zip({{"3D/3dmodel.model", "<m\xc3\xa9" "del/>"}}), "the root element is <m\\xc3\\xa9del>"},
+      {crc, "entry '\\x01\\x02name\\x7f': CRC-32 mismatch"},
+      {write_zip({{"3D/3dmodel.model", dag}}), "more than 1048576 object instances"},
+      {write_zip({{"3D/3dmodel.model", deep}}), "nested deeper than 256"},
+      {write_zip({{"3D/3dmodel.model", head + "<object id=\"1\" id=\"2\"/>" + tail}}), "duplicate attribute 'id'"},
+      {write_zip({{"3D/3dmodel.model", head + "<object id=\"1\"/><object id=\"1\"/>" + tail}}), "a second object with id 1"},
+      {write_zip({{"3D/3dmodel.model", head + tail + "<model/>"}}), "a second root element"},
+      {write_zip({{"3D/3dmodel.model", head + "<object id=\"1\"/>&bogus;" + tail}}), "unknown or malformed reference"},
+      {write_zip({{"3D/3dmodel.model", head + "<object id=\"-1\"/>" + tail}}), "is not an index"},
+      {write_zip({{"3D/3dmodel.model", head + "<object id=\"1\"><components><component objectid=\"1\" transform=\"1 0 0\"/></components></object>" + tail}}),
+       "transform needs 12 numbers"},
+      {write_zip({{"_rels/.rels", "<Relationships><Relationship Type=\"http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel\" Target=\"/a\x01" "b\"/></Relationships>"}}),
+       "is not in the package"},
+      {std::string("PK\x03\x04", 4) + std::string(40, '\0'), "not a zip archive"},
+  };
+  for (const Case& c : cases) {
+    const std::string message = refusal(c.bytes);
+    CAPTURE(message);
+    CHECK(message.find(c.expected) != std::string::npos);
+    CHECK(printable(message));
+  }
+  // The same model, well-formed, is accepted: the refusals above come from the defect alone.
+  CHECK(refusal(write_zip({{"3D/3dmodel.model", head + "<object id=\"1\"><mesh><vertices/><triangles/></mesh></object>" + tail}})) == "accepted");
+}
