@@ -138,7 +138,7 @@ TEST_CASE("batch: parallel, resumable, summary counts right, outputs byte-identi
   CHECK(shard_tsv[2].find("4\t") == 0);
 }
 
-TEST_CASE("batch: a bad manifest is refused with exit 2 naming the file and line; a failing line is retried") {
+TEST_CASE("batch: a bad manifest is refused with exit 2 naming the file and line, a failing line is retried") {
   TempDir dir;
   const std::string folder = dir.path();
   write_file(folder + "/bad.tsv", "input\tgoal\toptions\nx.obj\tstand\t--wal 3\n");
