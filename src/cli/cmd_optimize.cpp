@@ -42,7 +42,7 @@ const CommandHelp kHelp = {
         {"--inner", "FILE", "none", "a mesh path", "the inner surface alone, outward-oriented", "inner.obj"},
         {"--outer-mesh", "FILE", "none", "a mesh path", "the outer surface alone (the input itself without --outer)", "outer.obj"},
         {"--skeleton", "FILE", "none", "a mesh path", "the contracted meso-skeleton (same connectivity)", "skeleton.obj"},
-        {"--unit", "UNIT", "millimeter", "micron | millimeter | centimeter | inch | foot | meter",
+        {"--unit", "UNIT", "the input's unit for a .3mf input, else millimeter", "micron | millimeter | centimeter | inch | foot | meter",
          "the unit written into .3mf outputs (the numbers are not scaled)", "inch"},
         // The problem.
         {"--goal", "GOAL", "none (required)", "stand | stand-filled | roly-poly | spin | volume | float", "one of the goals above",
@@ -86,7 +86,7 @@ int run_optimize(const Args& args) {
   const auto start = std::chrono::steady_clock::now();
   ArgCursor cursor(args);
   std::string mesh_path, output, report_path, inner_path, outer_path, skeleton_path, unit = "millimeter";
-  bool quiet = false, timings_in_report = true, goal_given = false;
+  bool quiet = false, timings_in_report = true, goal_given = false, unit_given = false;
   OptimizeSettings settings = OptimizeSettings::defaults();
   const double big = 1e12;
   while (!cursor.done()) {
@@ -107,6 +107,7 @@ int run_optimize(const Args& args) {
       skeleton_path = cursor.value_of(arg);
     } else if (arg == "--unit") {
       unit = parse_unit(cursor.value_of(arg));
+      unit_given = true;
     } else if (arg == "--no-timings") {
       timings_in_report = false;
     } else if (arg == "--goal") {
@@ -180,6 +181,7 @@ int run_optimize(const Args& args) {
   load_options.single_component = true;  // one solid: one skeleton, one constant mode
   const LoadedMesh loaded = load_mesh(mesh_path, load_options);
   print_warnings(loaded.warnings, quiet);
+  if (!unit_given && !loaded.unit.empty()) unit = loaded.unit;  // a 3MF input's unit carries over
   const double load_seconds = seconds_since(load_start);
   if (!quiet) std::fprintf(stderr, "load: %s, %ld vertices (%.2f s)\n", mesh_path.c_str(), static_cast<long>(loaded.mesh.V.rows()), load_seconds);
 

@@ -34,7 +34,7 @@ const CommandHelp kHelp = {
          "wall thickness for the lower offset bounds; the report then counts vertices whose bound band is empty", "0.5"},
         {"--max-steps", "N", "8", "[1, 100]",
          "contraction step cap; the run stops earlier once the enclosed volume is at most 10% of the input's", "4"},
-        {"--unit", "UNIT", "millimeter", "micron | millimeter | centimeter | inch | foot | meter",
+        {"--unit", "UNIT", "the input's unit for a .3mf input, else millimeter", "micron | millimeter | centimeter | inch | foot | meter",
          "the unit written into a .3mf output (the numbers are not scaled)", "millimeter"},
         {"--quiet", "", "off", "flag", "no progress on stderr", ""},
         {"-h, --help", "", "off", "flag", "show this help", ""},
@@ -47,7 +47,7 @@ int run_skeleton(const Args& args) {
   const auto start = std::chrono::steady_clock::now();
   ArgCursor cursor(args);
   std::string mesh_path, output, json_path, unit = "millimeter";
-  bool quiet = false;
+  bool quiet = false, unit_given = false;
   ContractionOptions contraction_options;
   OffsetFieldOptions field_options;
   while (!cursor.done()) {
@@ -64,6 +64,7 @@ int run_skeleton(const Args& args) {
       field_options.wall = parse_double(cursor.value_of(arg), arg, 0.0, 1e12);
     } else if (arg == "--unit") {
       unit = parse_unit(cursor.value_of(arg));
+      unit_given = true;
     } else if (arg == "--max-steps") {
       contraction_options.max_steps = parse_int(cursor.value_of(arg), arg, 1, 100);
     } else if (arg == "--quiet") {
@@ -90,6 +91,7 @@ int run_skeleton(const Args& args) {
 
   const LoadedMesh loaded = load_mesh(mesh_path);
   print_warnings(loaded.warnings, quiet);
+  if (!unit_given && !loaded.unit.empty()) unit = loaded.unit;  // a 3MF input's unit carries over
   const Mesh& mesh = loaded.mesh;
 
   const auto skeleton_start = std::chrono::steady_clock::now();

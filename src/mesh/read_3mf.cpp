@@ -82,12 +82,13 @@ class Reader {
     const Part& part = load(root);
     if (part.unit != "millimeter")
       builder_.warnings().push_back("3MF unit is " + part.unit + "; coordinates are kept in " + part.unit +
-                                    " (pass --unit " + part.unit + " when writing 3MF again)");
+                                    " (3MF outputs keep this unit unless --unit says otherwise)");
     if (part.items.empty()) throw MeshInputError(name_ + ": " + quote_bytes(root) + ": no <item> in <build>: nothing to print");
     for (const Component& item : part.items) emit(root, item, kIdentity, 0, root);
     if (skipped_ > 0)
       builder_.warnings().push_back(std::to_string(skipped_) + " build item(s) or component(s) of type support, solidsupport, surface or other left out");
     RawMesh raw = builder_.finish();
+    raw.unit = part.unit;
     return raw;
   }
 

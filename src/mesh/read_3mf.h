@@ -7,7 +7,8 @@
 // Every build item becomes triangles in one RawMesh (item and component transforms applied; a
 // transform with negative determinant mirrors, so its triangles are reversed to keep them facing
 // out). Objects of type support, solidsupport, surface or other are left out with a warning.
-// Coordinates are kept in the file's unit; a unit other than millimeter gives a warning.
+// Coordinates are kept in the file's unit (RawMesh::unit names it); a unit other than millimeter
+// gives a warning.
 // Materials, colours, metadata and unknown extension elements are ignored.
 //
 // Limits as for the other readers (mesh/read_raw_mesh.h): the inflated parts together stay

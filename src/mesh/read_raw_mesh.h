@@ -43,6 +43,7 @@ struct RawMesh {
   std::vector<int> vertex_line;
   std::vector<int> face_line;
   std::vector<std::string> warnings;  // one line each, without "Warning: " or the file name
+  std::string unit = {};  // the file's length unit when the format has one (3MF), else empty (an initializer, so aggregate initialisation without it does not warn)
 };
 
 // Human-readable name of a format ("binary STL", "ASCII PLY", ...).

@@ -92,8 +92,8 @@ TEST_CASE("help and parser agree for every command, and every option states its 
     std::set<std::string> listed;
     for (const HelpOption& o : options) {
       CAPTURE(o.block);
-      CHECK(o.block.find("default: ") != std::string::npos);
-      CHECK(o.block.find("range: ") != std::string::npos);
+      CHECK(o.block.find("default:") != std::string::npos);
+      CHECK(o.block.find("range:") != std::string::npos);
       CHECK(o.argument.empty() == o.example().empty());  // a value to try for every option that takes one
       for (const std::string& name : o.names) {
         listed.insert(name);
