@@ -90,7 +90,9 @@ void load_and_inspect(const RawMesh& raw, const LoadOptions& options) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string bytes(reinterpret_cast<const char*>(data), size);
-  offsetopt::fuzz::HeapBudget budget(size);
+  // 3MF (by content: a zip) counts the bytes it may inflate to as input (fuzz_support.h).
+  const std::size_t inflatable = offsetopt::fuzz::inflatable_bytes(data, size);
+  offsetopt::fuzz::HeapBudget budget(size, offsetopt::fuzz::kBytesPerInputByte * (size + inflatable) + offsetopt::fuzz::kFixedBytes);
   RawMesh raw;
   try {
     raw = read_any(bytes);

@@ -24,6 +24,7 @@
 
 #include "mesh/load_mesh.h"
 #include "mesh/read_raw_mesh.h"
+#include "mesh/zip_archive.h"
 
 namespace offsetopt::fuzz {
 
@@ -102,13 +103,14 @@ class HeapWatch {
 // exception passes through, so a refusal that allocated too much is caught as well).
 class HeapBudget {
  public:
-  explicit HeapBudget(std::size_t input_size) : input_size_(input_size) {
+  explicit HeapBudget(std::size_t input_size, std::size_t budget = 0)
+      : input_size_(input_size), budget_(budget ? budget : kBytesPerInputByte * input_size + kFixedBytes) {
     HeapWatch::install();
     HeapWatch::arm();
   }
   ~HeapBudget() {
     const std::int64_t peak = HeapWatch::disarm();
-    const std::int64_t budget = static_cast<std::int64_t>(kBytesPerInputByte * input_size_ + kFixedBytes);
+    const std::int64_t budget = static_cast<std::int64_t>(budget_);
     // OFFSETOPT_FUZZ_HEAP=1: print the peak of every input (to size the budget).
     static const bool report = std::getenv("OFFSETOPT_FUZZ_HEAP") != nullptr;
     if (report) {
@@ -126,7 +128,20 @@ class HeapBudget {
 
  private:
   std::size_t input_size_;
+  std::size_t budget_;
 };
+
+// For a zip (3MF) input: the bytes its entries can inflate to, as its central directory declares
+// them and capped at DEFLATE's largest ratio (1032:1); 0 for anything else. Budgets count these
+// bytes like input bytes, since a 3MF package legitimately holds its model compressed.
+inline std::size_t inflatable_bytes(const std::uint8_t* data, std::size_t size) {
+  std::vector<ZipEntryInfo> entries;
+  std::string error;
+  std::uint64_t total = 0;
+  if (list_zip(std::string_view(reinterpret_cast<const char*>(data), size), entries, error))
+    for (const ZipEntryInfo& e : entries) total += e.size < 1032 * e.compressed_size + 1024 ? e.size : 1032 * e.compressed_size + 1024;
+  return static_cast<std::size_t>(total);
+}
 
 // One line of printable ASCII, starting with `name`, at most 1024 characters.
 inline void check_error_message(const std::string& name, const char* what) {
@@ -167,10 +182,12 @@ inline bool is_text_format(MeshFormat format) {
 
 // The body of the four reader harnesses: `read(name, bytes)` either returns a RawMesh that passes
 // check_raw_mesh or throws MeshInputError with a clean message; memory stays within the budget.
+// `budget_bytes` replaces the default budget (0: kBytesPerInputByte * size + kFixedBytes).
 template <typename Reader>
-int fuzz_one_reader(const char* name, const std::uint8_t* data, std::size_t size, Reader read) {
+int fuzz_one_reader(const char* name, const std::uint8_t* data, std::size_t size, Reader read,
+                    std::size_t budget_bytes = 0) {
   const std::string bytes(reinterpret_cast<const char*>(data), size);
-  HeapBudget budget(size);
+  HeapBudget budget(size, budget_bytes);
   try {
     const RawMesh raw = read(name, bytes);
     check_raw_mesh(raw, is_text_format(raw.format));

@@ -7,7 +7,7 @@
 # Any finding (crash, sanitizer report, hang beyond -timeout, memory beyond the budget) fails
 # the script; the input is saved in build-fuzz/artifacts/ and the log in build-fuzz/logs/.
 #   scripts/fuzz.sh [SECONDS] [HARNESS...]   SECONDS per harness (default 60), every harness by default
-#   harnesses: read_obj read_stl read_off read_ply load_inspect
+#   harnesses: read_obj read_stl read_off read_ply read_3mf load_inspect
 #   FUZZ_SKIP_HOSTILE=1 skips step 1.
 # The working corpus (build-fuzz/corpus/<harness>) persists between runs; seeds come from
 # tests/data/bad, tests/data/accepted, meshes/ and fuzz/corpus/<harness> (committed, minimised).
@@ -16,7 +16,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 [[ $# -gt 0 ]] && shift
 harnesses=("$@")
-((${#harnesses[@]})) || harnesses=(read_obj read_stl read_off read_ply load_inspect)
+((${#harnesses[@]})) || harnesses=(read_obj read_stl read_off read_ply read_3mf load_inspect)
 
 ./scripts/deps.sh fuzz
 jobs=$(nproc)
@@ -57,7 +57,8 @@ for h in "${harnesses[@]}"; do
     read_stl) extensions=(stl); dict=fuzz/dict/stl.dict ;;
     read_off) extensions=(off); dict=fuzz/dict/off.dict ;;
     read_ply) extensions=(ply); dict=fuzz/dict/ply.dict ;;
-    load_inspect) extensions=(obj stl off ply); dict=$out/dict/all.dict ;;
+    read_3mf) extensions=(3mf); dict=fuzz/dict/3mf.dict ;;
+    load_inspect) extensions=(obj stl off ply 3mf); dict=$out/dict/all.dict ;;
     *) echo "unknown harness '$h'" >&2; exit 2 ;;
   esac
   seeds=$out/seeds/$h

@@ -1,5 +1,6 @@
 #include "cli/cli_support.h"
 
+#include "mesh/write_3mf.h"
 #include "util/format_double.h"
 
 #include <sys/stat.h>
@@ -66,6 +67,104 @@ void write_text(const std::string& path, const std::string& text, const std::vec
   if (!out) throw UsageError("cannot open " + path + " for writing");
   out.write(text.data(), static_cast<std::streamsize>(text.size()));
   if (!out) throw UsageError("writing " + path + " failed");
+}
+
+namespace {
+
+// Splits "-o, --output" into its names.
+std::vector<std::string> option_names(const char* names) {
+  std::vector<std::string> out;
+  std::string text = names, current;
+  for (const char c : text) {
+    if (c == ',' || c == ' ') {
+      if (!current.empty()) out.push_back(current);
+      current.clear();
+    } else {
+      current += c;
+    }
+  }
+  if (!current.empty()) out.push_back(current);
+  return out;
+}
+
+// Appends `text` wrapped at 96 columns, every line indented by `indent` (the first line's
+// indentation is already written when `first_written`).
+void append_wrapped(std::string& out, const std::string& text, std::size_t indent, bool first_written) {
+  const std::size_t width = 96;
+  std::size_t column = first_written ? indent : 0;
+  if (!first_written) {
+    out.append(indent, ' ');
+    column = indent;
+  }
+  std::size_t start = 0;
+  bool line_empty = true;
+  while (start < text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(start, end - start);
+    if (!line_empty && column + 1 + word.size() > width) {
+      out += '\n';
+      out.append(indent, ' ');
+      column = indent;
+      line_empty = true;
+    }
+    if (!line_empty) {
+      out += ' ';
+      ++column;
+    }
+    out += word;
+    column += word.size();
+    line_empty = false;
+    start = end + 1;
+  }
+  out += '\n';
+}
+
+}  // namespace
+
+std::string format_help(const CommandHelp& help) {
+  std::string out = help.intro;
+  out += "\noptions:\n";
+  const std::size_t indent = 26;
+  for (const OptionSpec& o : help.options) {
+    std::string head = std::string("  ") + o.names;
+    if (*o.argument) head += std::string(" ") + o.argument;
+    out += head;
+    if (head.size() + 1 < indent) {
+      out.append(indent - head.size(), ' ');
+      append_wrapped(out, o.help, indent, true);
+    } else {
+      out += '\n';
+      append_wrapped(out, o.help, indent, false);
+    }
+    std::string facts = std::string("default: ") + o.default_value + "; range: " + o.range;
+    // "example: X" stays on one line (a placeholder for its space survives the wrapping).
+    if (*o.example) facts += std::string("; example:\x01") + o.example;
+    const std::size_t start = out.size();
+    append_wrapped(out, facts, indent, false);
+    for (std::size_t i = start; i < out.size(); ++i)
+      if (out[i] == '\x01') out[i] = ' ';
+  }
+  if (*help.outro) {
+    out += "\n";
+    out += help.outro;
+  }
+  return out;
+}
+
+void require_known_option(const char* command, const std::vector<OptionSpec>& options, const std::string& arg) {
+  if (arg.size() < 2 || arg[0] != '-') return;
+  for (const OptionSpec& o : options)
+    for (const std::string& name : option_names(o.names))
+      if (name == arg) return;
+  throw UsageError(std::string("unknown option '") + arg + "' for " + command + " (try 'offsetopt " + command + " --help')");
+}
+
+std::string parse_unit(const std::string& text) {
+  if (is_unit_3mf(text)) return text;
+  std::string list;
+  for (const std::string& u : units_3mf()) list += (list.empty() ? "" : ", ") + u;
+  throw UsageError("--unit must be one of " + list + ", got '" + text + "'");
 }
 
 void print_warnings(const std::vector<std::string>& warnings, bool quiet) {

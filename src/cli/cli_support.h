@@ -46,6 +46,35 @@ inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// One row of a command's option table: the single place an option is declared. The help text is
+// generated from the table, and each parser refuses anything not in it (require_known_option),
+// so every accepted option is in the help; tests/cli/test_help_agreement.cpp runs every row's
+// example through the real parser, so every option in the help is accepted.
+struct OptionSpec {
+  const char* names;          // "--wall" or "-o, --output"
+  const char* argument;       // "T", "FILE", ...; "" for a flag
+  const char* default_value;  // "0.01 diag", "none", "off"
+  const char* range;          // "[0, 1e12]", "mass | laplacian", "flag"
+  const char* help;           // one sentence or two; wrapped by the generator
+  const char* example;        // a value the parser accepts ("" for a flag)
+};
+
+struct CommandHelp {
+  const char* intro;   // usage lines and what the command does (ends with a newline)
+  std::vector<OptionSpec> options;
+  const char* outro;   // exit codes, notes (may be empty)
+};
+
+// The help text: intro, "options (default; range):" with each row, outro.
+std::string format_help(const CommandHelp& help);
+
+// UsageError for an argument that looks like an option ("-x", "--name"; not "-" alone) and is
+// not one of `options`' names.
+void require_known_option(const char* command, const std::vector<OptionSpec>& options, const std::string& arg);
+
+// The value of --unit: one of the 3MF units (mesh/write_3mf.h), else UsageError.
+std::string parse_unit(const std::string& text);
+
 // Prints each warning as "Warning: <text>" on stderr unless quiet.
 void print_warnings(const std::vector<std::string>& warnings, bool quiet = false);
 

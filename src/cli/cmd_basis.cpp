@@ -19,36 +19,37 @@ namespace offsetopt::cli {
 
 namespace {
 
-constexpr const char* kUsage =
+const CommandHelp kHelp = {
     "usage: offsetopt basis MESH --k N [options]\n"
     "\n"
     "The k smallest eigenpairs of the cotan Laplacian (manifold harmonics), by a shift-invert\n"
-    "block Lanczos solver. The JSON report goes to stdout unless --json names a file.\n"
-    "\n"
-    "options:\n"
-    "  --k N                 number of eigenpairs, 1 <= N < number of vertices (required)\n"
-    "  --basis KIND          'mass' (default): L phi = lambda M phi, phi'M phi = 1, with the\n"
-    "                        lumped mass M; 'laplacian': L phi = lambda phi, |phi| = 1 (the paper)\n"
-    "  --json FILE|-         write the report to FILE ('-': stdout, the default)\n"
-    "  --vectors FILE        write the eigenvectors: FILE.npy (NumPy, float64, shape (#V, k),\n"
-    "                        column j = eigenvector j) or FILE.csv (header phi_0..phi_{k-1}, one\n"
-    "                        row per vertex, shortest round-trip numbers)\n"
-    "  --ply FILE            write the mesh as binary PLY with eigenvector J as per-vertex\n"
-    "                        'quality' and a blue-white-red colour\n"
-    "  --ply-vector J        which eigenvector --ply shows (default 1, the first non-constant;\n"
-    "                        0 when k = 1)\n"
-    "  --tol T               convergence: |L phi - lambda M phi| <= T |L|inf |phi| (default 1e-10)\n"
-    "  --block-size B        Lanczos block size (default 6; >= the largest eigenvalue multiplicity)\n"
-    "  --threads N           threads for the iteration (default 0: min(2, cores)); the results are\n"
-    "                        the same bits for any N\n"
-    "  --matrices PREFIX     also write PREFIX_L.mtx and PREFIX_M.mtx (Matrix Market), the exact\n"
-    "                        matrices solved, for comparisons with other eigensolvers\n"
-    "  --quiet               no progress or warnings on stderr\n"
-    "\n"
+    "block Lanczos solver. The JSON report goes to stdout unless --json names a file.\n",
+    {
+        {"--k", "N", "none (required)", "[1, #vertices - 1]", "number of eigenpairs", "4"},
+        {"--basis", "KIND", "mass", "mass | laplacian",
+         "'mass': L phi = lambda M phi, phi'M phi = 1, with the lumped mass M; 'laplacian': L phi = lambda phi, |phi| = 1 (the paper)",
+         "laplacian"},
+        {"--json", "FILE|-", "- (stdout)", "a path, or - for stdout", "where the report goes", "basis.json"},
+        {"--vectors", "FILE", "none", "a path ending in .npy or .csv",
+         "write the eigenvectors: FILE.npy (NumPy, float64, shape (#V, k), column j = eigenvector j) or FILE.csv (header phi_0..phi_{k-1}, one row per vertex, shortest round-trip numbers)",
+         "vectors.npy"},
+        {"--ply", "FILE", "none", "a path ending in .ply",
+         "write the mesh as binary PLY with eigenvector J as per-vertex 'quality' and a blue-white-red colour", "basis.ply"},
+        {"--ply-vector", "J", "1 (the first non-constant; 0 when k = 1)", "[0, k - 1]", "which eigenvector --ply shows", "0"},
+        {"--tol", "T", "1e-10", "[1e-15, 1e-2]", "convergence: |L phi - lambda M phi| <= T |L|inf |phi|", "1e-8"},
+        {"--block-size", "B", "6", "[1, 64]", "Lanczos block size (at least the largest eigenvalue multiplicity)", "4"},
+        {"--threads", "N", "0 (min(2, cores))", "[0, 64]", "threads for the iteration; the results are the same bits for any N",
+         "1"},
+        {"--matrices", "PREFIX", "none", "a path prefix",
+         "also write PREFIX_L.mtx and PREFIX_M.mtx (Matrix Market), the exact matrices solved, for comparisons with other eigensolvers",
+         "m"},
+        {"--quiet", "", "off", "flag", "no progress or warnings on stderr", ""},
+        {"-h, --help", "", "off", "flag", "show this help", ""},
+    },
     "report fields: eigenvalues (ascending), residuals (relative, as --tol), status, converged,\n"
     "iterations (block steps), operator_applications (vectors through (L + sM)^-1), seconds\n"
     "(ordering, factorisation and iterations), factor_seconds, total_seconds (reading, assembly\n"
-    "and solve). Exit 0 when every pair converged, 3 when not (outputs still written).\n";
+    "and solve). Exit 0 when every pair converged, 3 when not (outputs still written).\n"};
 
 using Clock = std::chrono::steady_clock;
 
@@ -73,8 +74,9 @@ int run_basis(const Args& args) {
   ArgCursor cursor(args);
   while (!cursor.done()) {
     const std::string& arg = cursor.next();
+    require_known_option("basis", kHelp.options, arg);
     if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
+      write_text("-", format_help(kHelp));
       return kExitOk;
     } else if (arg == "--k") {
       k = parse_int(cursor.value_of(arg), arg, 1, INT_MAX);

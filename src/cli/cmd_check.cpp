@@ -13,24 +13,21 @@ namespace offsetopt::cli {
 
 namespace {
 
-void print_check_usage(std::FILE* out) {
-  std::fputs(
-      "usage: offsetopt check MESH [--quiet]\n"
-      "\n"
-      "Validate MESH (.obj, .stl, .off, .ply) as a printable solid. Each defect is one line on\n"
-      "stderr: 'Error: <file>: <defect>: <count> (first: face N[, line L]): <details>'.\n"
-      "Checks: empty mesh, non-finite or too large coordinates, vertex indices out of range,\n"
-      "degenerate and duplicate faces, boundary edges, non-manifold edges and vertices,\n"
-      "inconsistent orientation, zero volume, inside-out shells, several components.\n"
-      "Faces and vertices are numbered from 0 in file order (faces after triangulation).\n"
-      "\n"
-      "options:\n"
-      "  --quiet   no warnings and no summary line; errors and the exit code only\n"
-      "\n"
-      "exit codes: 0 closed, oriented, connected 2-manifold of positive volume (summary on\n"
-      "stdout); 2 any defect, unreadable file or bad usage\n",
-      out);
-}
+const CommandHelp kHelp = {
+    "usage: offsetopt check MESH [--quiet]\n"
+    "\n"
+    "Validate MESH (.obj, .stl, .off, .ply, .3mf) as a printable solid. Each defect is one line on\n"
+    "stderr: 'Error: <file>: <defect>: <count> (first: face N[, line L]): <details>'.\n"
+    "Checks: empty mesh, non-finite or too large coordinates, vertex indices out of range,\n"
+    "degenerate and duplicate faces, boundary edges, non-manifold edges and vertices,\n"
+    "inconsistent orientation, zero volume, inside-out shells, several components.\n"
+    "Faces and vertices are numbered from 0 in file order (faces after triangulation).\n",
+    {
+        {"-q, --quiet", "", "off", "flag", "no warnings and no summary line; errors and the exit code only", ""},
+        {"-h, --help", "", "off", "flag", "show this help", ""},
+    },
+    "exit codes: 0 closed, oriented, connected 2-manifold of positive volume (summary on\n"
+    "stdout); 2 any defect, unreadable file or bad usage\n"};
 
 }  // namespace
 
@@ -40,8 +37,9 @@ int run_check(const Args& args) {
   ArgCursor cursor(args);
   while (!cursor.done()) {
     const std::string& arg = cursor.next();
+    require_known_option("check", kHelp.options, arg);
     if (arg == "--help" || arg == "-h") {
-      print_check_usage(stdout);
+      write_text("-", format_help(kHelp));
       return kExitOk;
     }
     if (arg == "--quiet" || arg == "-q") {

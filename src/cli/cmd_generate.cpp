@@ -13,20 +13,25 @@ namespace offsetopt::cli {
 
 namespace {
 
-const char* const kUsage =
-    "usage: offsetopt generate NAME -o FILE [--detail D]\n"
+const CommandHelp kHelp = {
+    "usage: offsetopt generate NAME -o FILE [--detail D] [--unit UNIT]\n"
     "       offsetopt generate --list\n"
     "\n"
     "Writes a procedural demo mesh (deterministic: the same bytes on every machine), z up,\n"
-    "resting on z = 0, in millimetres. The format follows FILE's extension; '-o -' writes OBJ\n"
-    "to stdout.\n"
-    "\n"
-    "options:\n"
-    "  -o, --output FILE  where to write the mesh (required; no default)\n"
-    "  --detail D         multiply the ring and segment counts by D (1, 0.25..16; bottle, top,\n"
-    "                     rolypoly and buoy only): about D^2 times the vertices, for benchmarks\n"
-    "  --list             print the available names, one per line\n"
-    "  --help             show this help\n";
+    "resting on z = 0, in millimetres. The format follows FILE's extension (.obj, .stl, .ply,\n"
+    ".3mf); '-o -' writes OBJ to stdout.\n",
+    {
+        {"-o, --output", "FILE", "none (required)", "a path ending in .obj, .stl, .ply or .3mf, or -",
+         "where to write the mesh", "demo.obj"},
+        {"--detail", "D", "1", "[0.25, 16]",
+         "multiply the ring and segment counts by D (bottle, top, rolypoly and buoy only): about D^2 times the vertices, for benchmarks",
+         "2"},
+        {"--unit", "UNIT", "millimeter", "micron | millimeter | centimeter | inch | foot | meter",
+         "the unit written into a .3mf file (the numbers are not scaled)", "millimeter"},
+        {"--list", "", "off", "flag", "print the available names, one per line", ""},
+        {"-h, --help", "", "off", "flag", "show this help", ""},
+    },
+    ""};
 
 }  // namespace
 
@@ -35,15 +40,19 @@ int run_generate(const Args& args) {
   std::string name, output;
   bool list = false;
   double detail = 1.0;
+  std::string unit = "millimeter";
   while (!cursor.done()) {
     const std::string& arg = cursor.next();
+    require_known_option("generate", kHelp.options, arg);
     if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
+      write_text("-", format_help(kHelp));
       return kExitOk;
     } else if (arg == "--list") {
       list = true;
     } else if (arg == "-o" || arg == "--output") {
       output = cursor.value_of(arg);
+    } else if (arg == "--unit") {
+      unit = parse_unit(cursor.value_of(arg));
     } else if (arg == "--detail") {
       detail = parse_double(cursor.value_of(arg), arg, 0.25, 16.0);
     } else if (arg.size() > 1 && arg[0] == '-') {
@@ -77,7 +86,7 @@ int run_generate(const Args& args) {
     return kExitOk;
   }
   try {
-    write_mesh(output, mesh);
+    write_mesh(output, mesh, unit);
   } catch (const MeshInputError&) {
     throw;  // unsupported extension: already one line naming the problem
   } catch (const std::runtime_error& e) {

@@ -18,27 +18,24 @@ namespace offsetopt::cli {
 
 namespace {
 
-const char* const kUsage =
+const CommandHelp kHelp = {
     "usage: offsetopt inspect MESH [--json FILE|-] [--ground-tol T] [--up AXIS] [--pose as-is|stable]\n"
     "                                [--flatten H]\n"
     "\n"
     "Mass properties (density 1: mass = volume; inertia about the centre of mass,\n"
     "Ixy = -integral (x-cx)(y-cy) dV) and static stability of the solid bounded by MESH\n"
-    "as posed (z up, resting on its lowest vertices).\n"
-    "\n"
-    "options:\n"
-    "  --json FILE|-    write the report as JSON to FILE, or to stdout with '-'\n"
-    "                   (default: none; a readable summary goes to stdout)\n"
-    "  --ground-tol T   vertices with z <= zmin + T touch the ground, in mesh units\n"
-    "                   (default: 1e-3 x the bounding-box diagonal)\n"
-    "  --up AXIS        the input's up axis: +x, -x, +y, -y, +z (default) or -z; the mesh is\n"
-    "                   turned exactly (a signed permutation of the axes) so it becomes +z\n"
-    "  --pose MODE      as-is (default) | stable: rest on the convex-hull face that keeps the\n"
-    "                   centre of mass furthest inside it (lowest point moved to z = 0)\n"
-    "  --flatten H      cut a flat base H (mesh units) above the lowest point and cap it\n"
-    "                   (applied after --up, then --pose); the figures are of the result, in\n"
-    "                   the turned frame (the JSON's \"pose\" object gives the rotation)\n"
-    "  --help           show this help\n";
+    "as posed (z up, resting on its lowest vertices).\n",
+    {
+        {"--json", "FILE|-", "none (a readable summary goes to stdout)", "a path, or - for stdout",
+         "write the report as JSON to FILE, or to stdout with '-'", "-"},
+        {"--ground-tol", "T", "1e-3 x the bounding-box diagonal", "[0, 1e9] mesh units",
+         "vertices with z <= zmin + T touch the ground", "0.01"},
+        kPoseOptionSpecs[0],
+        kPoseOptionSpecs[1],
+        kPoseOptionSpecs[2],
+        {"-h, --help", "", "off", "flag", "show this help", ""},
+    },
+    ""};
 
 Json vec3(const Eigen::Vector3d& v) { return Json::array_of({v.x(), v.y(), v.z()}); }
 
@@ -61,8 +58,9 @@ int run_inspect(const Args& args) {
   PoseOptions pose_options;
   while (!cursor.done()) {
     const std::string& arg = cursor.next();
+    require_known_option("inspect", kHelp.options, arg);
     if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
+      write_text("-", format_help(kHelp));
       return kExitOk;
     } else if (arg == "--json") {
       json_path = cursor.value_of(arg);

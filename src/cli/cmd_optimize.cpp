@@ -18,13 +18,12 @@ namespace offsetopt::cli {
 
 namespace {
 
-const char* const kUsage =
+const CommandHelp kHelp = {
     "usage: offsetopt optimize MESH --goal GOAL -o FILE [options]\n"
     "\n"
     "Carves an inner offset surface (and with --outer thickens the outside) so the printed solid\n"
     "meets GOAL, verifies the result on the final meshes and writes them. Lengths are in the\n"
-    "mesh's units; 'diag' is its bounding-box diagonal. z is up (or --up); the object is not\n"
-    "moved unless --pose stable asks for it.\n"
+    "mesh's units; 'diag' is its bounding-box diagonal. z is up; the object is never moved.\n"
     "\n"
     "goals:\n"
     "  stand          stands on its ground contact polygon, centre of mass low (paper eq. 5)\n"
@@ -32,79 +31,86 @@ const char* const kUsage =
     "  roly-poly      centre of mass under the centre of its hemispherical bottom (eq. 7)\n"
     "  spin           spins stably about z through its lowest point (eq. 8)\n"
     "  volume         the void holds --target-volume\n"
-    "  float          floats fully submerged, upright, in --fluid-density (eq. 9)\n"
-    "\n"
-    "outputs:\n"
-    "  -o, --output FILE   the printable solid: outer surface + reversed inner surface (welded\n"
-    "                      into one closed surface with --fix); .obj, .stl or .ply (required)\n"
-    "  --report FILE       JSON report (parameters, properties before/after, goal metrics,\n"
-    "                      constraints, solver statistics, verification, stage timings)\n"
-    "  --no-timings        leave the timings out of the report so reruns are byte-identical\n"
-    "  --inner FILE        the inner surface alone, outward-oriented\n"
-    "  --outer-mesh FILE   the outer surface alone (the input itself without --outer)\n"
-    "  --skeleton FILE     the contracted meso-skeleton (same connectivity)\n"
-    "  --preview FILE      an SVG picture of the result: sections, support polygon, centres of\n"
-    "                      mass, the goal's figures (as 'offsetopt preview' draws it)\n"
-    "\n"
-    "options (default, range):\n"
-    "  --goal GOAL           (required) one of the goals above\n"
-    "  --k N|all             basis size (36, 1..#V-1); 'all' solves per vertex (paper eq. 1)\n"
-    "  --basis KIND          mass | laplacian (mass: L phi = lambda M phi)\n"
-    "  --bounds MODE         clamp | hard (clamp: bounds held by construction; hard: the paper's\n"
-    "                        per-vertex linear constraints)\n"
-    "  --outer               also optimise an outer offset (thickening, paper 4.1)\n"
-    "  --wall T              minimum wall thickness (0.01 diag, >= 0)\n"
-    "  --outer-max D         largest outer offset (0.02 diag, >= 0)\n"
-    "  --penalty WP          weight of the outer offset's mean term (1, >= 0)\n"
-    "  --margin E            stand: distance inside the support polygon; roly-poly, float: depth\n"
-    "                        of the centre of mass below the centre (0.002 diag, >= 0)\n"
-    "  --fill-density R      stand-filled: density of the filling (1, > 0)\n"
-    "  --fluid-density R     float: fluid density relative to the material (required, (0, 1))\n"
-    "  --target-volume V     volume: the void's volume (required, mesh units cubed)\n"
-    "  --radius R            roly-poly: hemisphere radius (default: sphere fitted to the bottom)\n"
-    "  --fix REGION          keep the surface (an opening) where REGION holds: x>V, z<V, ... or\n"
-    "                        sphere:X,Y,Z,R\n"
-    "  --ground-tol T        ground contact tolerance (0.001 diag, >= 0)\n"
-    "  --cavity MODE         auto | offset | contour (auto): the cavity written: the inner offset\n"
-    "                        surface (offset: the paper's, with repair rounds), the contoured\n"
-    "                        implicit cavity (contour: closed, embedded, the wall kept exactly), or\n"
-    "                        the offset surface when it verifies as it is and the contour otherwise\n"
-    "  --cavity-cells C      contour grid cells per wall thickness (2, 1.25..8)\n"
-    "  --up AXIS             the input's up axis: +x, -x, +y, -y, +z (default) or -z. The mesh is\n"
-    "                        turned exactly (a signed permutation of the axes) to z up, and every\n"
-    "                        output mesh is turned back to the input's frame\n"
-    "  --pose MODE           as-is (default) | stable: rest on the convex-hull face that keeps the\n"
-    "                        centre of mass furthest inside it, lowest point at z = 0; outputs\n"
-    "                        are written in that new pose\n"
-    "  --flatten H           cut a flat base H (mesh units, > 0) above the lowest point and cap\n"
-    "                        it, after --up and --pose (for objects touching the ground in a\n"
-    "                        point or a line). The report's coordinates are all in the turned\n"
-    "                        frame; its \"pose\" object gives the rotation and what was done\n"
-    "  --no-repair-ring      --cavity offset: repairs tighten only the vertices on folds, not\n"
-    "                        their one-ring too\n"
-    "  --threads N           threads per stage (2, 1..64); 1 runs the stages one after another\n"
-    "                        on one thread (lowest memory). The output is the same for any N.\n"
-    "  --quiet               no progress on stderr\n"
-    "  -v                    also every outer iteration of the solver on stderr\n"
-    "  --help                show this help\n"
-    "\n"
+    "  float          floats fully submerged, upright, in --fluid-density (eq. 9)\n",
+    {
+        // Outputs. Every mesh output takes .obj, .stl, .ply or .3mf.
+        {"-o, --output", "FILE", "none (required)", "a path ending in .obj, .stl, .ply or .3mf",
+         "the printable solid: outer surface + reversed inner surface (welded into one closed surface with --fix); in a .3mf "
+         "file one object holding every shell",
+         "solid.3mf"},
+        {"--report", "FILE", "none", "a path", "JSON report (parameters, properties before/after, goal metrics, constraints, "
+         "solver statistics, verification, stage timings)", "report.json"},
+        {"--no-timings", "", "off", "flag", "leave the timings out of the report so reruns are byte-identical", ""},
+        {"--inner", "FILE", "none", "a mesh path", "the cavity written (its shells, outward-oriented)", "inner.obj"},
+        {"--outer-mesh", "FILE", "none", "a mesh path", "the outer surface alone (the input itself without --outer)", "outer.obj"},
+        {"--skeleton", "FILE", "none", "a mesh path", "the contracted meso-skeleton (same connectivity)", "skeleton.obj"},
+        {"--preview", "FILE", "none", "a path ending in .svg",
+         "an SVG picture of the result: sections, support polygon, centres of mass, the goal's figures (as 'offsetopt "
+         "preview' draws it)",
+         "picture.svg"},
+        {"--unit", "UNIT", "the input's unit for a .3mf input, else millimeter", "micron | millimeter | centimeter | inch | foot | meter",
+         "the unit written into .3mf outputs (the numbers are not scaled)", "inch"},
+        // The problem.
+        {"--goal", "GOAL", "none (required)", "stand | stand-filled | roly-poly | spin | volume | float", "one of the goals above",
+         "stand"},
+        {"--k", "N|all", "36", "[1, #V - 1] or all", "basis size; 'all' solves per vertex (paper eq. 1)", "12"},
+        {"--basis", "KIND", "mass", "mass | laplacian", "mass: L phi = lambda M phi; laplacian: L phi = lambda phi", "laplacian"},
+        {"--bounds", "MODE", "clamp", "clamp | hard",
+         "clamp: bounds held by construction; hard: the paper's per-vertex linear constraints", "hard"},
+        {"--outer", "", "off", "flag", "also optimise an outer offset (thickening, paper 4.1)", ""},
+        {"--wall", "T", "0.01 diag", "[0, 1e12]", "minimum wall thickness", "0.5"},
+        {"--outer-max", "D", "0.02 diag", "[0, 1e12]", "largest outer offset", "1"},
+        {"--penalty", "WP", "1", "[0, 1e12]", "weight of the outer offset's mean term", "2"},
+        {"--margin", "E", "0.002 diag", "[0, 1e12]",
+         "stand: distance inside the support polygon; roly-poly, float: depth of the centre of mass below the centre", "0.1"},
+        {"--fill-density", "R", "1", "[1e-6, 1e6]", "stand-filled: density of the filling", "0.5"},
+        {"--fluid-density", "R", "none (required for float)", "[1e-6, 0.999999]", "float: fluid density relative to the material",
+         "0.8"},
+        {"--target-volume", "V", "none (required for volume)", "[1e-300, 1e36] mesh units cubed", "volume: the void's volume",
+         "100"},
+        {"--radius", "R", "sphere fitted to the bottom", "[1e-300, 1e12]", "roly-poly: hemisphere radius", "20"},
+        {"--fix", "REGION", "none", "x>V, x<V, y>V, y<V, z>V, z<V or sphere:X,Y,Z,R",
+         "keep the surface (an opening) where REGION holds", "z>50"},
+        {"--ground-tol", "T", "0.001 diag", "[0, 1e12]", "ground contact tolerance", "0.01"},
+        {"--cavity", "MODE", "auto", "auto | offset | contour",
+         "the cavity written: the inner offset surface (offset: the paper's, with repair rounds), the contoured implicit "
+         "cavity (contour: closed, embedded, the wall kept exactly), or the offset surface when it verifies as it is and "
+         "the contour otherwise (auto)",
+         "contour"},
+        {"--cavity-cells", "C", "2", "[1.25, 8]", "contour grid cells per wall thickness", "3"},
+        kPoseOptionSpecs[0],
+        kPoseOptionSpecs[1],
+        kPoseOptionSpecs[2],
+        {"--no-repair-ring", "", "off", "flag",
+         "--cavity offset: repairs tighten only the vertices on folds, not their one-ring too", ""},
+        {"--threads", "N", "2", "[1, 64]",
+         "threads per stage; 1 runs the stages one after another on one thread (lowest memory). The output is the same for "
+         "any N.",
+         "1"},
+        {"--quiet", "", "off", "flag", "no progress on stderr", ""},
+        {"-v, --verbose", "", "off", "flag", "also every outer iteration of the solver on stderr", ""},
+        {"-h, --help", "", "off", "flag", "show this help", ""},
+    },
     "exit codes: 0 goal met and verified; 2 bad input or usage; 3 ran, but the goal is not met\n"
-    "or the result is invalid (outputs are still written; the report says why).\n";
+    "or the result is invalid (outputs are still written; the report says why).\n"};
 
 }  // namespace
+
+const std::vector<OptionSpec>& optimize_options() { return kHelp.options; }
 
 int run_optimize(const Args& args) {
   const auto start = std::chrono::steady_clock::now();
   ArgCursor cursor(args);
-  std::string mesh_path, output, report_path, inner_path, outer_path, skeleton_path, preview_path;
-  bool quiet = false, timings_in_report = true, goal_given = false;
+  std::string mesh_path, output, report_path, inner_path, outer_path, skeleton_path, preview_path, unit = "millimeter";
+  bool quiet = false, timings_in_report = true, goal_given = false, unit_given = false;
   OptimizeSettings settings = OptimizeSettings::defaults();
-  PoseOptions pose_options;
   const double big = 1e12;
+  PoseOptions pose_options;
   while (!cursor.done()) {
     const std::string& arg = cursor.next();
+    require_known_option("optimize", kHelp.options, arg);
     if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
+      write_text("-", format_help(kHelp));
       return kExitOk;
     } else if (arg == "-o" || arg == "--output") {
       output = cursor.value_of(arg);
@@ -118,6 +124,9 @@ int run_optimize(const Args& args) {
       skeleton_path = cursor.value_of(arg);
     } else if (arg == "--preview") {
       preview_path = cursor.value_of(arg);
+    } else if (arg == "--unit") {
+      unit = parse_unit(cursor.value_of(arg));
+      unit_given = true;
     } else if (arg == "--no-timings") {
       timings_in_report = false;
     } else if (arg == "--goal") {
@@ -198,6 +207,7 @@ int run_optimize(const Args& args) {
   load_options.single_component = true;  // one solid: one skeleton, one constant mode
   const LoadedMesh loaded = load_mesh(mesh_path, load_options);
   print_warnings(loaded.warnings, quiet);
+  if (!unit_given && !loaded.unit.empty()) unit = loaded.unit;  // a 3MF input's unit carries over
   const double load_seconds = seconds_since(load_start);
   if (!quiet) std::fprintf(stderr, "load: %s, %ld vertices (%.2f s)\n", mesh_path.c_str(), static_cast<long>(loaded.mesh.V.rows()), load_seconds);
 
@@ -211,10 +221,10 @@ int run_optimize(const Args& args) {
   print_warnings(result.warnings, quiet);
 
   const auto write_start = std::chrono::steady_clock::now();
-  write_mesh(output, to_output_frame(result.printable, posed));
-  if (!inner_path.empty()) write_mesh(inner_path, to_output_frame(result.inner, posed));
-  if (!outer_path.empty()) write_mesh(outer_path, to_output_frame(result.outer, posed));
-  if (!skeleton_path.empty()) write_mesh(skeleton_path, to_output_frame(result.skeleton, posed));
+  write_mesh(output, to_output_frame(result.printable, posed), unit);
+  if (!inner_path.empty()) write_mesh(inner_path, to_output_frame(result.inner, posed), unit);
+  if (!outer_path.empty()) write_mesh(outer_path, to_output_frame(result.outer, posed), unit);
+  if (!skeleton_path.empty()) write_mesh(skeleton_path, to_output_frame(result.skeleton, posed), unit);
   Json report = Json::object();
   report["input"] = mesh_path;
   report["format"] = loaded.format;

@@ -18,22 +18,23 @@ namespace offsetopt::cli {
 
 namespace {
 
-const char* const kUsage =
+const CommandHelp kHelp = {
     "usage: offsetopt preview SOLID --report REPORT -o FILE.svg [--quiet]\n"
     "\n"
     "Draws a result of 'offsetopt optimize' as a self-contained SVG, to scale: the cross-sections\n"
     "through the centre of mass (xz and yz) with material, cavity and wall; a top view with the\n"
     "support polygon, the margin and the centre of mass before and after; and what the goal needs\n"
     "(tipping angle, sphere centre, spin axis and moments, waterline and centre of buoyancy, void\n"
-    "volume). 'optimize --preview FILE.svg' draws the same picture right after a run.\n"
-    "\n"
-    "options:\n"
-    "  SOLID             the printable solid optimize wrote (.obj, .stl, .off, .ply) (required)\n"
-    "  --report REPORT   the JSON report optimize wrote for it: goal, parameters, the input's\n"
-    "                    centre of mass (required)\n"
-    "  -o, --output FILE the SVG to write; '-' writes to stdout (required; no default)\n"
-    "  --quiet           no warnings on stderr\n"
-    "  --help            show this help\n";
+    "volume). 'optimize --preview FILE.svg' draws the same picture right after a run. SOLID is the\n"
+    "printable solid optimize wrote (.obj, .stl, .off, .ply, .3mf).\n",
+    {
+        {"--report", "REPORT", "none (required)", "a path",
+         "the JSON report optimize wrote for it: goal, parameters, the input's centre of mass", "report.json"},
+        {"-o, --output", "FILE", "none (required)", "a path, or - for stdout", "the SVG to write", "picture.svg"},
+        {"--quiet", "", "off", "flag", "no warnings on stderr", ""},
+        {"-h, --help", "", "off", "flag", "show this help", ""},
+    },
+    ""};
 
 }  // namespace
 
@@ -43,8 +44,9 @@ int run_preview(const Args& args) {
   bool quiet = false;
   while (!cursor.done()) {
     const std::string& arg = cursor.next();
+    require_known_option("preview", kHelp.options, arg);
     if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
+      write_text("-", format_help(kHelp));
       return kExitOk;
     } else if (arg == "-o" || arg == "--output") {
       output = cursor.value_of(arg);

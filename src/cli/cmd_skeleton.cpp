@@ -19,37 +19,42 @@ namespace offsetopt::cli {
 
 namespace {
 
-const char* const kUsage =
+const CommandHelp kHelp = {
     "usage: offsetopt skeleton MESH -o FILE [--json FILE|-] [--wall T] [--max-steps N] [--quiet]\n"
     "\n"
     "Contracts MESH by constrained Laplacian smoothing (Au et al. 2008) to its meso-skeleton\n"
     "and writes it with the same vertices order and faces (vertex i of FILE is where vertex i\n"
-    "of MESH went). The offset directions and bounds built on it are summarised in the report.\n"
-    "\n"
-    "options:\n"
-    "  -o, --output FILE  where to write the contracted mesh (required; format by extension,\n"
-    "                     '-' writes OBJ to stdout)\n"
-    "  --json FILE|-      write statistics as JSON to FILE, or to stdout with '-'\n"
-    "  --wall T           wall thickness in mesh units for the lower offset bounds (default 0);\n"
-    "                     the report then counts vertices whose bound band is empty\n"
-    "  --max-steps N      contraction step cap, 1..100 (default 8); the run stops earlier once\n"
-    "                     the enclosed volume is at most 10% of the input's\n"
-    "  --quiet            no progress on stderr\n"
-    "  --help             show this help\n";
+    "of MESH went). The offset directions and bounds built on it are summarised in the report.\n",
+    {
+        {"-o, --output", "FILE", "none (required)", "a path ending in .obj, .stl, .ply or .3mf, or - (OBJ to stdout)",
+         "where to write the contracted mesh", "skeleton.obj"},
+        {"--json", "FILE|-", "none", "a path, or - for stdout", "write statistics as JSON to FILE, or to stdout with '-'",
+         "stats.json"},
+        {"--wall", "T", "0", "[0, 1e12] mesh units",
+         "wall thickness for the lower offset bounds; the report then counts vertices whose bound band is empty", "0.5"},
+        {"--max-steps", "N", "8", "[1, 100]",
+         "contraction step cap; the run stops earlier once the enclosed volume is at most 10% of the input's", "4"},
+        {"--unit", "UNIT", "the input's unit for a .3mf input, else millimeter", "micron | millimeter | centimeter | inch | foot | meter",
+         "the unit written into a .3mf output (the numbers are not scaled)", "millimeter"},
+        {"--quiet", "", "off", "flag", "no progress on stderr", ""},
+        {"-h, --help", "", "off", "flag", "show this help", ""},
+    },
+    ""};
 
 }  // namespace
 
 int run_skeleton(const Args& args) {
   const auto start = std::chrono::steady_clock::now();
   ArgCursor cursor(args);
-  std::string mesh_path, output, json_path;
-  bool quiet = false;
+  std::string mesh_path, output, json_path, unit = "millimeter";
+  bool quiet = false, unit_given = false;
   ContractionOptions contraction_options;
   OffsetFieldOptions field_options;
   while (!cursor.done()) {
     const std::string& arg = cursor.next();
+    require_known_option("skeleton", kHelp.options, arg);
     if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
+      write_text("-", format_help(kHelp));
       return kExitOk;
     } else if (arg == "-o" || arg == "--output") {
       output = cursor.value_of(arg);
@@ -57,6 +62,9 @@ int run_skeleton(const Args& args) {
       json_path = cursor.value_of(arg);
     } else if (arg == "--wall") {
       field_options.wall = parse_double(cursor.value_of(arg), arg, 0.0, 1e12);
+    } else if (arg == "--unit") {
+      unit = parse_unit(cursor.value_of(arg));
+      unit_given = true;
     } else if (arg == "--max-steps") {
       contraction_options.max_steps = parse_int(cursor.value_of(arg), arg, 1, 100);
     } else if (arg == "--quiet") {
@@ -83,6 +91,7 @@ int run_skeleton(const Args& args) {
 
   const LoadedMesh loaded = load_mesh(mesh_path);
   print_warnings(loaded.warnings, quiet);
+  if (!unit_given && !loaded.unit.empty()) unit = loaded.unit;  // a 3MF input's unit carries over
   const Mesh& mesh = loaded.mesh;
 
   const auto skeleton_start = std::chrono::steady_clock::now();
@@ -114,7 +123,7 @@ int run_skeleton(const Args& args) {
     write_text("-", mesh_to_bytes(".obj", skeleton));
   } else {
     try {
-      write_mesh(output, skeleton);
+      write_mesh(output, skeleton, unit);
     } catch (const MeshInputError&) {
       throw;
     } catch (const std::runtime_error& e) {

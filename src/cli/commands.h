@@ -22,5 +22,10 @@ int run_skeleton(const Args& args);
 int run_optimize(const Args& args);
 int run_generate(const Args& args);
 int run_preview(const Args& args);
+int run_batch(const Args& args);
+
+struct OptionSpec;
+// optimize's option table (cli/cli_support.h), for batch to check a manifest's options early.
+const std::vector<OptionSpec>& optimize_options();
 
 }  // namespace offsetopt::cli

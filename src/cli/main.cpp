@@ -33,6 +33,7 @@ void print_usage(std::FILE* out) {
       "  optimize MESH --goal GOAL -o FILE   carve/thicken to meet a goal\n"
       "  preview  SOLID --report REPORT -o FILE.svg   picture of a result\n"
       "  generate NAME -o FILE         write a demo mesh\n"
+      "  batch    MANIFEST.tsv [--jobs N]   optimize every line of a manifest, resumable\n"
       "\n"
       "'offsetopt COMMAND --help' lists a command's options.\n"
       "exit codes: 0 done, 1 internal error, 2 bad input or usage, 3 goal not met\n",
@@ -80,6 +81,7 @@ int main(int argc, char** argv) {
     if (!std::strcmp(command, "optimize")) return run_optimize(args);
     if (!std::strcmp(command, "generate")) return run_generate(args);
     if (!std::strcmp(command, "preview")) return run_preview(args);
+    if (!std::strcmp(command, "batch")) return run_batch(args);
   } catch (const offsetopt::MeshInputError& e) {
     std::fprintf(stderr, "Error: %s\n", e.what());
     return kExitBadInput;

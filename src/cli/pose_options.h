@@ -20,6 +20,24 @@ struct PoseOptions {
   bool any() const { return up != "+z" || stable || flatten > 0.0; }
 };
 
+// The three options' rows for the commands' option tables (help and parser, cli_support.h);
+// constant-initialised, so other tables may copy them at start-up.
+inline constexpr OptionSpec kPoseOptionSpecs[3] = {
+    {"--up", "AXIS", "+z", "+x | -x | +y | -y | +z | -z",
+     "the input's up axis; the mesh is turned exactly (a signed permutation of the axes) to z up, and every output mesh "
+     "is turned back to the input's frame",
+     "+y"},
+    {"--pose", "MODE", "as-is", "as-is | stable",
+     "stable: rest on the convex-hull face that keeps the centre of mass furthest inside it, lowest point at z = 0; "
+     "outputs are then written in that new pose",
+     "stable"},
+    {"--flatten", "H", "none", "(0, 1e12] mesh units",
+     "cut a flat base H above the lowest point and cap it, after --up and --pose (for objects touching the ground in a "
+     "point or a line); figures are of the result, in the turned frame (the report's \"pose\" object gives the rotation "
+     "and what was done)",
+     "0.5"},
+};
+
 // When `arg` is --up, --pose or --flatten: reads its value into `options` and returns true.
 bool parse_pose_option(const std::string& arg, ArgCursor& cursor, PoseOptions& options);
 

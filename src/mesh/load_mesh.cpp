@@ -24,6 +24,7 @@ std::string where_face(long long f, const std::vector<int>& face_line) {
 LoadedMesh load_raw_mesh(const std::string& name, RawMesh raw, const LoadOptions& options) {
   LoadedMesh out;
   out.format = format_name(raw.format);
+  out.unit = raw.unit;
   out.warnings = std::move(raw.warnings);
   Mesh mesh{std::move(raw.V), std::move(raw.F)};
   const DefectSource file_numbering{nullptr, nullptr, &raw.face_line, &raw.vertex_line};

@@ -32,6 +32,7 @@ struct LoadedMesh {
   Mesh mesh;  // a closed, consistently oriented 2-manifold of positive volume
   std::vector<std::string> warnings;  // one line each, without the "Warning: " prefix
   std::string format;                 // "OBJ", "binary STL", "ASCII PLY", ...
+  std::string unit;                   // the file's length unit (3MF), else empty
   int components = 1;                 // closed shells (more than one only if allowed)
 };
 

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "mesh/load_mesh.h"
+#include "mesh/read_3mf.h"
 #include "mesh/read_obj.h"
 #include "mesh/read_off.h"
 #include "mesh/read_ply.h"
@@ -25,6 +26,7 @@ const char* format_name(MeshFormat format) {
     case MeshFormat::kPlyAscii: return "ASCII PLY";
     case MeshFormat::kPlyBinaryLittle: return "binary little-endian PLY";
     case MeshFormat::kPlyBinaryBig: return "binary big-endian PLY";
+    case MeshFormat::k3mf: return "3MF";
   }
   return "unknown";
 }
@@ -155,8 +157,10 @@ RawMesh read_raw_mesh_from_memory(const std::string& path, const std::string& by
   if (ext == ".stl") return read_stl(path, bytes);
   if (ext == ".off") return read_off(path, bytes);
   if (ext == ".ply") return read_ply(path, bytes);
+  if (ext == ".3mf") return read_3mf(path, bytes);
   // Unknown extension: recognise the content by its signature.
   if (starts_with(bytes, "ply\n") || starts_with(bytes, "ply\r")) return read_ply(path, bytes);
+  if (looks_like_zip(bytes)) return read_3mf(path, bytes);
   std::size_t first = bytes.find_first_not_of(" \t\r\n");
   if (first != std::string::npos) {
     const std::size_t end = bytes.find_first_of(" \t\r\n", first);
@@ -177,7 +181,7 @@ RawMesh read_raw_mesh_from_memory(const std::string& path, const std::string& by
       break;
     }
   }
-  throw MeshInputError(path + ": unrecognised mesh format (expected an .obj, .stl, .off or .ply file)");
+  throw MeshInputError(path + ": unrecognised mesh format (expected an .obj, .stl, .off, .ply or .3mf file)");
 }
 
 }  // namespace offsetopt

@@ -32,7 +32,7 @@ constexpr std::int64_t kMaxFaces = std::int64_t{1} << 25;
 // Stored in F for a vertex index that does not fit in 32 bits (always out of range).
 constexpr int kIndexOverflow = std::numeric_limits<int>::min();
 
-enum class MeshFormat { kObj, kStlAscii, kStlBinary, kOff, kPlyAscii, kPlyBinaryLittle, kPlyBinaryBig };
+enum class MeshFormat { kObj, kStlAscii, kStlBinary, kOff, kPlyAscii, kPlyBinaryLittle, kPlyBinaryBig, k3mf };
 
 struct RawMesh {
   MeshFormat format = MeshFormat::kObj;
@@ -43,12 +43,13 @@ struct RawMesh {
   std::vector<int> vertex_line;
   std::vector<int> face_line;
   std::vector<std::string> warnings;  // one line each, without "Warning: " or the file name
+  std::string unit = {};  // the file's length unit when the format has one (3MF), else empty (an initializer, so aggregate initialisation without it does not warn)
 };
 
 // Human-readable name of a format ("binary STL", "ASCII PLY", ...).
 const char* format_name(MeshFormat format);
 
-// Reads the file at `path`: format chosen by extension (.obj .stl .off .ply, any case), or by
+// Reads the file at `path`: format chosen by extension (.obj .stl .off .ply .3mf, any case), or by
 // content when the extension is unknown. Error messages start with `path` as given.
 RawMesh read_raw_mesh(const std::string& path);
 

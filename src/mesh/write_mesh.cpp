@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "mesh/load_mesh.h"
+#include "mesh/write_3mf.h"
 #include "util/format_double.h"
 
 namespace offsetopt {
@@ -113,21 +114,22 @@ std::string lower(std::string text) {
 
 }  // namespace
 
-std::string mesh_to_bytes(const std::string& extension, const Mesh& mesh) {
+std::string mesh_to_bytes(const std::string& extension, const Mesh& mesh, const std::string& unit) {
   const std::string ext = lower(extension);
   if (ext == ".obj") return to_obj(mesh);
   if (ext == ".stl") return to_binary_stl(mesh);
   if (ext == ".ply") return to_binary_ply(mesh);
-  throw MeshInputError("unsupported output extension '" + extension + "' (use .obj, .stl or .ply)");
+  if (ext == ".3mf") return write_3mf(mesh, unit);
+  throw MeshInputError("unsupported output extension '" + extension + "' (use .obj, .stl, .ply or .3mf)");
 }
 
-void write_mesh(const std::string& path, const Mesh& mesh) {
+void write_mesh(const std::string& path, const Mesh& mesh, const std::string& unit) {
   const auto slash = path.find_last_of('/');
   const auto dot = path.rfind('.');
   const bool has_extension = dot != std::string::npos && (slash == std::string::npos || dot > slash);
   std::string bytes;
   try {
-    bytes = mesh_to_bytes(has_extension ? path.substr(dot) : "", mesh);
+    bytes = mesh_to_bytes(has_extension ? path.substr(dot) : "", mesh, unit);
   } catch (const MeshInputError& e) {
     throw MeshInputError(path + ": " + e.what());
   }

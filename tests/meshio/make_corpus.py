@@ -256,6 +256,129 @@ collapsed = stl_ascii(CUBE_V, CUBE_T).replace(b"endsolid cube",
 accepted["collapsed_facet.stl"] = (collapsed, 2, "with a repeated vertex")
 
 
+# 3MF packages (3MF Core 1.3): zips of [Content_Types].xml, _rels/.rels and model parts, written
+# with a fixed timestamp so the bytes are reproducible (deflate output depends on zlib's version).
+import zlib
+import zipfile
+import io
+
+CT = (b'<?xml version="1.0" encoding="UTF-8"?>\n<Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">'
+      b'<Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/>'
+      b'<Default Extension="model" ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/></Types>\n')
+RELS = (b'<?xml version="1.0" encoding="UTF-8"?>\n<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">'
+        b'<Relationship Target="/3D/3dmodel.model" Id="rel0" Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/>'
+        b'</Relationships>\n')
+NS = 'xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"'
+PNS = 'xmlns:p="http://schemas.microsoft.com/3dmanufacturing/production/2015/06"'
+
+
+def mesh_xml(vertices, faces):
+    """<mesh> of 0-based triangles from 1-based corpus faces."""
+    return ("<mesh><vertices>" + "".join('<vertex x="%s" y="%s" z="%s"/>' % tuple(num(c) for c in v) for v in vertices) +
+            "</vertices><triangles>" + "".join('<triangle v1="%d" v2="%d" v3="%d"/>' % tuple(i - 1 for i in f) for f in faces) +
+            "</triangles></mesh>")
+
+
+def model_xml(objects, items, unit="millimeter", extra_ns=""):
+    return ('<?xml version="1.0" encoding="UTF-8"?>\n<model unit="%s" xml:lang="en-US" %s %s><resources>%s</resources>'
+            '<build>%s</build></model>\n' % (unit, NS, extra_ns, "".join(objects), "".join(items))).encode()
+
+
+def package(parts, method=zipfile.ZIP_DEFLATED):
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w") as z:
+        for name, data in parts:
+            info = zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0))
+            info.compress_type = method
+            info.create_system = 0
+            z.writestr(info, data)
+    return buffer.getvalue()
+
+
+def cube_3mf(**kw):
+    obj_xml = '<object id="1" type="model">' + mesh_xml(CUBE_V, CUBE_T) + '</object>'
+    return package([("[Content_Types].xml", CT), ("_rels/.rels", RELS),
+                    ("3D/3dmodel.model", model_xml([obj_xml], ['<item objectid="1"/>'], **kw))])
+
+
+good3 = cube_3mf()
+accepted["cube_deflate.3mf"] = (good3, 0, "-")
+accepted["cube_inch.3mf"] = (cube_3mf(unit="inch"), 0, "unit is inch")
+# Bambu Studio / OrcaSlicer style: the build names an assembly whose component lives in another part.
+child = model_xml(['<object id="1" type="model">' + mesh_xml(CUBE_V, CUBE_T) + '</object>'], [])
+root = model_xml(['<object id="2" type="model"><components><component p:path="/3D/Objects/object_1.model" objectid="1" '
+                  'transform="1 0 0 0 1 0 0 0 1 10 20 30"/></components></object>'],
+                 ['<item objectid="2" transform="1 0 0 0 1 0 0 0 1 0 0 5"/>'], extra_ns=PNS)
+accepted["components_in_other_part.3mf"] = (package([("[Content_Types].xml", CT), ("_rels/.rels", RELS),
+                                                     ("3D/3dmodel.model", root), ("3D/Objects/object_1.model", child)]), 0, "-")
+# A mirroring item transform: the reader reverses the triangles so the solid still faces out.
+mirror = model_xml(['<object id="1" type="model">' + mesh_xml(CUBE_V, CUBE_T) + '</object>'],
+                   ['<item objectid="1" transform="-1 0 0 0 1 0 0 0 1 0 0 0"/>'])
+accepted["mirrored_item.3mf"] = (package([("[Content_Types].xml", CT), ("_rels/.rels", RELS), ("3D/3dmodel.model", mirror)]), 0, "-")
+
+
+def corrupt_crc(data):
+    """Flips one byte of the model entry's data (stored), leaving the CRC as it was."""
+    at = data.index(b"<vertices>") + 3
+    return data[:at] + bytes([data[at] ^ 0x20]) + data[at + 1:]
+
+
+stored = package([("[Content_Types].xml", CT), ("_rels/.rels", RELS),
+                  ("3D/3dmodel.model", model_xml(['<object id="1">' + mesh_xml(CUBE_V, CUBE_T) + '</object>'],
+                                                 ['<item objectid="1"/>']))], method=zipfile.ZIP_STORED)
+bad["3mf_crc_mismatch.3mf"] = (corrupt_crc(stored), "CRC-32 mismatch")
+bad["3mf_truncated.3mf"] = (good3[:len(good3) // 2], "no end of central directory")
+
+
+def deflate_entry_patched(data, name, new_compressed, declared_size):
+    """Rebuilds a one-entry-changed package by hand: replaces `name`'s deflate data."""
+    z = zipfile.ZipFile(io.BytesIO(data))
+    parts = [(i.filename, z.read(i.filename)) for i in z.infolist()]
+    out, central = b"", b""
+    for fname, content in parts:
+        comp = zlib.compressobj(9, zlib.DEFLATED, -15)
+        body = comp.compress(content) + comp.flush()
+        size, crc = len(content), zlib.crc32(content)
+        if fname == name:
+            body, size = new_compressed, declared_size
+        offset = len(out)
+        fn = fname.encode()
+        out += struct.pack("<IHHHHHIIIHH", 0x04034b50, 20, 0, 8, 0, 33, crc, len(body), size, len(fn), 0) + fn + body
+        central += struct.pack("<IHHHHHHIIIHHHHHII", 0x02014b50, 20, 20, 0, 8, 0, 33, crc, len(body), size, len(fn), 0, 0,
+                               0, 0, 0, offset) + fn
+    return out + central + struct.pack("<IHHHHIIH", 0x06054b50, 0, 0, len(parts), len(parts), len(central), len(out), 0)
+
+
+bomb = zlib.compressobj(9, zlib.DEFLATED, -15)
+bomb_data = bomb.compress(b"<" * (10 << 20)) + bomb.flush()
+bad["3mf_deflate_bomb.3mf"] = (deflate_entry_patched(good3, "3D/3dmodel.model", bomb_data, 1000), "inflates to more than the declared")
+bad["3mf_corrupt_deflate.3mf"] = (deflate_entry_patched(good3, "3D/3dmodel.model", b"\xff" * 40, 1000), "corrupt deflate data")
+
+
+def cube_with_model(model):
+    return package([("[Content_Types].xml", CT), ("_rels/.rels", RELS), ("3D/3dmodel.model", model)])
+
+
+bad["3mf_index_out_of_range.3mf"] = (cube_with_model(model_xml(
+    ['<object id="1">' + mesh_xml(CUBE_V, CUBE_T[:-1] + [(1, 2, 9)]) + '</object>'], ['<item objectid="1"/>'])), "uses vertex 8")
+bad["3mf_doctype.3mf"] = (cube_with_model(b'<?xml version="1.0"?>\n<!DOCTYPE model [<!ENTITY a "aaaa">]>\n' +
+                                          model_xml(['<object id="1">' + mesh_xml(CUBE_V, CUBE_T) + '</object>'],
+                                                    ['<item objectid="1"/>']).split(b"\n", 1)[1]), "DOCTYPE")
+bad["3mf_component_cycle.3mf"] = (cube_with_model(model_xml(
+    ['<object id="1"><components><component objectid="2"/></components></object>',
+     '<object id="2"><components><component objectid="1"/></components></object>'], ['<item objectid="1"/>'])),
+    "nested deeper than 32")
+bad["3mf_no_model_part.3mf"] = (package([("[Content_Types].xml", CT), ("3D/other.model", b"<model/>")]), "no 3D model part")
+bad["3mf_unknown_unit.3mf"] = (cube_3mf(unit="parsec"), "unknown unit")
+bad["3mf_bad_number.3mf"] = (cube_with_model(model_xml(
+    ['<object id="1">' + mesh_xml([("1,5", 0, 0)] + CUBE_V[1:], CUBE_T) + '</object>'], ['<item objectid="1"/>'])), "is not a number")
+bad["3mf_mismatched_tag.3mf"] = (cube_with_model(model_xml(
+    ['<object id="1">' + mesh_xml(CUBE_V, CUBE_T).replace("</triangles>", "</vertices>") + '</object>'],
+    ['<item objectid="1"/>'])), "does not match")
+bad["3mf_no_build_item.3mf"] = (cube_with_model(model_xml(['<object id="1">' + mesh_xml(CUBE_V, CUBE_T) + '</object>'], [])),
+                                "no <item> in <build>")
+
+
 def write(folder, table, rows):
     os.makedirs(folder, exist_ok=True)
     for name, row in sorted(table.items()):
