@@ -165,7 +165,7 @@ int run_optimize(const Args& args) {
   const auto load_start = std::chrono::steady_clock::now();
   LoadOptions load_options;
   load_options.single_component = true;  // one solid: one skeleton, one constant mode
-  const LoadedMesh loaded = load_mesh(mesh_path, load_options);
+  const LoadedMesh loaded = load_input(mesh_path, load_options);
   print_warnings(loaded.warnings, quiet);
   const double load_seconds = seconds_since(load_start);
   if (!quiet) std::fprintf(stderr, "load: %s, %ld vertices (%.2f s)\n", mesh_path.c_str(), static_cast<long>(loaded.mesh.V.rows()), load_seconds);

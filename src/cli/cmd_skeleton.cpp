@@ -81,7 +81,7 @@ int run_skeleton(const Args& args) {
     (void)mesh_to_bytes(has_extension ? output.substr(dot) : "", Mesh{});
   }
 
-  const LoadedMesh loaded = load_mesh(mesh_path);
+  const LoadedMesh loaded = load_input(mesh_path);
   print_warnings(loaded.warnings, quiet);
   const Mesh& mesh = loaded.mesh;
 
