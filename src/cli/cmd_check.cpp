@@ -23,7 +23,8 @@ void print_check_usage(std::FILE* out) {
       "Checks: empty mesh, non-finite or too large coordinates, vertex indices out of range,\n"
       "degenerate and duplicate faces, boundary edges, non-manifold edges and vertices,\n"
       "inconsistent orientation, zero volume, inside-out shells, several components,\n"
-      "self-intersecting face pairs and pinches (distinct vertices at one position).\n"
+      "self-intersecting face pairs and pinches (distinct vertices at one position; looked\n"
+      "for once the surface is closed and edge-manifold).\n"
       "Zero-area faces with three distinct collinear corners are a warning, not a defect.\n"
       "Faces and vertices are numbered from 0 in file order (faces after triangulation).\n"
       "\n"
@@ -82,11 +83,14 @@ int run_check(const Args& args) {
   const DefectSource source{nullptr, nullptr, &raw.face_line, &raw.vertex_line};
   for (const Defect& defect : validation.defects)
     std::fprintf(stderr, "Error: %s\n", defect_report_line(path, defect, source).c_str());
-  // Geometric defects need valid indices and finite coordinates (else already reported above).
+  // Crossings and pinches are looked for on a closed, edge-manifold surface only: elsewhere "where
+  // the mesh joins two faces" is not defined (a duplicate face would count again as a pair), and
+  // the defects above already refuse the file. Shells that are inside-out, overlap or are several
+  // are still searched: crossings are what makes them overlap.
   bool geometry_ok = true;
-  for (const DefectKind kind : {DefectKind::kEmptyMesh, DefectKind::kNonFiniteCoordinate, DefectKind::kCoordinateTooLarge,
-                                DefectKind::kIndexOutOfRange})
-    geometry_ok = geometry_ok && !validation.find(kind);
+  for (const Defect& d : validation.defects)
+    geometry_ok = geometry_ok && (d.kind == DefectKind::kSeveralComponents || d.kind == DefectKind::kInsideOut ||
+                                  d.kind == DefectKind::kOverlappingShells || d.kind == DefectKind::kZeroVolume);
   bool geometric_defect = false;
   if (geometry_ok) {
     const SelfIntersectionReport crossings = find_self_intersections(mesh);

@@ -90,16 +90,6 @@ Mesh pinched_pair() {
   return m;
 }
 
-double polygon_area_2d(const std::vector<Eigen::Vector3d>& p) {
-  double twice = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const Eigen::Vector3d& a = p[i];
-    const Eigen::Vector3d& b = p[(i + 1) % p.size()];
-    twice += a.x() * b.y() - a.y() * b.x();
-  }
-  return 0.5 * twice;
-}
-
 // Crossing-number test in the xy plane (the point is never on the outline in these tests).
 bool inside_polygon(const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& q) {
   bool inside = false;
