@@ -4,6 +4,8 @@
 // must agree with it. Shared by the meshio, spectral and skeleton tests.
 #pragma once
 #include <Eigen/Core>
+#include <utility>
+#include <vector>
 
 #include "mesh/mesh.h"
 #include "mesh/primitives.h"
@@ -48,6 +50,48 @@ inline offsetopt::Mesh sliver_box() {
   add_fan_point(m, 6, 1e-7, 1e-7);  // needles at corner 2 on y = 4
   add_fan_point(m, 11, 1e-9, 2e-9); // needles at corner 3 on x = 2
   add_fan_point(m, 9, 0.5, 1e-9);   // a cap: almost on the midpoint of edge 2-4 on x = 0
+  return m;
+}
+
+// The box [0, sx] x [0, sy] x [0, sz] with every face a grid of `cells` squares per unit of
+// length (each split into two triangles), outward orientation. Dyadic coordinates keep every
+// midpoint exact, so add_sliver makes exactly zero-area triangles anywhere on it.
+inline offsetopt::Mesh grid_box(int sx, int sy, int sz, int cells) {
+  offsetopt::Mesh m;
+  m.V.resize(0, 3);
+  m.F.resize(0, 3);
+  const int size[3] = {sx, sy, sz};
+  std::vector<std::pair<Eigen::Vector3i, int>> index;  // grid point -> vertex, found by a linear scan per face edge
+  auto vertex = [&](const Eigen::Vector3i& g) {
+    for (const auto& [key, id] : index)
+      if (key == g) return id;
+    const int id = add_vertex(m, g.cast<double>().transpose() / cells);
+    index.emplace_back(g, id);
+    return id;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;  // (u, v, axis) right-handed
+      for (int i = 0; i < size[u] * cells; ++i)
+        for (int j = 0; j < size[v] * cells; ++j) {
+          Eigen::Vector3i g[4];
+          const int di[4] = {0, 1, 1, 0}, dj[4] = {0, 0, 1, 1};
+          for (int k = 0; k < 4; ++k) {
+            g[k][axis] = side * size[axis] * cells;
+            g[k][u] = i + di[k];
+            g[k][v] = j + dj[k];
+          }
+          int q[4];
+          for (int k = 0; k < 4; ++k) q[k] = vertex(g[k]);
+          if (side == 1) {  // counter-clockwise seen from +axis
+            add_face(m, q[0], q[1], q[2]);
+            add_face(m, q[0], q[2], q[3]);
+          } else {
+            add_face(m, q[0], q[2], q[1]);
+            add_face(m, q[0], q[3], q[2]);
+          }
+        }
+    }
   return m;
 }
 

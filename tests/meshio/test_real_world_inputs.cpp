@@ -303,3 +303,34 @@ TEST_CASE("the demo meshes have no self-intersecting pairs and no pinches") {
   }
   CHECK(meshes >= 8);
 }
+
+TEST_CASE("optimize --goal stand on a gridded box with slivers and needles exits 0 and verifies") {
+  Mesh m = sliver_test::grid_box(2, 2, 4, 4);  // 0.25 grid: 2 x 2 x 4 box
+  const Mesh clean = m;
+  const Eigen::Index faces = m.F.rows();
+  for (int k = 0; k < 6; ++k) sliver_test::add_sliver(m, static_cast<int>(k * faces / 6 + 5));
+  sliver_test::add_fan_point(m, 3, 1e-7, 1e-7);
+  sliver_test::add_fan_point(m, static_cast<int>(faces / 2 + 1), 0.5, 1e-9);
+  const MeshValidation v = validate_mesh(m);
+  REQUIRE(v.valid());
+  CHECK(v.zero_area_faces == 6);
+  const Vector10d p = mass_properties(m), q = mass_properties(clean);
+  CHECK(q(0) == doctest::Approx(16.0));
+  CHECK(max_abs_difference(p, q) <= 1e-12 * q.cwiseAbs().maxCoeff());
+  CHECK(find_self_intersections(m).pairs == 0);
+
+  const std::string path = write_obj("grid_slivers.obj", obj_text(m)), out = scratch().file("grid_slivers_out.obj");
+  const std::string command = "timeout 300 " + shell_quote(OFFSETOPT_BINARY) + " optimize " + shell_quote(path) +
+                              " --goal stand --quiet -o " + shell_quote(out) + " 2>" + shell_quote(scratch().file("optimize_err.txt"));
+  const int status = std::system(command.c_str());
+  REQUIRE(status != -1);
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
+  INFO(read_file(scratch().file("optimize_err.txt")));
+  // The written solid (outer surface and cavity, two shells) loads as a valid solid, and no face
+  // of it crosses another (the cavity stays inside, slivers or not).
+  const LoadedMesh solid = load_mesh(out);
+  CHECK(solid.components == 2);
+  CHECK(find_self_intersections(solid.mesh).pairs == 0);
+  CHECK(mass_properties(solid.mesh)(0) < 16.0);
+}
