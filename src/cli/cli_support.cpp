@@ -114,6 +114,9 @@ LoadedMesh load_input(const std::string& path, const LoadOptions& options) {
   if (crossings.pairs > 0)
     loaded.warnings.push_back(describe_self_intersections(crossings, loaded.face_origin, loaded.face_line) +
                               "; accepted, but the mass properties count any overlap twice");
+  if (crossings.work_cap_reached)
+    loaded.warnings.push_back("self-intersection search stopped at its work cap (" + std::to_string(crossings.candidate_pairs) +
+                              " candidate face pairs)");
   const PinchReport pinches = find_pinches(loaded.mesh);
   if (pinches.pairs > 0)
     loaded.warnings.push_back(describe_pinches(pinches, loaded.vertex_origin, loaded.vertex_line) + "; accepted");

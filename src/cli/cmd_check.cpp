@@ -94,6 +94,9 @@ int run_check(const Args& args) {
   bool geometric_defect = false;
   if (geometry_ok) {
     const SelfIntersectionReport crossings = find_self_intersections(mesh);
+    if (crossings.work_cap_reached && !quiet)
+      std::fprintf(stderr, "Warning: %s: self-intersection search stopped at its work cap (%lld candidate face pairs)\n",
+                   path.c_str(), crossings.candidate_pairs);
     if (crossings.pairs > 0) {
       std::fprintf(stderr, "Error: %s: %s\n", path.c_str(), describe_self_intersections(crossings, {}, raw.face_line).c_str());
       geometric_defect = true;

@@ -315,7 +315,15 @@ SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap
   std::vector<Aabb> boxes(static_cast<std::size_t>(mesh.F.rows()));
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) boxes[static_cast<std::size_t>(f)] = face_box(bvh, static_cast<int>(f));
   std::pair<int, int> first{-1, -1};
+  long long candidates = 0;
+  const long long max_candidates =
+      std::max(kMinSelfIntersectionCandidates, kSelfIntersectionCandidatesPerFace * static_cast<long long>(mesh.F.rows()));
   auto visit = [&](int f, int g) {
+    if (++candidates > max_candidates) {
+      out.work_cap_reached = true;
+      out.truncated = true;
+      return false;
+    }
     if (rule.zero_area(f) || rule.zero_area(g)) return true;
     if (!boxes[static_cast<std::size_t>(f)].overlaps(boxes[static_cast<std::size_t>(g)])) return true;
     if (!rule.intersect(f, g)) return true;
@@ -368,6 +376,7 @@ SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap
   }
   out.first_face = first.first;
   out.second_face = first.second;
+  out.candidate_pairs = std::min(candidates, max_candidates);
   return out;
 }
 

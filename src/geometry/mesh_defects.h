@@ -19,7 +19,8 @@
 //     two shared corners: the faces count only when folded onto each other (normals opposite
 //     within 1e-9 rad); three: a duplicate, always a pair.
 // Plain double arithmetic (see triangle_triangle.h): faces that nearly touch may go either way.
-// Stops after `cap` pairs (truncated then, and the first pair is the smallest of those found).
+// Stops after `cap` pairs, or after the candidate pairs above (work_cap_reached; truncated
+// then, and the first pair is the smallest of those found).
 // Cost: O(F log F) plus the overlapping face boxes; 0.5 s for the 346k faces of the Armadillo
 // (README). Requires indices in range and finite coordinates (else an empty report).
 //
@@ -34,9 +35,18 @@
 
 namespace offsetopt {
 
+// Face pairs in leaves whose node boxes overlap that the search may visit: the larger of this
+// and kSelfIntersectionCandidatesPerFace per face. Real meshes visit about 15 per face (the
+// Armadillo: 5.4 million for 346k faces); a hostile file of long crossing needles, or a large
+// shell around many small ones, about F²/2. About 1.5 s per 2e7 on the project machine.
+constexpr long long kMinSelfIntersectionCandidates = 20000000;
+constexpr long long kSelfIntersectionCandidatesPerFace = 40;
+
 struct SelfIntersectionReport {
   long long pairs = 0;     // face pairs found, at most the cap
-  bool truncated = false;  // stopped at the cap: there may be more
+  bool truncated = false;  // stopped at the cap or the work cap: there may be more
+  bool work_cap_reached = false;  // stopped at the candidate-pair cap above
+  long long candidate_pairs = 0;  // leaf face pairs visited (the cost)
   int first_face = -1, second_face = -1;  // the smallest pair found (first < second), or -1
 };
 
