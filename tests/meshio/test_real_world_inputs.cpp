@@ -246,6 +246,41 @@ TEST_CASE("non-convex polygons are ear-clipped inside their outline: an L, a sta
   CHECK(run_offsetopt("check " + shell_quote(path), scratch()).exit_code == 0);
 }
 
+TEST_CASE("ear clipping: clockwise outlines keep their orientation, convex ones are fanned, the work cap is reported") {
+  // The L clockwise seen from +z: Newell's normal points down, every triangle must too.
+  std::vector<Eigen::Vector3d> ell = {{0, 3, 0}, {1, 3, 0}, {1, 1, 0}, {3, 1, 0}, {3, 0, 0}, {0, 0, 0}};
+  std::vector<int> triangles;
+  long long budget = 1000000;
+  REQUIRE(triangulate_polygon(ell, triangles, budget) == PolygonTriangulation::kEarClipping);
+  double area = 0;
+  for (std::size_t t = 0; t < triangles.size(); t += 3) {
+    const double z = (ell[static_cast<std::size_t>(triangles[t + 1])] - ell[static_cast<std::size_t>(triangles[t])])
+                         .cross(ell[static_cast<std::size_t>(triangles[t + 2])] - ell[static_cast<std::size_t>(triangles[t])])
+                         .z();
+    CHECK(z < 0.0);
+    area -= 0.5 * z;
+  }
+  CHECK(area == doctest::Approx(5.0).epsilon(1e-15));
+  // A convex hexagon: the fan from corner 0, as the other readers triangulate.
+  const std::vector<Eigen::Vector3d> hexagon = {{2, 0, 1}, {1, 2, 1}, {-1, 2, 1}, {-2, 0, 1}, {-1, -2, 1}, {1, -2, 1}};
+  REQUIRE(triangulate_polygon(hexagon, triangles, budget) == PolygonTriangulation::kFan);
+  CHECK(triangles == std::vector<int>{0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 5});
+  // A comb of 400 teeth with a budget of 1000 point tests runs out and returns no triangles.
+  std::vector<Eigen::Vector3d> comb = {{0, -1, 0}};
+  for (int i = 0; i < 400; ++i) {
+    comb.emplace_back(2 * i + 1, 0, 0);
+    comb.emplace_back(2 * i + 1.5, 5, 0);
+    comb.emplace_back(2 * i + 2, 0, 0);
+  }
+  comb.emplace_back(801, -1, 0);
+  budget = 1000;
+  CHECK(triangulate_polygon(comb, triangles, budget) == PolygonTriangulation::kBudgetExhausted);
+  CHECK(triangles.empty());
+  budget = 100000000;
+  REQUIRE(triangulate_polygon(comb, triangles, budget) == PolygonTriangulation::kEarClipping);
+  CHECK(triangles.size() == 3 * (comb.size() - 2));
+}
+
 TEST_CASE("a folded shell: check names the first self-intersecting pair, inspect accepts it with a warning") {
   const Mesh m = folded_shell();
   REQUIRE(validate_mesh(m).valid());
