@@ -5,24 +5,29 @@
 //
 // Self-intersections (find_self_intersections): pairs of faces (f, g), f < g, numbered as rows of
 // mesh.F, whose closed triangles meet other than where the mesh joins them. A simultaneous
-// traversal of the face BVH with itself (geometry/bvh.h), exact face boxes, then the
-// Guigue-Devillers test of geometry/triangle_triangle.h, with the care of
-// geometry/intersecting_faces.h for faces that share corners:
+// traversal of the face BVH with itself (geometry/bvh.h), exact face boxes, then a pair rule
+// like geometry/intersecting_faces.h's, with these differences:
 //   - corners are compared by position (vertices at one position count as one corner), so the
 //     faces of a pinch touching at the pinch point are not a pair (find_pinches reports those);
 //   - zero-area faces with three distinct collinear corners (CAD T-junction fillers) are not
 //     tested themselves, and their middle corner counts as a corner of every face across the
 //     edge it lies on (through chains of such faces), so the faces meeting at a T-junction are
 //     joined as if they shared it;
-//   - no shared corner: any contact counts; one shared corner: the edges opposite it (or, for a
-//     corner one face has only on an edge, that face's other two edges) must meet the other face;
-//     two shared corners: the faces count only when folded onto each other (normals opposite
-//     within 1e-9 rad); three: a duplicate, always a pair.
-// Plain double arithmetic (see triangle_triangle.h): faces that nearly touch may go either way.
-// Stops after `cap` pairs, or after the candidate pairs above (work_cap_reached; truncated
+//   - no shared corner: any contact counts, decided with corners within a relative 1e-12 of the
+//     other face's plane counted as on it (plain Guigue-Devillers, triangle_triangle.h, takes
+//     their signs from rounding and reported 1 to 134 false pairs on each demo mesh of
+//     revolution, whose cone strips put corners exactly on other faces' planes), then the two
+//     intervals on the planes' common line (or, coplanar, a 2-D test with snapped orientations);
+//   - one shared corner: the edges opposite it (or, for a corner one face has only on an edge,
+//     that face's other two edges) must meet the other face; two shared corners: the faces
+//     count only when folded onto each other (normals opposite within 1e-9 rad); three: a
+//     duplicate, always a pair (as in intersecting_faces.h).
+// Plain double arithmetic: faces that nearly touch (within the tolerance) may go either way.
+// Stops after `cap` pairs, or after the candidate pairs below (work_cap_reached; truncated
 // then, and the first pair is the smallest of those found).
-// Cost: O(F log F) plus the overlapping face boxes; 0.5 s for the 346k faces of the Armadillo
-// (README). Requires indices in range and finite coordinates (else an empty report).
+// Cost: O(F log F) plus the overlapping face boxes; 0.9 to 2.1 s for the 346k faces of the
+// Armadillo on the shared 2-core machine (README), one thread. Requires indices in range and
+// finite coordinates (else an empty report).
 //
 // Pinches (find_pinches): pairs of distinct referenced vertices (i, j), i < j, at exactly the same
 // position and not joined by an edge: on a topological 2-manifold, two fans that touch at that
@@ -38,7 +43,7 @@ namespace offsetopt {
 // Face pairs in leaves whose node boxes overlap that the search may visit: the larger of this
 // and kSelfIntersectionCandidatesPerFace per face. Real meshes visit about 15 per face (the
 // Armadillo: 5.4 million for 346k faces); a hostile file of long crossing needles, or a large
-// shell around many small ones, about F²/2. About 1.5 s per 2e7 on the project machine.
+// shell around many small ones, about F²/2 (2e7 of them took 4.8 s on the loaded machine).
 constexpr long long kMinSelfIntersectionCandidates = 20000000;
 constexpr long long kSelfIntersectionCandidatesPerFace = 40;
 
