@@ -107,7 +107,7 @@ bool coplanar_triangles_meet(const Eigen::Vector3d a[3], const Eigen::Vector3d b
 // rings away (a straight meridian), and its sign picks a wrong case (134 false pairs on the demo
 // bottle). Here a corner within a relative 1e-12 of the other plane is on it, and the two
 // intervals in which the triangles meet the planes' common line are compared.
-bool separate_triangles_meet(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]) {
+bool separate_triangles_meet_impl(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]) {
   double size = 0.0, magnitude = 0.0;
   for (int k = 0; k < 3; ++k) {
     size = std::max({size, (a[k] - a[(k + 1) % 3]).norm(), (b[k] - b[(k + 1) % 3]).norm(), (a[k] - b[0]).norm()});
@@ -205,7 +205,7 @@ class PairRule {
     const Eigen::Vector3d p2 = corner(g, 0), q2 = corner(g, 1), r2 = corner(g, 2);
     if (count == 0) {
       const Eigen::Vector3d a[3] = {p1, q1, r1}, b[3] = {p2, q2, r2};
-      return separate_triangles_meet(a, b);
+      return separate_triangles_meet_impl(a, b);
     }
     if (count >= 3) return true;
     if (count == 2) {
@@ -306,6 +306,10 @@ Aabb face_box(const TriangleBvh& bvh, int f) {
 }
 
 }  // namespace
+
+bool separate_triangles_meet(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]) {
+  return separate_triangles_meet_impl(a, b);
+}
 
 SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap) {
   SelfIntersectionReport out;

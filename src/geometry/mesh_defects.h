@@ -58,6 +58,12 @@ struct SelfIntersectionReport {
 
 SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap = 1000000);
 
+// The test find_self_intersections applies to two faces without a shared corner, for callers
+// whose faces are unrelated (two meshes, e.g. a cavity against the outer surface): closed
+// triangles, touching counts, corners within a relative 1e-12 of the other plane count as on
+// it. Zero-area triangles are tested as their edges (triangle_triangle.h).
+bool separate_triangles_meet(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]);
+
 struct PinchReport {
   long long pairs = 0;  // vertex pairs at one position
   int first_vertex = -1, second_vertex = -1;  // the smallest pair (first < second), or -1
