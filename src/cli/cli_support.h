@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "geometry/mesh_defects.h"
+#include "mesh/load_mesh.h"
 
 namespace offsetopt::cli {
 
@@ -74,6 +76,21 @@ void require_known_option(const char* command, const std::vector<OptionSpec>& op
 
 // The value of --unit: one of the 3MF units (mesh/write_3mf.h), else UsageError.
 std::string parse_unit(const std::string& text);
+
+// load_mesh, then the geometric defects src/mesh cannot see (geometry/mesh_defects.h): faces that
+// cross each other and pinches are accepted, each with one warning naming the count and the
+// first pair in the file's numbering. Every command but `check` loads through here.
+LoadedMesh load_input(const std::string& path, const LoadOptions& options = {});
+
+// "3 self-intersecting face pairs (first: faces 10 and 52, lines 30 and 71; faces numbered from
+// 0 in file order after triangulation)". `face_origin` maps the mesh's faces to the file's (empty:
+// the same); `face_line` gives each file face's source line (empty: binary format).
+std::string describe_self_intersections(const SelfIntersectionReport& report, const std::vector<long long>& face_origin,
+                                        const std::vector<int>& face_line);
+// "1 pinch: vertex pairs at one position whose fans touch only there (first: vertices 3 and 9,
+// lines 4 and 10)".
+std::string describe_pinches(const PinchReport& report, const std::vector<long long>& vertex_origin,
+                             const std::vector<int>& vertex_line);
 
 // Prints each warning as "Warning: <text>" on stderr unless quiet.
 void print_warnings(const std::vector<std::string>& warnings, bool quiet = false);

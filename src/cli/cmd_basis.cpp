@@ -125,7 +125,7 @@ int run_basis(const Args& args) {
     refuse_overwriting_input(matrices_prefix + "_M.mtx", inputs);
   }
 
-  const LoadedMesh loaded = load_mesh(mesh_path);
+  const LoadedMesh loaded = load_input(mesh_path);
   print_warnings(loaded.warnings, quiet);
   const Mesh& mesh = loaded.mesh;
   const Eigen::Index n = mesh.vertex_count();

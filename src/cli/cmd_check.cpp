@@ -5,6 +5,7 @@
 
 #include "cli/cli_support.h"
 #include "cli/commands.h"
+#include "geometry/mesh_defects.h"
 #include "mesh/read_raw_mesh.h"
 #include "mesh/validate_mesh.h"
 #include "util/format_double.h"
@@ -20,7 +21,10 @@ const CommandHelp kHelp = {
     "stderr: 'Error: <file>: <defect>: <count> (first: face N[, line L]): <details>'.\n"
     "Checks: empty mesh, non-finite or too large coordinates, vertex indices out of range,\n"
     "degenerate and duplicate faces, boundary edges, non-manifold edges and vertices,\n"
-    "inconsistent orientation, zero volume, inside-out shells, several components.\n"
+    "inconsistent orientation, zero volume, inside-out shells, several components,\n"
+    "self-intersecting face pairs and pinches (distinct vertices at one position; looked\n"
+    "for once the surface is closed and edge-manifold).\n"
+    "Zero-area faces with three distinct collinear corners are a warning, not a defect.\n"
     "Faces and vertices are numbered from 0 in file order (faces after triangulation).\n",
     {
         {"-q, --quiet", "", "off", "flag", "no warnings and no summary line; errors and the exit code only", ""},
@@ -64,11 +68,44 @@ int run_check(const Args& args) {
                        (validation.unreferenced_vertices == 1 ? "vertex" : "vertices") + " (first: vertex " +
                        std::to_string(validation.first_unreferenced) + "); load_mesh drops them");
   }
+  if (validation.zero_area_faces > 0) {
+    std::string where = "face " + std::to_string(validation.first_zero_area_face);
+    if (static_cast<std::size_t>(validation.first_zero_area_face) < raw.face_line.size())
+      where += ", line " + std::to_string(raw.face_line[static_cast<std::size_t>(validation.first_zero_area_face)]);
+    warnings.push_back(path + ": " + std::to_string(validation.zero_area_faces) +
+                       (validation.zero_area_faces == 1 ? " zero-area face" : " zero-area faces") +
+                       " with three distinct collinear corners (first: " + where +
+                       "); accepted: they add nothing to the volume");
+  }
   print_warnings(warnings, quiet);
   const DefectSource source{nullptr, nullptr, &raw.face_line, &raw.vertex_line};
   for (const Defect& defect : validation.defects)
     std::fprintf(stderr, "Error: %s\n", defect_report_line(path, defect, source).c_str());
-  if (!validation.valid()) return kExitBadInput;
+  // Crossings and pinches are looked for on a closed, edge-manifold surface only: elsewhere "where
+  // the mesh joins two faces" is not defined (a duplicate face would count again as a pair), and
+  // the defects above already refuse the file. Shells that are inside-out, overlap or are several
+  // are still searched: crossings are what makes them overlap.
+  bool geometry_ok = true;
+  for (const Defect& d : validation.defects)
+    geometry_ok = geometry_ok && (d.kind == DefectKind::kSeveralComponents || d.kind == DefectKind::kInsideOut ||
+                                  d.kind == DefectKind::kOverlappingShells || d.kind == DefectKind::kZeroVolume);
+  bool geometric_defect = false;
+  if (geometry_ok) {
+    const SelfIntersectionReport crossings = find_self_intersections(mesh);
+    if (crossings.work_cap_reached && !quiet)
+      std::fprintf(stderr, "Warning: %s: self-intersection search stopped at its work cap (%lld candidate face pairs)\n",
+                   path.c_str(), crossings.candidate_pairs);
+    if (crossings.pairs > 0) {
+      std::fprintf(stderr, "Error: %s: %s\n", path.c_str(), describe_self_intersections(crossings, {}, raw.face_line).c_str());
+      geometric_defect = true;
+    }
+    const PinchReport pinches = find_pinches(mesh);
+    if (pinches.pairs > 0) {
+      std::fprintf(stderr, "Error: %s: %s\n", path.c_str(), describe_pinches(pinches, {}, raw.vertex_line).c_str());
+      geometric_defect = true;
+    }
+  }
+  if (!validation.valid() || geometric_defect) return kExitBadInput;
   if (!quiet) {
     std::string summary = path + ": ok: " + format_name(raw.format) + ", " + std::to_string(validation.vertices) +
                           " vertices, " + std::to_string(validation.faces) + " faces, " +

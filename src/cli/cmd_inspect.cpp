@@ -78,7 +78,7 @@ int run_inspect(const Args& args) {
   }
   if (mesh_path.empty()) throw UsageError("inspect needs a mesh file (try 'offsetopt inspect --help')");
 
-  const LoadedMesh loaded = load_mesh(mesh_path);
+  const LoadedMesh loaded = load_input(mesh_path);
   print_warnings(loaded.warnings);
   const PosedInput posed = pose_input(loaded.mesh, pose_options, mesh_path, false);
   print_warnings(posed.warnings);

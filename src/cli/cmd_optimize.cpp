@@ -205,7 +205,7 @@ int run_optimize(const Args& args) {
   const auto load_start = std::chrono::steady_clock::now();
   LoadOptions load_options;
   load_options.single_component = true;  // one solid: one skeleton, one constant mode
-  const LoadedMesh loaded = load_mesh(mesh_path, load_options);
+  const LoadedMesh loaded = load_input(mesh_path, load_options);
   print_warnings(loaded.warnings, quiet);
   if (!unit_given && !loaded.unit.empty()) unit = loaded.unit;  // a 3MF input's unit carries over
   const double load_seconds = seconds_since(load_start);

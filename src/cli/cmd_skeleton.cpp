@@ -89,7 +89,7 @@ int run_skeleton(const Args& args) {
     (void)mesh_to_bytes(has_extension ? output.substr(dot) : "", Mesh{});
   }
 
-  const LoadedMesh loaded = load_mesh(mesh_path);
+  const LoadedMesh loaded = load_input(mesh_path);
   print_warnings(loaded.warnings, quiet);
   if (!unit_given && !loaded.unit.empty()) unit = loaded.unit;  // a 3MF input's unit carries over
   const Mesh& mesh = loaded.mesh;

@@ -132,6 +132,16 @@ namespace {
 
 bool orientation_test(const Vec3& p1, const Vec3& q1, const Vec3& r1, const Vec3& p2, const Vec3& q2, const Vec3& r2) {
   const Vec3 normal2 = (p2 - r2).cross(q2 - r2);
+  // A zero-area triangle (three collinear corners: CAD slivers, issue 13) has no plane: every
+  // distance to it would be 0 and the pair would be decided in a 2-D projection that ignores how
+  // far apart the triangles are. It is the union of its edges, so test those as segments.
+  const Vec3 normal1_check = (q1 - p1).cross(r1 - p1);
+  if (normal2.isZero(0.0) && !normal1_check.isZero(0.0))
+    return segment_intersects_triangle(p2, q2, p1, q1, r1) || segment_intersects_triangle(q2, r2, p1, q1, r1) ||
+           segment_intersects_triangle(r2, p2, p1, q1, r1);
+  if (normal1_check.isZero(0.0) && !normal2.isZero(0.0))
+    return segment_intersects_triangle(p1, q1, p2, q2, r2) || segment_intersects_triangle(q1, r1, p2, q2, r2) ||
+           segment_intersects_triangle(r1, p1, p2, q2, r2);
   const double dp1 = (p1 - r2).dot(normal2), dq1 = (q1 - r2).dot(normal2), dr1 = (r1 - r2).dot(normal2);
   if (dp1 * dq1 > 0.0 && dp1 * dr1 > 0.0) return false;
   const Vec3 normal1 = (q1 - p1).cross(r1 - p1);

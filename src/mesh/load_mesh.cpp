@@ -113,7 +113,18 @@ LoadedMesh load_raw_mesh(const std::string& name, RawMesh raw, const LoadOptions
     out.warnings.push_back("mesh is inside-out (signed volume " + format_double(validation.volume) +
                            "); every face flipped");
   }
+  if (validation.zero_area_faces > 0) {
+    long long first = validation.first_zero_area_face;
+    if (!face_origin.empty()) first = face_origin[static_cast<std::size_t>(first)];
+    out.warnings.push_back(plural(validation.zero_area_faces, "zero-area face", "zero-area faces") +
+                           " with three distinct collinear corners (first: " + where_face(first, raw.face_line) +
+                           "); kept: they add nothing to the volume, and the Laplacian mollifies them");
+  }
   out.components = validation.components;
+  out.face_origin = std::move(face_origin);
+  out.vertex_origin = std::move(vertex_origin);
+  out.face_line = std::move(raw.face_line);
+  out.vertex_line = std::move(raw.vertex_line);
   if (validation.components > 1) {
     const Defect* several = validation.find(DefectKind::kSeveralComponents);
     if (options.single_component) {

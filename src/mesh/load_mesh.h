@@ -34,6 +34,12 @@ struct LoadedMesh {
   std::string format;                 // "OBJ", "binary STL", "ASCII PLY", ...
   std::string unit;                   // the file's length unit (3MF), else empty
   int components = 1;                 // closed shells (more than one only if allowed)
+  // Back to the file's numbering, for messages about the loaded mesh (e.g. the CLI's
+  // self-intersection and pinch warnings): file face and vertex number of each face and vertex
+  // of `mesh` (empty when nothing was dropped: the numbers are the file's), and the source line
+  // of each file face and vertex (text formats; empty otherwise).
+  std::vector<long long> face_origin, vertex_origin;
+  std::vector<int> face_line, vertex_line;
 };
 
 // Reads OBJ, STL (ascii/binary), OFF or PLY (ascii/binary), chosen by extension (by content when

@@ -9,12 +9,17 @@
 
 #include "mesh/load_mesh.h"
 #include "mesh/read_text.h"
+#include "mesh/triangulate_polygon.h"
 
 namespace offsetopt {
 
 namespace {
 
-constexpr int kMaxPolygonCorners = 255;
+// tinyobjloader stores a face's corner count in a byte: longer faces are kept out of its copy.
+constexpr std::size_t kTinyobjMaxCorners = 255;
+// Point tests the ear clipping of one file may spend (about a second); beyond, the polygon is
+// refused rather than triangulated wrongly.
+constexpr long long kTriangulationBudget = 400000000;
 
 // Serves the bytes of a string to an istream without copying them.
 class MemoryBuffer : public std::streambuf {
@@ -43,7 +48,7 @@ std::int64_t parse_corner_index(const std::string& name, int line, std::string_v
                                 bool& overflow) {
   std::int64_t value = 0;
   if (!parse_integer(part, value, overflow))
-    fail(name, line, "face corner '" + quote_bytes(token) + "' is not an index (v, v/vt, v//vn or v/vt/vn)");
+    fail(name, line, "face corner '" + quote_bytes(token) + "' is not an index (v, v/vt, v/vt/, v//, v//vn or v/vt/vn)");
   if (!overflow && value == 0) fail(name, line, "index 0 in face corner '" + quote_bytes(token) + "' (OBJ counts from 1)");
   return value;
 }
@@ -63,13 +68,10 @@ int parse_corner(const std::string& name, int line, std::string_view token, std:
   }
   bool overflow = false;
   const std::int64_t v = parse_corner_index(name, line, token, parts[0], overflow);
-  if (part_count >= 2 && !(parts[1].empty() && part_count == 3)) {
+  // Texture and normal parts may be empty: `v/vt/` and `v//` are common exporter dialects.
+  for (int k = 1; k < part_count; ++k) {
     bool ignored = false;
-    parse_corner_index(name, line, token, parts[1], ignored);
-  }
-  if (part_count == 3) {
-    bool ignored = false;
-    parse_corner_index(name, line, token, parts[2], ignored);
+    if (!parts[k].empty()) parse_corner_index(name, line, token, parts[k], ignored);
   }
   if (overflow) return kIndexOverflow;
   const std::int64_t resolved = v > 0 ? v - 1 : vertices_so_far + v;
@@ -85,14 +87,19 @@ RawMesh read_obj(const std::string& name, const std::string& text) {
   // Pass 1 (ours). `filtered` keeps only v and f lines for tinyobjloader, others blanked.
   std::string filtered;
   filtered.reserve(text.size());
-  std::vector<int> polygon_sizes;
-  std::vector<int> polygon_corners;  // resolved indices of every polygon, in order
+  // Every polygon: resolved corner indices (flat), first corner, corner count, source line.
+  std::vector<int> polygon_corners;
+  std::vector<std::size_t> polygon_start;
+  std::vector<int> polygon_line;
+  std::vector<double> coordinates;  // our coordinates, for triangulating polygons in their plane
+  // The polygons tinyobjloader also sees (at most kTinyobjMaxCorners corners), for the cross-check.
+  std::vector<int> checked_sizes;
+  std::vector<int> checked_corners;
   std::int64_t ignored_lines_points = 0;
   std::string material_library;
   LineScanner lines(text);
   std::string_view line;
   std::vector<std::string_view> tokens;
-  int corners[kMaxPolygonCorners];
   while (lines.next(line)) {
     const int number = lines.line_number();
     split_tokens(line, tokens);
@@ -117,6 +124,7 @@ RawMesh read_obj(const std::string& name, const std::string& text) {
         if (i <= 3) xyz[i - 1] = value;
       }
       builder.add_vertex(xyz[0], xyz[1], xyz[2], number);
+      coordinates.insert(coordinates.end(), xyz, xyz + 3);
       // tinyobjloader only cross-checks the faces and its number parser overflows an int on
       // exponents like 1e2147483648 (undefined behaviour): it gets a placeholder vertex.
       filtered += "v 0 0 0\n";
@@ -125,15 +133,22 @@ RawMesh read_obj(const std::string& name, const std::string& text) {
       for (std::size_t i = 1; i < tokens.size(); ++i)
         if (tokens[i][0] == '#') fail(name, number, "comment after face corners (not supported)");
       if (n < 3) fail(name, number, "face has " + std::to_string(n) + " corners (at least 3 needed)");
-      if (n > static_cast<std::size_t>(kMaxPolygonCorners)) {
-        fail(name, number, "face has " + std::to_string(n) + " corners; at most " + std::to_string(kMaxPolygonCorners) +
-                               " are supported");
+      const std::size_t start = polygon_corners.size();
+      for (std::size_t i = 0; i < n; ++i)
+        polygon_corners.push_back(parse_corner(name, number, tokens[i + 1], builder.vertex_count()));
+      polygon_start.push_back(start);
+      polygon_line.push_back(number);
+      if (n <= kTinyobjMaxCorners) {
+        // tinyobjloader sees the vertex part of each corner only (it has no use for the rest,
+        // and it would read an empty `v/vt/` part as index 0).
+        filtered += 'f';
+        for (std::size_t i = 1; i <= n; ++i) {
+          filtered += ' ';
+          filtered.append(tokens[i].substr(0, tokens[i].find('/')));
+        }
+        checked_sizes.push_back(static_cast<int>(n));
+        checked_corners.insert(checked_corners.end(), polygon_corners.begin() + static_cast<std::ptrdiff_t>(start), polygon_corners.end());
       }
-      for (std::size_t i = 0; i < n; ++i) corners[i] = parse_corner(name, number, tokens[i + 1], builder.vertex_count());
-      builder.add_polygon(corners, static_cast<int>(n), number);
-      polygon_sizes.push_back(static_cast<int>(n));
-      polygon_corners.insert(polygon_corners.end(), corners, corners + n);
-      filtered.append(line.data(), line.size());
       filtered += '\n';
     } else {
       if (keyword == "l" || keyword == "p") ++ignored_lines_points;
@@ -165,21 +180,58 @@ RawMesh read_obj(const std::string& name, const std::string& text) {
       std::size_t index = 0;
       for (const unsigned char size : shape.mesh.num_face_vertices) {
         if (!agree) break;
-        if (polygon >= polygon_sizes.size() || size != polygon_sizes[polygon]) {
+        if (polygon >= checked_sizes.size() || size != checked_sizes[polygon]) {
           agree = false;
           break;
         }
         for (int k = 0; k < size; ++k, ++index, ++corner) {
-          const int ours = polygon_corners[corner];
+          const int ours = checked_corners[corner];
           // Out-of-range indices are ours to report; only in-range ones must agree.
           if (ours >= 0 && ours < vertices && shape.mesh.indices[index].vertex_index != ours) agree = false;
         }
         ++polygon;
       }
     }
-    if (!agree || polygon != polygon_sizes.size()) {
+    if (!agree || polygon != checked_sizes.size()) {
       throw MeshInputError(name + ": OBJ readers disagree about the face list at face " + std::to_string(polygon) +
                            " (internal cross-check with tinyobjloader)");
+    }
+  }
+
+  // Pass 3: triangles. Polygons whose corners all index a vertex are split in their own plane
+  // (mesh/triangulate_polygon.h); the others keep the fan, for validate_mesh to report.
+  {
+    const std::int64_t vertices = builder.vertex_count();
+    long long budget = kTriangulationBudget;
+    std::vector<Eigen::Vector3d> points;
+    std::vector<int> local, triangles;
+    polygon_start.push_back(polygon_corners.size());
+    for (std::size_t p = 0; p + 1 < polygon_start.size(); ++p) {
+      const int* corners = polygon_corners.data() + polygon_start[p];
+      const int n = static_cast<int>(polygon_start[p + 1] - polygon_start[p]);
+      bool in_range = true;
+      for (int i = 0; i < n; ++i) in_range = in_range && corners[i] >= 0 && corners[i] < vertices;
+      if (n == 3 || !in_range) {
+        builder.add_polygon(corners, n, polygon_line[p]);
+        continue;
+      }
+      points.resize(static_cast<std::size_t>(n));
+      for (int i = 0; i < n; ++i)
+        points[static_cast<std::size_t>(i)] = Eigen::Vector3d(coordinates[3 * static_cast<std::size_t>(corners[i])],
+                                                              coordinates[3 * static_cast<std::size_t>(corners[i]) + 1],
+                                                              coordinates[3 * static_cast<std::size_t>(corners[i]) + 2]);
+      const PolygonTriangulation how = triangulate_polygon(points, local, budget);
+      if (how == PolygonTriangulation::kBudgetExhausted) {
+        fail(name, polygon_line[p], "polygon of " + std::to_string(n) +
+                                        " corners is too complex to triangulate (work cap of the ear clipping reached)");
+      }
+      if (how == PolygonTriangulation::kFan) {
+        builder.add_polygon(corners, n, polygon_line[p]);
+        continue;
+      }
+      triangles.resize(local.size());
+      for (std::size_t k = 0; k < local.size(); ++k) triangles[k] = corners[local[k]];
+      builder.add_polygon_triangles(triangles.data(), n, polygon_line[p]);
     }
   }
 

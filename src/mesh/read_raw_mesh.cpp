@@ -74,6 +74,18 @@ void RawMeshBuilder::add_polygon(const int* corners, int n, int line) {
   }
 }
 
+void RawMeshBuilder::add_polygon_triangles(const int* triangle_corners, int n, int line) {
+  const std::int64_t triangles = static_cast<std::int64_t>(corners_.size() / 3);
+  if (triangles + (n - 2) > kMaxFaces) {
+    throw MeshInputError(name_ + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": more than " +
+                         std::to_string(kMaxFaces) + " triangles (the supported maximum)");
+  }
+  corners_.insert(corners_.end(), triangle_corners, triangle_corners + 3 * (n - 2));
+  if (text_format_) face_line_.insert(face_line_.end(), static_cast<std::size_t>(n - 2), line);
+  ++polygons_clipped_;
+  triangles_from_clipping_ += n - 2;
+}
+
 RawMesh RawMeshBuilder::finish() {
   RawMesh raw;
   raw.format = format_;
@@ -94,6 +106,11 @@ RawMesh RawMeshBuilder::finish() {
     raw.warnings.push_back(std::to_string(polygons_split_) + (polygons_split_ == 1 ? " polygon" : " polygons") +
                            " with more than 3 corners fan-triangulated into " +
                            std::to_string(triangles_from_polygons_) + " triangles");
+  }
+  if (polygons_clipped_ > 0) {
+    raw.warnings.push_back(std::to_string(polygons_clipped_) + (polygons_clipped_ == 1 ? " non-convex polygon" : " non-convex polygons") +
+                           " triangulated by ear clipping in the polygon's plane into " +
+                           std::to_string(triangles_from_clipping_) + " triangles");
   }
   return raw;
 }

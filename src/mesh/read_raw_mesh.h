@@ -6,14 +6,15 @@
 // Everything representable is kept as found, so validate_mesh can count it: non-finite
 // coordinates, out-of-range vertex indices (kIndexOverflow when the index does not even fit in 32
 // bits), degenerate or duplicate faces. Polygons are fan-triangulated (v0, vi, vi+1) with a
-// warning. Vertex and face numbers count from 0 in file order (faces after triangulation).
+// warning (OBJ: non-convex polygons are ear-clipped in their plane instead). Vertex and face numbers count from 0 in file order (faces after triangulation).
 //
 // Limits, checked before anything of that size is allocated:
 //   file size            <= kMaxFileBytes (2 GiB - 1, so line numbers fit in an int); only
 //                        regular files are read
 //   vertices             <= kMaxVertices (2^25 = 33,554,432)
 //   triangles            <= kMaxFaces    (2^25, after triangulation)
-//   polygon corners      <= 255 in OBJ (tinyobjloader stores the corner count in a byte)
+//   polygon corners      any number in OBJ (split by our own ear clipping; a work cap refuses
+//                        pathological outlines, mesh/read_obj.h)
 // and a header count is only believed when the bytes left in the file can hold that many
 // elements at their smallest encoding.
 #pragma once
@@ -68,6 +69,9 @@ class RawMeshBuilder {
   void add_vertex(double x, double y, double z, int line = 0);
   // A polygon of n >= 3 corners (indices as found, unchecked) becomes n - 2 triangles.
   void add_polygon(const int* corners, int n, int line = 0);
+  // A polygon of n > 3 corners the reader split itself (OBJ: ear clipping in the polygon's
+  // plane, mesh/triangulate_polygon.h): `triangle_corners` holds 3 (n - 2) vertex indices.
+  void add_polygon_triangles(const int* triangle_corners, int n, int line = 0);
   std::int64_t vertex_count() const { return static_cast<std::int64_t>(xyz_.size() / 3); }
   std::vector<std::string>& warnings() { return warnings_; }
   RawMesh finish();
@@ -81,6 +85,7 @@ class RawMeshBuilder {
   std::vector<int> vertex_line_, face_line_;
   std::vector<std::string> warnings_;
   std::int64_t polygons_split_ = 0, triangles_from_polygons_ = 0;
+  std::int64_t polygons_clipped_ = 0, triangles_from_clipping_ = 0;
 };
 
 // Reads the whole file into memory after checking it is a regular file within kMaxFileBytes.

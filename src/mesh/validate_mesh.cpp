@@ -261,14 +261,19 @@ MeshValidation validate_mesh(const Mesh& mesh) {
       const Vec3 n = cross(sub(row(mesh, b), pa), sub(row(mesh, c), pa));
       zero_area = n[0] == 0 && n[1] == 0 && n[2] == 0;
     }
-    if (!repeated && !zero_area) continue;
-    if (repeated) {
-      ++out.repeated_vertex_faces;
-      out.droppable_faces.push_back(f);
+    if (zero_area) {
+      // Three distinct collinear corners (CAD exports): a valid part of a closed surface that
+      // adds nothing to any volume integral; a note, not a defect.
+      if (out.zero_area_faces == 0) out.first_zero_area_face = f;
+      ++out.zero_area_faces;
+      continue;
     }
+    if (!repeated) continue;
+    ++out.repeated_vertex_faces;
+    out.droppable_faces.push_back(f);
     if (degenerate.count == 0) {
       degenerate.face = f;
-      degenerate.value = repeated ? 0 : 1;
+      degenerate.value = 0;
     }
     ++degenerate.count;
   }
@@ -638,7 +643,7 @@ std::string describe_defect(const Defect& d, const DefectSource& s) {
       return "vertex index " + format_double(d.value) + " (counting from 0) is out of range: the mesh has " +
              std::to_string(d.bound) + " vertices";
     case DefectKind::kDegenerateFace:
-      return d.value == 0 ? "face repeats a vertex" : "face has zero area (its corners are collinear)";
+      return "face repeats a vertex";
     case DefectKind::kDuplicateFace:
       return std::string("face repeats the vertices of face ") + face(d.other_face) +
              (d.value > 0 ? " (same orientation)" : " (opposite orientation)");

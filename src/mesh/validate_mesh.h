@@ -9,7 +9,7 @@
 //   coordinates too large    vertices with |x|, |y| or |z| > kMaxCoordinate (1e12): volume and
 //                            inertia are products of up to five coordinates and must stay finite
 //   vertex index out of range  faces with an index < 0 or >= #V
-//   degenerate faces         a repeated vertex index, or exactly zero area in double arithmetic
+//   degenerate faces         a repeated vertex index
 //   duplicate faces          faces over the same three vertices as an earlier face (either
 //                            orientation); the count is of the later copies
 //   boundary edges           edges of one face only (the mesh is not closed)
@@ -24,11 +24,15 @@
 //   several components       more than one connected piece (faces sharing a vertex)
 // Later checks need earlier ones: nothing after an out-of-range index; no area or volume with
 // non-finite or too large coordinates; volumes only when closed, edge-manifold and consistently
-// oriented. Unreferenced vertices are not a defect (reported as a note). Nesting is found by
+// oriented. Unreferenced vertices are not a defect (reported as a note), nor are zero-area
+// faces with three distinct (collinear) corners, exactly zero area in double arithmetic (a note
+// with a count: OpenSCAD's STL exports close T-junctions with them; they add nothing to any
+// volume integral and the cotan Laplacian mollifies them, spectral/intrinsic_mollification.h). Nesting is found by
 // ray parity from a point on each shell (bounding boxes first), for up to 10,000 shells; beyond
 // that every shell counts as outermost.
 // Limits of the readers (mesh/read_raw_mesh.h): files up to 2 GiB, regular files only; at most
-// 2^25 (33,554,432) vertices and 2^25 triangles; OBJ polygons up to 255 corners.
+// 2^25 (33,554,432) vertices and 2^25 triangles; OBJ polygons of any corner count (ear clipping
+// with a work cap, mesh/triangulate_polygon.h).
 //
 // Input policy (the README copies this table).
 //   defect                        check        load_mesh (inspect, basis, skeleton, optimize)
@@ -39,8 +43,8 @@
 //   vertex index out of range     exit 2       refused
 //   unsupported variant (binary
 //     OFF, 4OFF, PLY tristrips)   exit 2       refused
-//   OBJ polygon > 255 corners     exit 2       refused (tinyobjloader would truncate it)
-//   polygon with > 3 corners      warning      fan-triangulated, warning
+//   polygon with > 3 corners      warning      fan-triangulated, warning (OBJ: any corner count;
+//                                              non-convex ones ear-clipped in their plane)
 //   OBJ mtllib, l, p, vt, vn, g,
 //     o, s, usemtl statements     (ignored)    ignored; a warning for mtllib (never opened)
 //                                              and for l/p elements
@@ -52,8 +56,9 @@
 //   STL corners at one position   (welded)     welded silently (that is how STL stores vertices)
 //   degenerate face, repeated
 //     vertex (often after STL welding)  exit 2 dropped, warning; then the rest must validate
-//   degenerate face, zero area
-//     with 3 distinct vertices    exit 2       refused (cotangent weights would be infinite)
+//   zero-area face with 3
+//     distinct (collinear) vertices  warning   accepted, warning with the count (a valid
+//                                              closed solid; the Laplacian mollifies them)
 //   duplicate face, same
 //     orientation                 exit 2       extra copies dropped, warning
 //   duplicate face, opposite
@@ -74,7 +79,9 @@
 // those of the solid they bound, so `inspect` accepts them. A command whose method assumes one
 // connected surface (a spectral basis with a single constant mode, one meso-skeleton) sets
 // LoadOptions::single_component and gets a clear refusal instead. Overlapping (intersecting)
-// parts are not detected here: their overlap would count twice in the mass.
+// parts are not detected here (src/mesh cannot use the BVH): the CLI layer finds self-intersecting
+// face pairs and pinches with geometry/mesh_defects.h; `check` refuses them, the other commands
+// warn, since an overlap counts twice in the mass.
 #pragma once
 #include <string>
 #include <vector>
@@ -122,6 +129,8 @@ struct MeshValidation {
   long long unreferenced_vertices = 0;   // a note, not a defect
   long long first_unreferenced = -1;
   long long repeated_vertex_faces = 0;   // degenerate faces with a repeated index (load_mesh drops)
+  long long zero_area_faces = 0;         // exactly zero area with 3 distinct corners (a note)
+  long long first_zero_area_face = -1;
   long long same_orientation_duplicates = 0;  // later copies of a face in the same orientation
   // Faces load_mesh drops: repeated-vertex faces and same-orientation later copies, ascending.
   std::vector<long long> droppable_faces;

@@ -11,7 +11,7 @@
 #include <Eigen/Cholesky>
 
 #include "geometry/bvh.h"
-#include "geometry/intersecting_faces.h"
+#include "geometry/mesh_defects.h"
 #include "mass/mass_properties.h"
 #include "mass/stability.h"
 #include "mass/volume_integrals.h"
@@ -251,7 +251,7 @@ std::string make_frame(const Mesh& input, const OptimizeSettings& settings, Fram
 struct Band {
   ContractionResult contraction;
   TriangleBvh bvh;                 // of the input
-  IntersectingFaces input_self;    // the input's own self-intersections
+  SelfIntersectionReport input_self;  // the input's own self-intersections (as `check` counts them)
   OffsetField field;
   OffsetBand band;
   int fixed_count = 0;
@@ -275,7 +275,7 @@ std::string make_band(const Mesh& input, const OptimizeSettings& settings, const
   contraction_options.threads = settings.threads;
   b.contraction = laplacian_contraction(input.V, input.F, contraction_options);
   b.bvh = TriangleBvh(input.V, input.F);
-  b.input_self = self_intersections(b.bvh, 100000);
+  b.input_self = find_self_intersections(input, 100000);
   OffsetFieldOptions field_options;
   field_options.wall = f.wall;
   field_options.threads = settings.threads;
@@ -643,7 +643,7 @@ Json make_report(const OptimizeSettings& settings, const Frame& f, const Band& b
   report["before"]["stability"]["stands"] = f.stability_before.stands;
   // The input's own defects: the written solid keeps its outer surface, so they are the input's,
   // not the cavity's (the cavity's own intersections are counted in "after").
-  report["before"]["self_intersecting_pairs"] = static_cast<long long>(b.input_self.pairs.size());
+  report["before"]["self_intersecting_pairs"] = b.input_self.pairs;
   report["before"]["self_intersections_truncated"] = b.input_self.truncated;
   report["cavity"] = cavity.json;
   report["after"] = cavity.verification.metrics;
@@ -781,12 +781,8 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   result.skeleton = Mesh{b.contraction.V, input.F};
   result.report = make_report(settings, f, b, basis_json, solve, cavity);
   result.timings = timings;
-  if (!b.input_self.pairs.empty())
-    result.warnings.push_back("the input intersects itself (" + std::to_string(b.input_self.pairs.size()) +
-                              (b.input_self.truncated ? "+" : "") + " face pairs, the first " +
-                              std::to_string(b.input_self.pairs.front().first) + " and " +
-                              std::to_string(b.input_self.pairs.front().second) +
-                              "); the written solid keeps them, the cavity adds none");
+  // The input's own crossings are named where it is loaded (cli/cli_support.h, load_input); the
+  // report keeps their count, and the verification counts only the cavity's.
   if (b.thin_count > 0)
     result.warnings.push_back(std::to_string(b.thin_count) + " vertices lie in parts thinner than two walls" +
                               (cavity.contoured ? "; those parts stay solid" : ", where the offset surface leaves less than the wall"));

@@ -51,6 +51,7 @@ void check_contraction_options(const ContractionOptions& o) {
   require(o.stop_volume_ratio >= 0.0 && o.stop_volume_ratio < 1.0, "stop_volume_ratio must be in [0, 1)");
   require(o.max_steps >= 1 && o.max_steps <= 100, "max_steps must be in [1, 100]");
   require(o.cotan_sine_floor > 0.0 && o.cotan_sine_floor < 1.0, "cotan_sine_floor must be in (0, 1)");
+  require(o.mollify_margin >= 0.0 && o.mollify_margin <= 0.1, "mollify_margin must be in [0, 0.1]");
   require(o.area_ratio_floor > 0.0 && o.area_ratio_floor < 1.0, "area_ratio_floor must be in (0, 1)");
   require(o.threads >= 1 && o.threads <= 256, "threads must be in [1, 256]");
 }
@@ -87,6 +88,7 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
   // every step assembles its matrix directly in factorisation order.
   CotanOptions cotan_options;
   cotan_options.sine_floor = options.cotan_sine_floor;
+  cotan_options.mollify_margin = options.mollify_margin;
   std::vector<int> new_to_old;
   {
     const Eigen::SparseMatrix<double> L0 = cotan_laplacian(normalised, F, cotan_options);

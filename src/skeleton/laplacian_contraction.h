@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "mesh/mesh.h"
+#include "spectral/intrinsic_mollification.h"
 
 namespace offsetopt {
 
@@ -61,6 +62,11 @@ struct ContractionOptions {
   int max_steps = 8;
   // Guards (see above).
   double cotan_sine_floor = 1e-3;
+  // Intrinsic mollification of L_t (Sharp & Crane 2020, section 4.5; see
+  // spectral/intrinsic_mollification.h), relative to the current mean edge length: contracted
+  // triangles collapse to needles and segments, and mollified weights stay bounded where the sine
+  // floor alone lets them grow to 1/floor. 0 leaves only the sine floor.
+  double mollify_margin = kDefaultMollifyMargin;
   double area_ratio_floor = 1e-8;
   // Threads for the ordering and the factorisations (1..256); the result is bit for bit the
   // same for any count.

@@ -13,11 +13,20 @@
 // weights is positive and cot·cot summed over corner pairs is (2·area / denominator)² >= 0), so L
 // is PSD on any mesh, degenerate triangles included. A triangle with all edges of zero length
 // contributes nothing.
+//
+// Zero-area and needle triangles (CAD exports, collapsing triangles in skeleton contraction):
+// when any triangle misses the strict triangle inequality by the margin of
+// spectral/intrinsic_mollification.h, every edge is lengthened by the same epsilon and the whole
+// matrix is built from edge lengths (cot of the angle at corner i = (l_j² + l_k² - l_i²) / (4·area),
+// area by Heron), which keeps every weight bounded by about (mean edge) / delta and L PSD (each
+// triangle's block is that of a valid Euclidean triangle). When epsilon is 0 the formulas above
+// run unchanged, so such meshes give bit-identical matrices.
 #pragma once
 #include <Eigen/Sparse>
 #include <string>
 
 #include "mesh/mesh.h"
+#include "spectral/intrinsic_mollification.h"
 
 namespace offsetopt {
 
@@ -25,6 +34,8 @@ struct CotanOptions {
   // Floor on |sin| of a triangle's angles, relative to its longest edge: 1e-8 keeps |cot| below
   // about 1e8. Collapsing triangles in skeleton contraction rely on this.
   double sine_floor = 1e-8;
+  // Intrinsic mollification margin, relative to the mean edge length (0 turns it off).
+  double mollify_margin = kDefaultMollifyMargin;
   // Empty when valid, else what is wrong.
   std::string check() const;
 };

@@ -11,6 +11,7 @@ accepted/EXPECTED.txt: <file> TAB <check exit code> TAB <load warning substring,
     load_mesh with default options must succeed (with that warning, or with no warning at all);
     `offsetopt check FILE` must exit with the given code.
 """
+import math
 import os
 import struct
 
@@ -173,14 +174,13 @@ bad["ply_index_out_of_range.ply"] = (ply_binary(TET_V, [(1, 3, 2000)] + TET_T[1:
 bad["ply_uint_index_overflow.ply"] = (ply_binary(TET_V, [(1, 3, 4000000001)] + TET_T[1:], index_type="uint"),
                                       "does not fit in 32 bits")
 bad["face_two_corners.obj"] = (obj(CUBE_V, CUBE_T + [(1, 2)]), "at least 3")
-ring = [(float(i), float(i * i % 7), 0.0) for i in range(300)]
-bad["polygon_300_corners.obj"] = (obj(ring, [tuple(range(1, 301))]), "at most 255")
 # --- topology and geometry (one defect each)
 # A sliver (b, m, a) with m the midpoint of edge a-b closes a split cube face exactly.
 sv = CUBE_V + [(0.5, 0, 0)]  # vertex 9 = midpoint of 1-2 (front/bottom edge)
 st = [t for t in CUBE_T if t not in [(1, 2, 6)]] + [(1, 9, 6), (9, 2, 6), (2, 9, 1)]
 # The bottom face uses edge 2->1 via (1,4,3),(1,3,2): it keeps the direct edge; the sliver pairs it.
-bad["degenerate_face.obj"] = (obj(sv, st), "zero area")
+# A valid closed solid (OpenSCAD writes T-junctions this way): accepted with a warning (below).
+sliver_cube = obj(sv, st)
 bad["duplicate_face_opposite.obj"] = (obj(TET_V, TET_T + [(1, 2, 3)]), "repeats the vertices")
 bad["boundary_edges.obj"] = (obj(CUBE_V, CUBE_T[:-1]), "not closed")
 v2, t2 = [(x, -y, -z) for (x, y, z) in TET_V], [tuple(i + 4 for i in f) for f in TET_T]
@@ -251,6 +251,27 @@ accepted["inside_out_binary.stl"] = (stl_binary(CUBE_V, flipped(CUBE_T)), 2, "ev
 accepted["two_components.obj"] = bad["two_components.obj"][:1] + (2, "separate closed shells")
 accepted["hollow_cube.obj"] = (obj(CUBE_V + inner_v, CUBE_T + flipped(inner_t)), 2, "separate closed shells")
 accepted["duplicate_face_same.obj"] = (obj(TET_V, TET_T + [TET_T[2]]), 2, "duplicate face")
+accepted["sliver_face.obj"] = (sliver_cube, 0, "zero-area face")
+# OBJ corner dialects with empty texture or normal parts (issue 13).
+accepted["corners_trailing_slash.obj"] = (obj(CUBE_V, [tuple("%d/1/" % i for i in f) for f in CUBE_T],
+                                              header="vt 0 0"), 0, "-")
+accepted["corners_double_slash.obj"] = (obj(CUBE_V, [tuple("%d//" % i for i in f) for f in CUBE_T]), 0, "-")
+# A prism whose caps are 300-corner polygons (tinyobjloader rc10 keeps corner counts in a byte).
+prism_n = 300
+prism_ring = [(round(10 * math.cos(2 * math.pi * i / prism_n), 6), round(10 * math.sin(2 * math.pi * i / prism_n), 6))
+              for i in range(prism_n)]
+prism_v = [(x, y, 0.0) for (x, y) in prism_ring] + [(x, y, 5.0) for (x, y) in prism_ring]
+prism_f = [tuple(range(prism_n, 0, -1)), tuple(range(prism_n + 1, 2 * prism_n + 1))]
+prism_f += [(i + 1, (i + 1) % prism_n + 1, (i + 1) % prism_n + 1 + prism_n, i + 1 + prism_n) for i in range(prism_n)]
+accepted["prism_300_corners.obj"] = (obj(prism_v, prism_f), 0, "fan-triangulated")
+# An L-shaped prism: non-convex caps, ear-clipped in their plane.
+ell = [(1, 1), (1, 3), (0, 3), (0, 0), (3, 0), (3, 1)]
+ell_v = [(x, y, 0) for (x, y) in ell] + [(x, y, 2) for (x, y) in ell]
+ell_f = [(6, 5, 4, 3, 2, 1), (7, 8, 9, 10, 11, 12)] + [(i + 1, (i + 1) % 6 + 1, (i + 1) % 6 + 7, i + 7) for i in range(6)]
+accepted["l_prism.obj"] = (obj(ell_v, ell_f), 0, "ear clipping")
+# Two cubes touching at one corner, written with two vertex indices there: a pinch (check: exit 2).
+pinch_v = CUBE_V + [(x + 1, y + 1, z + 1) for (x, y, z) in CUBE_V]
+accepted["pinched_cubes.obj"] = (obj(pinch_v, CUBE_T + [tuple(i + 8 for i in f) for f in CUBE_T]), 2, "separate closed shells")
 collapsed = stl_ascii(CUBE_V, CUBE_T).replace(b"endsolid cube",
     b"facet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid cube")
 accepted["collapsed_facet.stl"] = (collapsed, 2, "with a repeated vertex")

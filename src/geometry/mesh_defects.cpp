@@ -1,0 +1,436 @@
+#include "geometry/mesh_defects.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "geometry/bvh.h"
+#include "geometry/triangle_triangle.h"
+
+namespace offsetopt {
+
+namespace {
+
+bool usable(const Mesh& mesh) {
+  if (!mesh.V.allFinite()) return false;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (mesh.F(f, k) < 0 || mesh.F(f, k) >= mesh.V.rows()) return false;
+  return true;
+}
+
+// Vertex indices sorted by position (x, y, z), ties by index: equal positions are adjacent.
+std::vector<int> by_position(const Vertices& V) {
+  std::vector<int> order(static_cast<std::size_t>(V.rows()));
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&V](int a, int b) {
+    for (int k = 0; k < 3; ++k)
+      if (V(a, k) != V(b, k)) return V(a, k) < V(b, k);
+    return a < b;
+  });
+  return order;
+}
+
+bool same_position(const Vertices& V, int a, int b) {
+  return V(a, 0) == V(b, 0) && V(a, 1) == V(b, 1) && V(a, 2) == V(b, 2);
+}
+
+// The smallest vertex index at each vertex's position.
+std::vector<int> canonical_vertices(const Vertices& V) {
+  const std::vector<int> order = by_position(V);
+  std::vector<int> canonical(order.size());
+  for (std::size_t i = 0; i < order.size();) {
+    std::size_t j = i + 1;
+    while (j < order.size() && same_position(V, order[i], order[j])) ++j;
+    for (std::size_t k = i; k < j; ++k) canonical[static_cast<std::size_t>(order[k])] = order[i];
+    i = j;
+  }
+  return canonical;
+}
+
+// A corner a face has only on one of its edges (a T-junction): the vertex and the face's edge
+// (numbered by the opposite corner) it lies on.
+struct VirtualCorner {
+  int vertex;
+  int edge;
+};
+
+// 2-D orientation of (a, b, c), 0 within a relative 1e-12 (collinear in exact arithmetic: the
+// corners of two faces of one cone strip lie on a common ruling).
+double orient2(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const Eigen::Vector2d u = b - a, v = c - a;
+  const double o = u.x() * v.y() - u.y() * v.x();
+  return std::fabs(o) <= 1e-12 * u.norm() * v.norm() ? 0.0 : o;
+}
+
+bool in_box(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
+  return std::min(a.x(), b.x()) <= p.x() && p.x() <= std::max(a.x(), b.x()) && std::min(a.y(), b.y()) <= p.y() &&
+         p.y() <= std::max(a.y(), b.y());
+}
+
+bool segments_meet(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
+  const double o1 = orient2(a, b, c), o2 = orient2(a, b, d), o3 = orient2(c, d, a), o4 = orient2(c, d, b);
+  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) return true;
+  return (o1 == 0 && in_box(a, b, c)) || (o2 == 0 && in_box(a, b, d)) || (o3 == 0 && in_box(c, d, a)) ||
+         (o4 == 0 && in_box(c, d, b));
+}
+
+bool inside_triangle(const Eigen::Vector2d& p, const Eigen::Vector2d t[3]) {
+  const double d1 = orient2(t[0], t[1], p), d2 = orient2(t[1], t[2], p), d3 = orient2(t[2], t[0], p);
+  return !((d1 < 0 || d2 < 0 || d3 < 0) && (d1 > 0 || d2 > 0 || d3 > 0));
+}
+
+// Coplanar closed triangles meet: in the projection dropping the normal's dominant axis, an edge
+// of one meets an edge of the other, or one contains a corner of the other.
+bool coplanar_triangles_meet(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3], const Eigen::Vector3d& normal) {
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::fabs(normal[k]) > std::fabs(normal[axis])) axis = k;
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  Eigen::Vector2d pa[3], pb[3];
+  for (int k = 0; k < 3; ++k) {
+    pa[k] = Eigen::Vector2d(a[k][u], a[k][v]);
+    pb[k] = Eigen::Vector2d(b[k][u], b[k][v]);
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (segments_meet(pa[i], pa[(i + 1) % 3], pb[j], pb[(j + 1) % 3])) return true;
+  return inside_triangle(pa[0], pb) || inside_triangle(pb[0], pa);
+}
+
+// Closed triangles a and b, no corner shared, meet. Guigue-Devillers (triangle_triangle.h) on
+// plain doubles takes the signs of distances that are exactly zero in exact arithmetic from
+// rounding: surfaces of revolution put a corner of one face exactly on the plane of a face two
+// rings away (a straight meridian), and its sign picks a wrong case (134 false pairs on the demo
+// bottle). Here a corner within a relative 1e-12 of the other plane is on it, and the two
+// intervals in which the triangles meet the planes' common line are compared.
+bool separate_triangles_meet_impl(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]) {
+  double size = 0.0, magnitude = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    size = std::max({size, (a[k] - a[(k + 1) % 3]).norm(), (b[k] - b[(k + 1) % 3]).norm(), (a[k] - b[0]).norm()});
+    magnitude = std::max({magnitude, a[k].cwiseAbs().maxCoeff(), b[k].cwiseAbs().maxCoeff()});
+  }
+  const double tolerance = 1e-12 * (size + magnitude);
+  const Eigen::Vector3d na = (a[1] - a[0]).cross(a[2] - a[0]), nb = (b[1] - b[0]).cross(b[2] - b[0]);
+  const double la = na.norm(), lb = nb.norm();
+  if (!(la > 0.0) || !(lb > 0.0)) return triangles_intersect(a[0], a[1], a[2], b[0], b[1], b[2]);
+  // Signed distances to the other plane, snapped to 0 within the tolerance.
+  double da[3], db[3];
+  for (int k = 0; k < 3; ++k) {
+    da[k] = (a[k] - b[0]).dot(nb) / lb;
+    db[k] = (b[k] - a[0]).dot(na) / la;
+    if (std::fabs(da[k]) <= tolerance) da[k] = 0.0;
+    if (std::fabs(db[k]) <= tolerance) db[k] = 0.0;
+  }
+  auto one_side = [](const double d[3]) {
+    return (d[0] > 0 && d[1] > 0 && d[2] > 0) || (d[0] < 0 && d[1] < 0 && d[2] < 0);
+  };
+  if (one_side(da) || one_side(db)) return false;
+  const Eigen::Vector3d line = na.cross(nb);
+  const bool coplanar = (da[0] == 0 && da[1] == 0 && da[2] == 0) || (db[0] == 0 && db[1] == 0 && db[2] == 0) ||
+                        line.norm() <= 1e-12 * la * lb;
+  if (coplanar) return coplanar_triangles_meet(a, b, na);
+  // Not coplanar: the interval of each triangle on the common line, as parameters along `line`.
+  auto interval = [&line](const Eigen::Vector3d p[3], const double d[3], double& lo, double& hi) {
+    lo = HUGE_VAL;
+    hi = -HUGE_VAL;
+    auto take = [&](const Eigen::Vector3d& x) {
+      const double t = x.dot(line);
+      lo = std::min(lo, t);
+      hi = std::max(hi, t);
+    };
+    for (int k = 0; k < 3; ++k) {
+      const int j = (k + 1) % 3;
+      if (d[k] == 0.0) take(p[k]);
+      if ((d[k] > 0 && d[j] < 0) || (d[k] < 0 && d[j] > 0)) take(p[k] + (p[j] - p[k]) * (d[k] / (d[k] - d[j])));
+    }
+  };
+  double alo, ahi, blo, bhi;
+  interval(a, da, alo, ahi);
+  interval(b, db, blo, bhi);
+  return std::max(alo, blo) <= std::min(ahi, bhi);
+}
+
+constexpr std::size_t kMaxVirtualCorners = 64;  // per face; T-junction chains are short
+constexpr int kMaxPropagationRounds = 16;
+constexpr std::size_t kMaxPinchGroup = 256;  // vertices at one position checked pair by pair
+
+class PairRule {
+ public:
+  explicit PairRule(const Mesh& mesh) : mesh_(mesh), canonical_(canonical_vertices(mesh.V)) {
+    const Eigen::Index nf = mesh.F.rows();
+    corners_.resize(static_cast<std::size_t>(nf));
+    zero_area_.assign(static_cast<std::size_t>(nf), 0);
+    virtual_.resize(static_cast<std::size_t>(nf));
+    for (Eigen::Index f = 0; f < nf; ++f) {
+      auto& c = corners_[static_cast<std::size_t>(f)];
+      for (int k = 0; k < 3; ++k) c[static_cast<std::size_t>(k)] = canonical_[static_cast<std::size_t>(mesh.F(f, k))];
+      const bool distinct = c[0] != c[1] && c[1] != c[2] && c[0] != c[2];
+      const Eigen::Vector3d n = (corner(f, 1) - corner(f, 0)).cross(corner(f, 2) - corner(f, 0));
+      zero_area_[static_cast<std::size_t>(f)] = distinct && n.x() == 0.0 && n.y() == 0.0 && n.z() == 0.0;
+    }
+    link_t_junctions();
+  }
+
+  bool zero_area(int f) const { return zero_area_[static_cast<std::size_t>(f)] != 0; }
+
+  bool intersect(int f, int g) const {
+    const auto& cf = corners_[static_cast<std::size_t>(f)];
+    const auto& cg = corners_[static_cast<std::size_t>(g)];
+    // Shared corners: (corner of f or -1, corner of g or -1, edge it lies on when virtual).
+    struct Shared {
+      int vertex, in_f, in_g, edge_of_f, edge_of_g;
+    };
+    std::array<Shared, 6> shared{};
+    int count = 0;
+    auto note = [&](int vertex, int in_f, int in_g, int edge_of_f, int edge_of_g) {
+      for (int s = 0; s < count; ++s)
+        if (shared[static_cast<std::size_t>(s)].vertex == vertex) return;
+      shared[static_cast<std::size_t>(count++)] = {vertex, in_f, in_g, edge_of_f, edge_of_g};
+    };
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (cf[static_cast<std::size_t>(i)] == cg[static_cast<std::size_t>(j)]) note(cf[static_cast<std::size_t>(i)], i, j, -1, -1);
+    for (const VirtualCorner& v : virtual_[static_cast<std::size_t>(g)])
+      for (int i = 0; i < 3; ++i)
+        if (cf[static_cast<std::size_t>(i)] == v.vertex) note(v.vertex, i, -1, -1, v.edge);
+    for (const VirtualCorner& v : virtual_[static_cast<std::size_t>(f)])
+      for (int j = 0; j < 3; ++j)
+        if (cg[static_cast<std::size_t>(j)] == v.vertex) note(v.vertex, -1, j, v.edge, -1);
+
+    const Eigen::Vector3d p1 = corner(f, 0), q1 = corner(f, 1), r1 = corner(f, 2);
+    const Eigen::Vector3d p2 = corner(g, 0), q2 = corner(g, 1), r2 = corner(g, 2);
+    if (count == 0) {
+      const Eigen::Vector3d a[3] = {p1, q1, r1}, b[3] = {p2, q2, r2};
+      return separate_triangles_meet_impl(a, b);
+    }
+    if (count >= 3) return true;
+    if (count == 2) {
+      const Eigen::Vector3d nf = (q1 - p1).cross(r1 - p1), ng = (q2 - p2).cross(r2 - p2);
+      const double sine = nf.cross(ng).norm(), scale = nf.norm() * ng.norm();
+      return nf.dot(ng) < 0.0 && sine <= 1e-9 * scale;
+    }
+    const Shared& s = shared[0];
+    bool hit = false;
+    // The edge of each face opposite the shared corner, or, where the corner lies on an edge of
+    // the face, the face's other two edges.
+    if (s.in_f >= 0) {
+      hit = hit || segment_intersects_triangle(corner(f, (s.in_f + 1) % 3), corner(f, (s.in_f + 2) % 3), p2, q2, r2);
+    } else {
+      hit = hit || segment_intersects_triangle(corner(f, s.edge_of_f), corner(f, (s.edge_of_f + 1) % 3), p2, q2, r2) ||
+            segment_intersects_triangle(corner(f, s.edge_of_f), corner(f, (s.edge_of_f + 2) % 3), p2, q2, r2);
+    }
+    if (s.in_g >= 0) {
+      hit = hit || segment_intersects_triangle(corner(g, (s.in_g + 1) % 3), corner(g, (s.in_g + 2) % 3), p1, q1, r1);
+    } else {
+      hit = hit || segment_intersects_triangle(corner(g, s.edge_of_g), corner(g, (s.edge_of_g + 1) % 3), p1, q1, r1) ||
+            segment_intersects_triangle(corner(g, s.edge_of_g), corner(g, (s.edge_of_g + 2) % 3), p1, q1, r1);
+    }
+    return hit;
+  }
+
+ private:
+  Eigen::Vector3d corner(Eigen::Index f, int k) const { return mesh_.V.row(mesh_.F(f, k)).transpose(); }
+
+  // The middle corner of each zero-area face becomes a virtual corner of the faces across the
+  // edge it lies on; a zero-area face passes its own virtual corners on the same way.
+  void link_t_junctions() {
+    struct EdgeFace {
+      int lo, hi, face, edge;
+      bool operator<(const EdgeFace& o) const {
+        return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : face != o.face ? face < o.face : edge < o.edge;
+      }
+    };
+    std::vector<int> slivers;
+    for (std::size_t f = 0; f < zero_area_.size(); ++f)
+      if (zero_area_[f]) slivers.push_back(static_cast<int>(f));
+    if (slivers.empty()) return;
+    std::vector<EdgeFace> edges;
+    edges.reserve(3 * corners_.size());
+    for (std::size_t f = 0; f < corners_.size(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int u = corners_[f][static_cast<std::size_t>((k + 1) % 3)], w = corners_[f][static_cast<std::size_t>((k + 2) % 3)];
+        edges.push_back({std::min(u, w), std::max(u, w), static_cast<int>(f), k});
+      }
+    std::sort(edges.begin(), edges.end());
+    for (int round = 0; round < kMaxPropagationRounds; ++round) {
+      bool changed = false;
+      for (const int s : slivers) {
+        // The middle corner is opposite the longest edge.
+        int middle = 0;
+        double longest = -1;
+        for (int k = 0; k < 3; ++k) {
+          const double length = (corner(s, (k + 1) % 3) - corner(s, (k + 2) % 3)).squaredNorm();
+          if (length > longest) {
+            longest = length;
+            middle = k;
+          }
+        }
+        const auto& c = corners_[static_cast<std::size_t>(s)];
+        const int u = c[static_cast<std::size_t>((middle + 1) % 3)], w = c[static_cast<std::size_t>((middle + 2) % 3)];
+        std::vector<int> carried = {c[static_cast<std::size_t>(middle)]};
+        for (const VirtualCorner& v : virtual_[static_cast<std::size_t>(s)]) carried.push_back(v.vertex);
+        const EdgeFace key{std::min(u, w), std::max(u, w), -1, -1};
+        for (auto it = std::lower_bound(edges.begin(), edges.end(), key); it != edges.end() && it->lo == key.lo && it->hi == key.hi;
+             ++it) {
+          if (it->face == s) continue;
+          auto& list = virtual_[static_cast<std::size_t>(it->face)];
+          for (const int vertex : carried) {
+            bool present = false;
+            for (const VirtualCorner& v : list) present = present || v.vertex == vertex;
+            for (int k = 0; k < 3; ++k) present = present || corners_[static_cast<std::size_t>(it->face)][static_cast<std::size_t>(k)] == vertex;
+            if (present || list.size() >= kMaxVirtualCorners) continue;
+            list.push_back({vertex, it->edge});
+            changed = true;
+          }
+        }
+      }
+      if (!changed) break;
+    }
+  }
+
+  const Mesh& mesh_;
+  std::vector<int> canonical_;
+  std::vector<std::array<int, 3>> corners_;
+  std::vector<char> zero_area_;
+  std::vector<std::vector<VirtualCorner>> virtual_;
+};
+
+Aabb face_box(const TriangleBvh& bvh, int f) {
+  Aabb box;
+  for (int k = 0; k < 3; ++k) box.extend(bvh.corner(f, k));
+  return box;
+}
+
+}  // namespace
+
+bool separate_triangles_meet(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]) {
+  return separate_triangles_meet_impl(a, b);
+}
+
+SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap) {
+  SelfIntersectionReport out;
+  if (mesh.F.rows() == 0 || cap == 0 || !usable(mesh)) return out;
+  const PairRule rule(mesh);
+  const TriangleBvh bvh(mesh.V, mesh.F);
+  std::vector<Aabb> boxes(static_cast<std::size_t>(mesh.F.rows()));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) boxes[static_cast<std::size_t>(f)] = face_box(bvh, static_cast<int>(f));
+  std::pair<int, int> first{-1, -1};
+  long long candidates = 0;
+  const long long max_candidates =
+      std::max(kMinSelfIntersectionCandidates, kSelfIntersectionCandidatesPerFace * static_cast<long long>(mesh.F.rows()));
+  auto visit = [&](int f, int g) {
+    if (++candidates > max_candidates) {
+      out.work_cap_reached = true;
+      out.truncated = true;
+      return false;
+    }
+    if (rule.zero_area(f) || rule.zero_area(g)) return true;
+    if (!boxes[static_cast<std::size_t>(f)].overlaps(boxes[static_cast<std::size_t>(g)])) return true;
+    if (!rule.intersect(f, g)) return true;
+    const std::pair<int, int> pair{std::min(f, g), std::max(f, g)};
+    if (out.pairs == 0 || pair < first) first = pair;
+    ++out.pairs;
+    if (static_cast<std::size_t>(out.pairs) >= cap) {
+      out.truncated = true;
+      return false;
+    }
+    return true;
+  };
+  // Simultaneous traversal of the tree with itself; (i, j) and (j, i) visited once.
+  const auto& nodes = bvh.nodes();
+  const auto& leaf = bvh.leaf_faces();
+  std::vector<std::pair<int, int>> stack = {{0, 0}};
+  bool stop = false;
+  while (!stack.empty() && !stop) {
+    const auto [a, b] = stack.back();
+    stack.pop_back();
+    const BvhNode& x = nodes[static_cast<std::size_t>(a)];
+    const BvhNode& y = nodes[static_cast<std::size_t>(b)];
+    if (!x.box.overlaps(y.box)) continue;
+    if (a == b) {
+      if (x.is_leaf()) {
+        for (int i = x.first; i < x.first + x.count && !stop; ++i)
+          for (int j = i + 1; j < x.first + x.count && !stop; ++j)
+            stop = !visit(leaf[static_cast<std::size_t>(i)], leaf[static_cast<std::size_t>(j)]);
+      } else {
+        stack.push_back({x.right, x.right});
+        stack.push_back({x.left, x.right});
+        stack.push_back({x.left, x.left});
+      }
+      continue;
+    }
+    if (x.is_leaf() && y.is_leaf()) {
+      for (int i = x.first; i < x.first + x.count && !stop; ++i)
+        for (int j = y.first; j < y.first + y.count && !stop; ++j)
+          stop = !visit(leaf[static_cast<std::size_t>(i)], leaf[static_cast<std::size_t>(j)]);
+      continue;
+    }
+    const bool split_a = !x.is_leaf() && (y.is_leaf() || (x.box.hi - x.box.lo).squaredNorm() >= (y.box.hi - y.box.lo).squaredNorm());
+    if (split_a) {
+      stack.push_back({x.right, b});
+      stack.push_back({x.left, b});
+    } else {
+      stack.push_back({a, y.right});
+      stack.push_back({a, y.left});
+    }
+  }
+  out.first_face = first.first;
+  out.second_face = first.second;
+  out.candidate_pairs = std::min(candidates, max_candidates);
+  return out;
+}
+
+PinchReport find_pinches(const Mesh& mesh) {
+  PinchReport out;
+  if (mesh.F.rows() == 0 || !usable(mesh)) return out;
+  const Eigen::Index nv = mesh.V.rows();
+  std::vector<char> referenced(static_cast<std::size_t>(nv), 0);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) referenced[static_cast<std::size_t>(mesh.F(f, k))] = 1;
+  const std::vector<int> canonical = canonical_vertices(mesh.V);
+  // Edges joining two vertices at one position (zero length): such a pair is not a pinch.
+  std::vector<std::pair<int, int>> joined;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int u = mesh.F(f, k), w = mesh.F(f, (k + 1) % 3);
+      if (u != w && canonical[static_cast<std::size_t>(u)] == canonical[static_cast<std::size_t>(w)])
+        joined.emplace_back(std::min(u, w), std::max(u, w));
+    }
+  std::sort(joined.begin(), joined.end());
+  const std::vector<int> order = by_position(mesh.V);
+  std::pair<int, int> first{-1, -1};
+  std::vector<int> group;
+  for (std::size_t i = 0; i < order.size();) {
+    std::size_t j = i + 1;
+    while (j < order.size() && same_position(mesh.V, order[i], order[j])) ++j;
+    group.clear();
+    for (std::size_t k = i; k < j; ++k)
+      if (referenced[static_cast<std::size_t>(order[k])]) group.push_back(order[k]);  // ascending
+    if (group.size() > kMaxPinchGroup) {
+      // Thousands of vertices at one point (a collapsed file): counted, not paired one by one.
+      const long long k = static_cast<long long>(group.size());
+      const std::pair<int, int> pair{group[0], group[1]};
+      if (out.pairs == 0 || pair < first) first = pair;
+      out.pairs += k * (k - 1) / 2;
+      i = j;
+      continue;
+    }
+    for (std::size_t a = 0; a < group.size(); ++a)
+      for (std::size_t b = a + 1; b < group.size(); ++b) {
+        const std::pair<int, int> pair{group[a], group[b]};
+        if (std::binary_search(joined.begin(), joined.end(), pair)) continue;
+        if (out.pairs == 0 || pair < first) first = pair;
+        ++out.pairs;
+      }
+    i = j;
+  }
+  out.first_vertex = first.first;
+  out.second_vertex = first.second;
+  return out;
+}
+
+}  // namespace offsetopt

@@ -1,0 +1,66 @@
+// Pair tests behind `check`'s self-intersection search on the configurations that broke plain
+// Guigue-Devillers: a zero-area triangle (no plane) far from a triangle it overlaps in
+// projection, faces of one cone strip whose corners lie exactly on each other's planes, and a
+// T-junction closed by a sliver. Expected answers are by construction.
+#include <doctest/doctest.h>
+
+#include "geometry/mesh_defects.h"
+#include "geometry/triangle_triangle.h"
+#include "mesh/demo_meshes.h"
+
+using namespace offsetopt;
+using V3 = Eigen::Vector3d;
+
+TEST_CASE("a zero-area triangle is tested as its three edges, not in a 2-D projection") {
+  const V3 p(0, 0, 0), q(4, 0, 0), r(0, 4, 0);
+  // Collinear corners 5 units above the triangle, right over it: no contact.
+  CHECK_FALSE(triangles_intersect(p, q, r, V3(1, 1, 5), V3(2, 1, 5), V3(3, 1, 5)));
+  CHECK_FALSE(triangles_intersect(V3(1, 1, 5), V3(2, 1, 5), V3(3, 1, 5), p, q, r));
+  // Collinear corners on a vertical segment through the triangle: contact.
+  CHECK(triangles_intersect(p, q, r, V3(1, 1, -1), V3(1, 1, 0.5), V3(1, 1, 2)));
+  CHECK(triangles_intersect(V3(1, 1, -1), V3(1, 1, 0.5), V3(1, 1, 2), p, q, r));
+}
+
+TEST_CASE("two faces of one cone strip, corners on each other's planes, do not meet") {
+  // Four faces between two rulings of a cone (apex at the origin): the rulings' points are
+  // coplanar, and faces 0 and 2 share no corner.
+  Mesh strip;
+  strip.V.resize(6, 3);
+  const V3 a(3, 0, 3), b(2.9, 0.7, 3);  // two rulings through the apex: k * a, k * b
+  for (int k = 1; k <= 3; ++k) {
+    strip.V.row(2 * (k - 1)) = (k * a).transpose();
+    strip.V.row(2 * (k - 1) + 1) = (k * b).transpose();
+  }
+  strip.F.resize(4, 3);
+  strip.F << 0, 1, 3, 0, 3, 2, 2, 3, 5, 2, 5, 4;
+  CHECK(find_self_intersections(strip).pairs == 0);
+}
+
+TEST_CASE("the demo bottle, top and buoy have no self-intersecting pairs") {
+  for (const char* name : {"bottle", "top", "buoy"}) {
+    CAPTURE(name);
+    CHECK(find_self_intersections(make_demo_mesh(name)).pairs == 0);
+  }
+}
+
+TEST_CASE("separate_triangles_meet: the demo bottle's cone-strip pair that plain Guigue-Devillers reports one way round") {
+  // Faces 1056 and 1185 of the demo bottle: three corners on each of two rulings of a cone, so
+  // a corner of each lies exactly on the other's plane; they do not meet.
+  const V3 f[3] = {V3(1.7999999999999936, -35, 4), V3(5.2305999115346031, -34.831465433526894, 4),
+                   V3(9.3368499115346033, -34.831465433526894, 13.125)};
+  const V3 g[3] = {V3(5.9062499999999938, -35, 13.125), V3(13.443099911534604, -34.831465433526894, 22.25),
+                   V3(10.012499999999994, -35, 22.25)};
+  CHECK_FALSE(separate_triangles_meet(f, g));
+  CHECK_FALSE(separate_triangles_meet(g, f));
+  // Moved 12 units down the ruling (more than one ring step), g overlaps f in their common plane.
+  const V3 shift = (g[2] - g[0]).normalized() * -12.0;
+  const V3 h[3] = {g[0] + shift, g[1] + shift, g[2] + shift};
+  CHECK(separate_triangles_meet(f, h));
+  CHECK(separate_triangles_meet(h, f));
+  // A clear crossing and a clear miss.
+  const V3 t[3] = {V3(0, 0, 0), V3(4, 0, 0), V3(0, 4, 0)};
+  const V3 crossing[3] = {V3(1, 1, -1), V3(1, 1.5, 2), V3(1.5, 1, 2)};
+  const V3 above[3] = {V3(1, 1, 1), V3(1, 1.5, 2), V3(1.5, 1, 2)};
+  CHECK(separate_triangles_meet(t, crossing));
+  CHECK_FALSE(separate_triangles_meet(t, above));
+}
