@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -10,6 +9,7 @@
 #include "geometry/closest_point.h"
 #include "geometry/grid_winding.h"
 #include "geometry/marching_tetrahedra.h"
+#include "geometry/mesh_shells.h"
 #include "spectral/worker_pool.h"
 
 namespace offsetopt {
@@ -24,33 +24,6 @@ Aabb mesh_box(const Mesh& mesh) {
   Aabb box;
   for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) box.extend(mesh.V.row(i).transpose());
   return box;
-}
-
-// Connected shells of a closed mesh (faces joined through shared vertices), numbered by their
-// lowest face; per face the shell.
-std::vector<int> shell_of_faces(const Mesh& mesh, int& shell_count) {
-  std::vector<int> parent(static_cast<std::size_t>(mesh.V.rows()));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int v) {
-    while (parent[static_cast<std::size_t>(v)] != v) {
-      parent[static_cast<std::size_t>(v)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(v)])];
-      v = parent[static_cast<std::size_t>(v)];
-    }
-    return v;
-  };
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int c = 1; c < 3; ++c) {
-      const int a = find(mesh.F(f, 0)), b = find(mesh.F(f, c));
-      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-    }
-  std::vector<int> shell_of_root(parent.size(), -1), shell(static_cast<std::size_t>(mesh.F.rows()));
-  shell_count = 0;
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    int& id = shell_of_root[static_cast<std::size_t>(find(mesh.F(f, 0)))];
-    if (id < 0) id = shell_count++;
-    shell[static_cast<std::size_t>(f)] = id;
-  }
-  return shell;
 }
 
 }  // namespace
@@ -230,25 +203,18 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
   out.vertices_moved_for_wall = moved[0] + moved[1];
 
   // Shells: keep those that enclose void of some size.
-  int shell_count = 0;
-  const std::vector<int> shell = shell_of_faces(contour.mesh, shell_count);
-  std::vector<double> volume(static_cast<std::size_t>(shell_count), 0.0);
-  const Eigen::Vector3d o = grid.origin;
-  for (Eigen::Index f = 0; f < contour.mesh.F.rows(); ++f) {
-    const Eigen::Vector3d a = contour.mesh.V.row(contour.mesh.F(f, 0)).transpose() - o;
-    const Eigen::Vector3d b = contour.mesh.V.row(contour.mesh.F(f, 1)).transpose() - o;
-    const Eigen::Vector3d c = contour.mesh.V.row(contour.mesh.F(f, 2)).transpose() - o;
-    volume[static_cast<std::size_t>(shell[static_cast<std::size_t>(f)])] += a.dot(b.cross(c)) / 6.0;
-  }
+  const MeshShells shells = mesh_shells(contour.mesh, grid.origin);
+  const std::vector<int>& shell = shells.shell_of_face;
   double total = 0.0;
-  for (double v : volume) total += std::max(v, 0.0);
-  std::vector<char> keep(volume.size(), 0);
-  for (std::size_t s = 0; s < volume.size(); ++s) {
-    keep[s] = volume[s] > options.min_shell_fraction * total && volume[s] > 0.0;
+  for (double v : shells.volume) total += std::max(v, 0.0);
+  std::vector<char> keep(shells.volume.size(), 0);
+  for (std::size_t s = 0; s < shells.volume.size(); ++s) {
+    const double volume = shells.volume[s];
+    keep[s] = volume > options.min_shell_fraction * total && volume > 0.0;
     if (keep[s]) ++out.shells;
     else {
       ++out.shells_dropped;
-      out.dropped_volume += volume[s];
+      out.dropped_volume += volume;
     }
   }
   std::vector<int> new_index(static_cast<std::size_t>(contour.mesh.V.rows()), -1);

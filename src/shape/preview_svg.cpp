@@ -13,6 +13,7 @@
 
 #include <Eigen/Geometry>
 
+#include "geometry/mesh_shells.h"
 #include "geometry/plane_section.h"
 #include "mass/buoyancy.h"
 #include "mass/mass_properties.h"
@@ -104,41 +105,16 @@ struct Shells {
 };
 
 Shells split_shells(const Mesh& mesh) {
-  const int n = static_cast<int>(mesh.V.rows());
-  std::vector<int> parent(static_cast<std::size_t>(n));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int i) {
-    while (parent[static_cast<std::size_t>(i)] != i) {
-      parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-      i = parent[static_cast<std::size_t>(i)];
-    }
-    return i;
-  };
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int e = 1; e < 3; ++e) {
-      const int a = find(mesh.F(f, 0)), b = find(mesh.F(f, e));
-      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-    }
-  // Signed volume per root, measured from the bounding box's centre (small numbers, exact sign).
+  // Signed volume per shell, measured from the bounding box's centre (small numbers, exact sign).
   const Eigen::Vector3d centre = 0.5 * (mesh.V.colwise().minCoeff() + mesh.V.colwise().maxCoeff()).transpose();
-  std::vector<double> volume(static_cast<std::size_t>(n), 0.0);
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)).transpose() - centre;
-    const Eigen::Vector3d b = mesh.V.row(mesh.F(f, 1)).transpose() - centre;
-    const Eigen::Vector3d c = mesh.V.row(mesh.F(f, 2)).transpose() - centre;
-    volume[static_cast<std::size_t>(find(mesh.F(f, 0)))] += a.dot(b.cross(c)) / 6.0;
-  }
+  const MeshShells found = mesh_shells(mesh, centre);
   Shells shells;
-  std::vector<char> is_root_with_faces(static_cast<std::size_t>(n), 0);
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) is_root_with_faces[static_cast<std::size_t>(find(mesh.F(f, 0)))] = 1;
-  for (int i = 0; i < n; ++i)
-    if (is_root_with_faces[static_cast<std::size_t>(i)]) {
-      ++shells.count;
-      if (volume[static_cast<std::size_t>(i)] < 0.0) ++shells.cavities;
-    }
+  shells.count = found.count;
+  for (double v : found.volume) shells.cavities += v < 0.0;
   std::vector<int> keep;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    if (volume[static_cast<std::size_t>(find(mesh.F(f, 0)))] > 0.0) keep.push_back(static_cast<int>(f));
+    if (found.volume[static_cast<std::size_t>(found.shell_of_face[static_cast<std::size_t>(f)])] > 0.0)
+      keep.push_back(static_cast<int>(f));
   shells.outer.V = mesh.V;
   shells.outer.F.resize(static_cast<Eigen::Index>(keep.size()), 3);
   for (std::size_t i = 0; i < keep.size(); ++i) shells.outer.F.row(static_cast<Eigen::Index>(i)) = mesh.F.row(keep[i]);

@@ -10,6 +10,7 @@
 #include <map>
 #include <vector>
 
+#include "../mesh_checks.h"
 #include "../mass/geometry_checks.h"
 #include "geometry/bvh.h"
 #include "geometry/closest_point.h"
@@ -20,22 +21,10 @@
 #include "util/rng.h"
 
 using namespace offsetopt;
+using offsetopt::test::closed_and_oriented;
 using offsetopt::test::winding_number;
 
 namespace {
-
-// Each directed edge once, with its opposite once: closed, oriented, edge-manifold.
-bool closed_and_oriented(const Mesh& mesh) {
-  std::map<std::pair<int, int>, int> directed;
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) ++directed[{mesh.F(f, c), mesh.F(f, (c + 1) % 3)}];
-  for (const auto& [edge, count] : directed) {
-    if (count != 1) return false;
-    const auto opposite = directed.find({edge.second, edge.first});
-    if (opposite == directed.end() || opposite->second != 1) return false;
-  }
-  return true;
-}
 
 // Every vertex's faces form one fan (a disk): no two cones meet at a vertex.
 bool vertex_manifold(const Mesh& mesh) {

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "../mesh_checks.h"
 #include "../temp_dir.h"
 #include "geometry/bvh.h"
 #include "geometry/closest_point.h"
@@ -23,6 +24,7 @@
 #include "mesh/read_raw_mesh.h"
 
 using namespace offsetopt;
+using offsetopt::test::closed_and_oriented;
 
 namespace {
 
@@ -64,15 +66,6 @@ Written optimize(const std::string& name, const std::string& mesh, const std::st
   w.outer = read_mesh(base + "_outer.ply");
   w.cavity = read_mesh(base + "_cavity.ply");
   return w;
-}
-
-bool closed_and_oriented(const Mesh& mesh) {
-  std::map<std::pair<int, int>, int> directed;
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) ++directed[{mesh.F(f, c), mesh.F(f, (c + 1) % 3)}];
-  for (const auto& [edge, count] : directed)
-    if (count != 1 || directed.count({edge.second, edge.first}) != 1) return false;
-  return true;
 }
 
 // Everything that makes the written cavity printable, measured on the files.

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 
+#include "../mesh_checks.h"
 #include "../mass/geometry_checks.h"
 #include "geometry/bvh.h"
 #include "geometry/closest_point.h"
@@ -18,17 +19,9 @@
 #include "shape/contour_cavity.h"
 
 using namespace offsetopt;
+using offsetopt::test::closed_and_oriented;
 
 namespace {
-
-bool closed_and_oriented(const Mesh& mesh) {
-  std::map<std::pair<int, int>, int> directed;
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) ++directed[{mesh.F(f, c), mesh.F(f, (c + 1) % 3)}];
-  for (const auto& [edge, count] : directed)
-    if (count != 1 || directed.count({edge.second, edge.first}) != 1) return false;
-  return true;
-}
 
 double smallest_wall(const TriangleBvh& outer, const Mesh& cavity) {
   double smallest = std::numeric_limits<double>::infinity();
