@@ -522,6 +522,7 @@ Cavity make_cavity(const OptimizeSettings& settings, const Frame& f, const Band&
       entry["distance_nodes"] = static_cast<long long>(contoured.distance_nodes);
       entry["shells"] = contoured.shells;
       entry["shells_filled"] = contoured.shells_dropped;
+      entry["filled_volume"] = contoured.dropped_volume;
       entry["vertices_moved_for_wall"] = contoured.vertices_moved_for_wall;
       entry["vertices"] = static_cast<long long>(contoured.cavity.V.rows());
       entry["faces"] = static_cast<long long>(contoured.cavity.F.rows());
