@@ -479,7 +479,9 @@ Cavity make_cavity(const OptimizeSettings& settings, const Frame& f, const Band&
                             (settings.cavity == CavityMode::automatic && !offset_verified);
   std::string problem;
   if (want_contour && b.fixed_count > 0) {
-    problem = "with an opening (--fix) only the offset surfaces can be written, and they do not verify";
+    problem = settings.cavity == CavityMode::contour
+                  ? "a contoured cavity cannot have an opening (--fix) yet; the offset surfaces were written"
+                  : "with an opening (--fix) only the offset surfaces can be written, and they do not verify";
   } else if (want_contour) {
     stage_start = Clock::now();
     ContourCavityOptions cavity_options;
