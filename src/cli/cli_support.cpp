@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 
 namespace offsetopt::cli {
@@ -72,21 +73,6 @@ void write_text(const std::string& path, const std::string& text, const std::vec
 
 namespace {
 
-// Splits "-o, --output" into its names.
-std::vector<std::string> option_names(const char* names) {
-  std::vector<std::string> out;
-  std::string text = names, current;
-  for (const char c : text) {
-    if (c == ',' || c == ' ') {
-      if (!current.empty()) out.push_back(current);
-      current.clear();
-    } else {
-      current += c;
-    }
-  }
-  if (!current.empty()) out.push_back(current);
-  return out;
-}
 
 // Appends `text` wrapped at 96 columns, every line indented by `indent` (the first line's
 // indentation is already written when `first_written`).
@@ -221,5 +207,22 @@ LoadedMesh load_input(const std::string& path, const LoadOptions& options) {
     loaded.warnings.push_back(describe_pinches(pinches, loaded.vertex_origin, loaded.vertex_line) + "; accepted");
   return loaded;
 }
+
+std::vector<std::string> split_words(const std::string& text, const char* separators) {
+  std::vector<std::string> out;
+  std::string current;
+  for (const char c : text) {
+    if (std::strchr(separators, c) != nullptr) {
+      if (!current.empty()) out.push_back(current);
+      current.clear();
+    } else {
+      current += c;
+    }
+  }
+  if (!current.empty()) out.push_back(current);
+  return out;
+}
+
+std::vector<std::string> option_names(const char* names) { return split_words(names, ", "); }
 
 }  // namespace offsetopt::cli

@@ -74,6 +74,11 @@ std::string format_help(const CommandHelp& help);
 // not one of `options`' names.
 void require_known_option(const char* command, const std::vector<OptionSpec>& options, const std::string& arg);
 
+// The words of `text` between any of the characters of `separators` (empty words dropped).
+std::vector<std::string> split_words(const std::string& text, const char* separators);
+// The names of an option table row: "-o, --output" -> {"-o", "--output"}.
+std::vector<std::string> option_names(const char* names);
+
 // The value of --unit: one of the 3MF units (mesh/write_3mf.h), else UsageError.
 std::string parse_unit(const std::string& text);
 

@@ -84,24 +84,10 @@ std::vector<std::string> split(const std::string& text, char separator) {
   }
 }
 
-std::vector<std::string> split_whitespace(const std::string& text) {
-  std::vector<std::string> out;
-  std::string current;
-  for (const char c : text) {
-    if (c == ' ' || c == '\t') {
-      if (!current.empty()) out.push_back(current);
-      current.clear();
-    } else {
-      current += c;
-    }
-  }
-  if (!current.empty()) out.push_back(current);
-  return out;
-}
 
 bool is_option_name(const std::string& token, const char* name) {
-  for (const std::string& n : split_whitespace(std::string(name)))
-    if ((n.back() == ',' ? n.substr(0, n.size() - 1) : n) == token) return true;
+  for (const std::string& n : option_names(name))
+    if (n == token) return true;
   return false;
 }
 
@@ -169,7 +155,7 @@ std::vector<Job> read_manifest(const std::string& path, const std::string& text)
     job.input = fields[column_input];
     job.goal = fields[column_goal];
     if (job.input.empty() || job.goal.empty()) throw UsageError(where + ": empty input or goal");
-    if (column_options >= 0) job.options = split_whitespace(fields[column_options]);
+    if (column_options >= 0) job.options = split_words(fields[column_options], " \t");
     for (const std::string& token : job.options) {
       if (token.size() < 2 || token[0] != '-') continue;
       if (reserved_option(token)) throw UsageError(where + ": options may not contain " + token + " (batch sets it)");
