@@ -310,6 +310,12 @@ void ReducedProblem::set_inner_integral_shift(const Vector10d& shift) {
   cache_valid_ = false;
 }
 
+void ReducedProblem::set_goal_margins(double margin, double epsilon) {
+  goal_.margin = margin;
+  goal_.epsilon = epsilon;
+  cache_valid_ = false;
+}
+
 Eigen::VectorXd ReducedProblem::start_point() const {
   const Eigen::Index n = mesh_.V.rows();
   Eigen::VectorXd target(n);

@@ -94,6 +94,9 @@ class ReducedProblem {
   // correction (DESIGN.md "The written cavity", step 4), the written cavity's integrals less the
   // offset surface's. It does not depend on the variables, so no derivative changes.
   void set_inner_integral_shift(const Vector10d& shift);
+  // The goal's margins (GoalSpec::margin, ::epsilon) for later solves: a correction aims a little
+  // inside the user's margin, so the next contour's noise does not push the written solid out.
+  void set_goal_margins(double margin, double epsilon);
 
   // The problem for the augmented Lagrangian; it refers to *this, which must outlive the solve.
   ConstrainedProblem constrained_problem();
