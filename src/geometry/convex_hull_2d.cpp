@@ -4,47 +4,11 @@
 #include <array>
 #include <cmath>
 
+#include "util/exact_expansion.h"
+
 namespace offsetopt {
 
 namespace {
-
-// Error-free transformations (Knuth's TwoSum, Dekker's TwoProduct with Veltkamp's split); exact
-// because -ffp-contract=off keeps every operation separately rounded.
-inline void two_sum(double a, double b, double& sum, double& error) {
-  sum = a + b;
-  const double b_virtual = sum - a;
-  const double a_virtual = sum - b_virtual;
-  error = (a - a_virtual) + (b - b_virtual);
-}
-
-inline void split(double a, double& hi, double& lo) {
-  const double c = 134217729.0 * a;  // 2^27 + 1
-  const double a_big = c - a;
-  hi = c - a_big;
-  lo = a - hi;
-}
-
-inline void two_product(double a, double b, double& product, double& error) {
-  product = a * b;
-  double ahi, alo, bhi, blo;
-  split(a, ahi, alo);
-  split(b, bhi, blo);
-  error = ((ahi * bhi - product) + ahi * blo + alo * bhi) + alo * blo;
-}
-
-// Adds `term` to a nonoverlapping expansion sorted by increasing magnitude (Shewchuk's
-// Grow-Expansion); the expansion stays exact and nonoverlapping.
-template <std::size_t N>
-void grow_expansion(std::array<double, N>& e, std::size_t& length, double term) {
-  double q = term;
-  for (std::size_t i = 0; i < length; ++i) {
-    double sum, error;
-    two_sum(q, e[i], sum, error);
-    e[i] = error;
-    q = sum;
-  }
-  e[length++] = q;
-}
 
 double orient2d_exact(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   // (ax − cx)(by − cy) − (ay − cy)(bx − cx) with each difference kept as an exact pair.
