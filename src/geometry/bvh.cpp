@@ -22,6 +22,13 @@ TriangleBvh::TriangleBvh(const Vertices& V, const Faces& F, const BvhOptions& op
   for (Eigen::Index i = 0; i < V_.rows(); ++i) all.extend(Eigen::Vector3d(V_.row(i).transpose()));
   diagonal_ = all.empty() ? 0.0 : (all.hi - all.lo).norm();
   if (face_count == 0) return;
+  corners_.resize(static_cast<std::size_t>(9) * static_cast<std::size_t>(face_count));
+  for (int f = 0; f < face_count; ++f)
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) corners_[static_cast<std::size_t>(9 * f + 3 * k + a)] = V_(F_(f, k), a);
+  face_boxes_.resize(static_cast<std::size_t>(face_count));
+  for (int f = 0; f < face_count; ++f)
+    for (int k = 0; k < 3; ++k) face_boxes_[static_cast<std::size_t>(f)].extend(corner(f, k));
   std::vector<int> order(static_cast<std::size_t>(face_count));
   std::vector<Eigen::Vector3d> centroids(static_cast<std::size_t>(face_count));
   for (int f = 0; f < face_count; ++f) {
@@ -39,7 +46,7 @@ int TriangleBvh::build(std::vector<int>& order, std::vector<Eigen::Vector3d>& ce
   Aabb box, centroid_box;
   for (int k = begin; k < end; ++k) {
     const int f = order[static_cast<std::size_t>(k)];
-    for (int c = 0; c < 3; ++c) box.extend(corner(f, c));
+    box.extend(face_boxes_[static_cast<std::size_t>(f)]);
     centroid_box.extend(centroids[static_cast<std::size_t>(f)]);
   }
   nodes_[static_cast<std::size_t>(index)].box = box.inflated(box_margin());

@@ -44,7 +44,14 @@ class TriangleBvh {
   const std::vector<int>& leaf_faces() const { return leaf_faces_; }
   bool empty() const { return nodes_.empty(); }
 
-  Eigen::Vector3d corner(int face, int k) const { return V_.row(F_(face, k)).transpose(); }
+  // Read from a copy packed face by face: the mesh's column-major vertex matrix spreads one
+  // corner over three cache lines, and the queries read little else.
+  Eigen::Vector3d corner(int face, int k) const {
+    const double* c = &corners_[static_cast<std::size_t>(9 * face + 3 * k)];
+    return Eigen::Vector3d(c[0], c[1], c[2]);
+  }
+  // The tight box of one face's corners (node boxes are these, merged and inflated).
+  const Aabb& face_box(int face) const { return face_boxes_[static_cast<std::size_t>(face)]; }
   // Diagonal of the bounding box of all vertices (the length every tolerance is relative to).
   double diagonal() const { return diagonal_; }
   // How much every node box is grown so that rounding in the slab test never loses a hit that the
@@ -79,6 +86,8 @@ class TriangleBvh {
   Faces F_;
   std::vector<BvhNode> nodes_;
   std::vector<int> leaf_faces_;
+  std::vector<double> corners_;  // 9 per face: corner 0, 1, 2
+  std::vector<Aabb> face_boxes_;
   double diagonal_ = 0.0;
   int leaf_size_ = 4;
 };

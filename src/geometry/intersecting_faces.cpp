@@ -60,12 +60,6 @@ void traverse_pairs(const TriangleBvh& a, const TriangleBvh& b, bool same, std::
   }
 }
 
-Aabb face_box(const TriangleBvh& bvh, int f) {
-  Aabb box;
-  for (int k = 0; k < 3; ++k) box.extend(bvh.corner(f, k));
-  return box;
-}
-
 }  // namespace
 
 bool mesh_faces_intersect(const TriangleBvh& bvh, int f, int g) {
@@ -100,7 +94,7 @@ namespace {
 IntersectingFaces self_intersections_from(const TriangleBvh& bvh, std::vector<NodePair> start, std::size_t max_pairs) {
   IntersectingFaces out;
   traverse_pairs(bvh, bvh, true, std::move(start), [&](int f, int g) {
-    if (!face_box(bvh, f).overlaps(face_box(bvh, g))) return true;
+    if (!bvh.face_box(f).overlaps(bvh.face_box(g))) return true;
     if (mesh_faces_intersect(bvh, f, g)) {
       out.pairs.emplace_back(std::min(f, g), std::max(f, g));
       if (out.pairs.size() >= max_pairs) {
@@ -144,7 +138,7 @@ IntersectingFaces merge_intersections(const IntersectingFaces& a, const Intersec
 IntersectingFaces intersecting_faces(const TriangleBvh& a, const TriangleBvh& b, std::size_t max_pairs) {
   IntersectingFaces out;
   traverse_pairs(a, b, false, {{0, 0}}, [&](int f, int g) {
-    if (!face_box(a, f).overlaps(face_box(b, g))) return true;
+    if (!a.face_box(f).overlaps(b.face_box(g))) return true;
     if (triangles_intersect(a.corner(f, 0), a.corner(f, 1), a.corner(f, 2), b.corner(g, 0), b.corner(g, 1), b.corner(g, 2))) {
       out.pairs.emplace_back(f, g);
       if (out.pairs.size() >= max_pairs) {

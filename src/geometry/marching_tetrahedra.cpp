@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <unordered_map>
 
 #include <Eigen/Geometry>
@@ -51,6 +52,9 @@ TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int6
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::array<int, 3>> faces;
   std::unordered_map<std::int64_t, int> edge_vertex;  // looked up only: the order never matters
+  edge_vertex.reserve(cells.size() * 3);
+  vertices.reserve(cells.size() * 3);
+  faces.reserve(cells.size() * 6);
   const std::int64_t corner_offset[8] = {0,
                                          1,
                                          grid.nx,
@@ -67,12 +71,17 @@ TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int6
       (values[static_cast<std::size_t>(c)] >= 0.0 ? any_positive : any_negative) = true;
     }
     if (!any_positive || !any_negative) continue;
-    // The vertex on the edge between cube corners a and b (either order).
+    // The vertex on the edge between cube corners a and b (either order). Up to six tetrahedra of
+    // the cell share an edge: the cell's own table answers them before the shared map.
+    int in_cell[8][8];
+    for (auto& row : in_cell) std::fill(std::begin(row), std::end(row), -1);
     auto edge = [&](int a, int b) {
       const int low = (a & b) == a ? a : b, high = low == a ? b : a;  // Kuhn edges: low ⊂ high
+      int& local = in_cell[low][high ^ low];
+      if (local >= 0) return local;
       const std::int64_t key = (cell + corner_offset[low]) * 8 + (high ^ low);
       const auto found = edge_vertex.find(key);
-      if (found != edge_vertex.end()) return found->second;
+      if (found != edge_vertex.end()) return local = found->second;
       const bool a_positive = values[static_cast<std::size_t>(a)] >= 0.0;
       const int p = a_positive ? a : b, q = a_positive ? b : a;
       const double vp = values[static_cast<std::size_t>(p)], vq = values[static_cast<std::size_t>(q)];
@@ -85,7 +94,7 @@ TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int6
       out.negative_node.push_back(nq);
       out.fraction.push_back(t);
       edge_vertex.emplace(key, index);
-      return index;
+      return local = index;
     };
     for (const auto& tet : kuhn.tets) {
       int positives = 0, first_positive = -1, second_positive = -1, first_negative = -1;

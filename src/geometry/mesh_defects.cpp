@@ -299,12 +299,6 @@ class PairRule {
   std::vector<std::vector<VirtualCorner>> virtual_;
 };
 
-Aabb face_box(const TriangleBvh& bvh, int f) {
-  Aabb box;
-  for (int k = 0; k < 3; ++k) box.extend(bvh.corner(f, k));
-  return box;
-}
-
 }  // namespace
 
 bool separate_triangles_meet(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]) {
@@ -316,8 +310,6 @@ SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap
   if (mesh.F.rows() == 0 || cap == 0 || !usable(mesh)) return out;
   const PairRule rule(mesh);
   const TriangleBvh bvh(mesh.V, mesh.F);
-  std::vector<Aabb> boxes(static_cast<std::size_t>(mesh.F.rows()));
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) boxes[static_cast<std::size_t>(f)] = face_box(bvh, static_cast<int>(f));
   std::pair<int, int> first{-1, -1};
   long long candidates = 0;
   const long long max_candidates =
@@ -329,7 +321,7 @@ SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap
       return false;
     }
     if (rule.zero_area(f) || rule.zero_area(g)) return true;
-    if (!boxes[static_cast<std::size_t>(f)].overlaps(boxes[static_cast<std::size_t>(g)])) return true;
+    if (!bvh.face_box(f).overlaps(bvh.face_box(g))) return true;
     if (!rule.intersect(f, g)) return true;
     const std::pair<int, int> pair{std::min(f, g), std::max(f, g)};
     if (out.pairs == 0 || pair < first) first = pair;

@@ -180,11 +180,14 @@ bool segment_intersects_triangle(const Vec3& a, const Vec3& b, const Vec3& p, co
   // A segment lying in the triangle's plane in exact arithmetic (for example an edge of the next
   // ring of a cone, collinear with the pole) comes out with distances of rounding size and
   // random signs; the orientation test below is meaningless then. Within a relative 1e-12 the
-  // segment counts as coplanar and is decided in 2-D.
-  const double size = std::max({(a - p).norm(), (b - p).norm(), (q - p).norm(), (r - p).norm()});
-  const double on_plane = 1e-12 * normal.norm() * size;
-  const bool a_on = std::fabs(da) <= on_plane, b_on = std::fabs(db) <= on_plane;
+  // segment counts as coplanar and is decided in 2-D. Compared squared: most calls (neighbouring
+  // faces of a fine mesh) end at the next line, and they need no square root.
+  const double size_squared =
+      std::max({(a - p).squaredNorm(), (b - p).squaredNorm(), (q - p).squaredNorm(), (r - p).squaredNorm()});
+  const double on_plane_squared = 1e-24 * normal.squaredNorm() * size_squared;
+  const bool a_on = da * da <= on_plane_squared, b_on = db * db <= on_plane_squared;
   if (!a_on && !b_on && ((da > 0.0 && db > 0.0) || (da < 0.0 && db < 0.0))) return false;
+  const double size = std::sqrt(size_squared);
   // Where both ends lie within 1e-6 of the segment's length from the plane (coplanar cavity
   // triangles along a flat wall), signs across the plane are rounding: decide in 2-D as well.
   const bool nearly_in_plane = std::max(std::fabs(da), std::fabs(db)) < 1e-6 * normal.norm() * (b - a).norm();

@@ -94,6 +94,7 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
   const std::int64_t bx = (grid.nx + kBlock - 1) / kBlock, by = (grid.ny + kBlock - 1) / kBlock,
                      bz = (grid.nz + kBlock - 1) / kBlock;
   const double level = wall + margin;
+  const double rounding = 1e-9 * h;  // what a Lipschitz bound gives away to rounding
   std::int64_t per_node[kParts] = {0, 0};
   pool.run_parts(kParts, [&](int part) {
     for (std::int64_t kb = split_point(bz, kParts, part); kb < split_point(bz, kParts, part + 1); ++kb)
@@ -121,8 +122,17 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
                   s = 0;
                   continue;
                 }
+                // The centre's exact distance bounds the node's (1-Lipschitz) both ways; only
+                // nodes the bounds leave open (by more than rounding) are queried.
+                const Eigen::Vector3d node(grid.x(i), grid.y(j), grid.z(k));
+                const double r = (node - 0.5 * (lo + hi)).norm();
+                if (centre.distance - r >= level + rounding) continue;
+                if (centre.distance + r < level - rounding) {
+                  s = 0;
+                  continue;
+                }
                 ++per_node[part];
-                if (closest_point(outer_bvh, Eigen::Vector3d(grid.x(i), grid.y(j), grid.z(k)), level).found) s = 0;
+                if (closest_point(outer_bvh, node, level).found) s = 0;
               }
         }
   });
@@ -159,6 +169,7 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   const TriangleBvh inner_bvh(inner.V, inner.F);
   std::vector<double> phi(nodes.size());
+  std::vector<double> outer_distance(nodes.size());  // exact below level + cap, else that cap
   const double cap = 2.0 * h;
   pool.run_parts(kParts, [&](int part) {
     const long count = static_cast<long>(nodes.size());
@@ -167,6 +178,7 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
       const Eigen::Vector3d p = grid.position(node);
       const ClosestPoint to_outer = closest_point(outer_bvh, p, level + cap);
       const double d_out = to_outer.found ? to_outer.distance : level + cap;
+      outer_distance[static_cast<std::size_t>(n)] = d_out;
       const double signed_out = outer_winding[static_cast<std::size_t>(node)] >= 1 ? d_out : -d_out;
       const ClosestPoint to_inner = closest_point(inner_bvh, p, cap);
       const double d_in = to_inner.found ? to_inner.distance : cap;
@@ -188,9 +200,15 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
   pool.run_parts(kParts, [&](int part) {
     const long count = static_cast<long>(contour.mesh.V.rows());
     for (long v = split_point(count, kParts, part); v < split_point(count, kParts, part + 1); ++v) {
-      const Eigen::Vector3d p = grid.position(contour.positive_node[static_cast<std::size_t>(v)]);
+      const std::int64_t positive = contour.positive_node[static_cast<std::size_t>(v)];
+      const Eigen::Vector3d p = grid.position(positive);
       const Eigen::Vector3d q = grid.position(contour.negative_node[static_cast<std::size_t>(v)]);
       double good = kMinFraction, bad = contour.fraction[static_cast<std::size_t>(v)];
+      // The cavity node's distance, less the way along the edge, bounds the vertex's: most
+      // vertices need no query.
+      const double node_distance =
+          outer_distance[static_cast<std::size_t>(std::lower_bound(nodes.begin(), nodes.end(), positive) - nodes.begin())];
+      if (node_distance - bad * (q - p).norm() >= wall + rounding) continue;
       if (!closest_point(outer_bvh, p + bad * (q - p), wall).found) continue;
       for (int step = 0; step < 40; ++step) {
         const double mid = 0.5 * (good + bad);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "geometry/bvh.h"
@@ -53,16 +54,31 @@ Mesh without_fixed_faces(const Mesh& mesh, const std::vector<char>& fixed) {
 // Directed edges without their opposite, and edges used more than once in one direction: 0 for a
 // closed, consistently oriented, edge-manifold mesh.
 long long unmatched_edges(const Mesh& mesh) {
-  std::vector<std::pair<int, int>> directed;
-  directed.reserve(static_cast<std::size_t>(3 * mesh.F.rows()));
+  // One key per directed edge: the undirected edge (lower, higher index) and which way it runs.
+  // Sorting integers is several times faster than pairs on a contoured cavity (7e5 edges).
+  std::vector<std::uint64_t> keys;
+  keys.reserve(static_cast<std::size_t>(3 * mesh.F.rows()));
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) directed.emplace_back(mesh.F(f, c), mesh.F(f, (c + 1) % 3));
-  std::sort(directed.begin(), directed.end());
+    for (int c = 0; c < 3; ++c) {
+      const std::uint64_t a = static_cast<std::uint32_t>(mesh.F(f, c)), b = static_cast<std::uint32_t>(mesh.F(f, (c + 1) % 3));
+      keys.push_back((std::min(a, b) << 32) | (std::max(a, b) << 1) | (a > b ? 1u : 0u));
+    }
+  std::sort(keys.begin(), keys.end());
   long long bad = 0;
-  for (std::size_t e = 0; e < directed.size(); ++e) {
-    if (e + 1 < directed.size() && directed[e + 1] == directed[e]) ++bad;
-    const std::pair<int, int> opposite(directed[e].second, directed[e].first);
-    if (!std::binary_search(directed.begin(), directed.end(), opposite)) ++bad;
+  for (std::size_t e = 0; e < keys.size();) {
+    std::size_t end = e;
+    long long runs[2] = {0, 0};
+    while (end < keys.size() && (keys[end] >> 1) == (keys[e] >> 1)) ++runs[keys[end++] & 1u];
+    const bool loop = (keys[e] >> 32) == ((keys[e] >> 1) & 0x7fffffffu);
+    if (loop) {
+      bad += runs[0] - 1;  // (a, a) is its own opposite: only repeats count
+    } else {
+      for (int way = 0; way < 2; ++way) {
+        if (runs[way] > 1) bad += runs[way] - 1;  // used more than once in this direction
+        if (runs[1 - way] == 0) bad += runs[way];  // no edge the other way
+      }
+    }
+    e = end;
   }
   return bad;
 }
@@ -237,6 +253,13 @@ Verification verify_offsets(const VerifyInput& in) {
     }
   }
   out.goal_met = out.failures.empty();
+  if (in.goal_only) {
+    m["goal_met"] = out.goal_met;
+    Json failures = Json::array();
+    for (const auto& f : out.failures) failures.push_back(f);
+    m["failures"] = failures;
+    return out;
+  }
 
   // Validity of the solid.
   const std::size_t goal_failures = out.failures.size();

@@ -43,6 +43,8 @@ struct VerifyInput {
   std::vector<char> fixed;      // per vertex of a shared connectivity (the opening), or empty
   double bound_violation = 0.0; // largest violation of the enforced band, input units
   int threads = 2;              // for the intersection and wall searches; same result for any count
+  bool goal_only = false;       // the goal's figures only: `valid` stays false and no validity
+                                // figure is measured (a contour that will be corrected anyway)
 };
 
 struct Verification {
