@@ -133,14 +133,24 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   // Split in two halves, the second half starts without that bound: on the 100k-vertex bottle
   // the halves on two threads took 0.22 s, one pass 0.055 s.
   d.thinnest_wall = std::numeric_limits<double>::infinity();
+  // The last vertex measured exactly is an anchor: the distance is 1-Lipschitz, so a vertex whose
+  // bound from the anchor is at least the search radius needs no search (neighbouring vertices
+  // of a contoured cavity lie a fraction of the wall apart).
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
+  double anchor_distance = -std::numeric_limits<double>::infinity();
+  const double rounding = 1e-12 * outer_full.diagonal();
   for (Eigen::Index i = 0; i < inner.V.rows(); ++i) {
     const std::size_t u = static_cast<std::size_t>(i);
     if (is_fixed(u) || is_thin(u)) continue;
-    // Only distances below the thinnest so far or below thin_below matter: the search radius
-    // prunes the BVH (same results as an unbounded search, measured 4x faster at 100k vertices).
+    // Only distances below the thinnest so far or below thin_below matter.
     const double radius = std::max(thin_below, d.thinnest_wall);
-    const ClosestPoint c = closest_point(outer_full, inner.V.row(i).transpose(), radius);
+    const Eigen::Vector3d p = inner.V.row(i).transpose();
+    if (anchor_distance - (p - anchor).norm() >= radius + rounding) continue;
+    const ClosestPoint c = closest_point(outer_full, p);
     if (!c.found) continue;
+    anchor = p;
+    anchor_distance = c.distance;
+    if (!(c.distance < radius)) continue;
     if (c.distance < d.thinnest_wall) {
       d.thinnest_wall = c.distance;
       d.thinnest_vertex = static_cast<int>(i);
