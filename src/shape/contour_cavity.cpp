@@ -53,9 +53,7 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
   out.ok = true;
   if (box.empty() || inner.F.rows() == 0) return out;  // no void
 
-  // The spacing: wall / cells_per_wall, coarser when the box would need too many nodes. A grid
-  // edge (at most √3 h) must stay shorter than wall + c·h, or a contoured triangle could reach
-  // the outer surface.
+  // The spacing: wall / cells_per_wall, coarser when the box would need too many nodes.
   double h = wall / options.cells_per_wall;
   const Eigen::Vector3d extent = box.hi - box.lo;
   auto nodes_for = [&](double spacing) {
@@ -64,13 +62,15 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
     return count;
   };
   for (int grow = 0; grow < 60 && nodes_for(h) > static_cast<double>(options.max_nodes); ++grow) h *= 1.05;
-  if (!(std::sqrt(3.0) * h < wall + options.margin_cells * h) || nodes_for(h) > static_cast<double>(options.max_nodes)) {
+  if (nodes_for(h) > static_cast<double>(options.max_nodes)) {
     out.ok = false;
-    out.message = "the cavity grid would need more than " + std::to_string(options.max_nodes) +
-                  " nodes at a spacing that keeps the wall";
+    out.message = "the cavity grid would need more than " + std::to_string(options.max_nodes) + " nodes";
     return out;
   }
-  const double margin = options.margin_cells * h;
+  // The margin: c·h, and never less than what keeps a grid edge (at most √3 h) shorter than
+  // wall + margin, or a contoured triangle could reach the outer surface. A grid made coarser by
+  // the node cap keeps a thicker wall rather than failing.
+  const double margin = std::max(options.margin_cells * h, 1.01 * std::sqrt(3.0) * h - wall);
   NodeGrid& grid = out.grid;
   grid.spacing = h;
   // Offsets by odd fractions of h: grid rows and nodes then miss the round coordinates of CAD

@@ -9,12 +9,13 @@
 //
 // Why every output is printable (tests/shape/test_contour_cavity.cpp):
 // - the shells are closed, embedded, oriented 2-manifolds (marching tetrahedra);
-// - a node counts as cavity only when d_out >= wall + c·h, and every contoured triangle lies in a
-//   tetrahedron (diameter √3·h < wall + c·h) with such a node, so no shell reaches the outer
+// - a node counts as cavity only when d_out >= wall + margin (the margin c·h, or more where a
+//   coarse grid needs it: max(c·h, 1.01·√3·h − wall)), and every contoured triangle lies in a
+//   tetrahedron (diameter √3·h < wall + margin) with such a node, so no shell reaches the outer
 //   surface; each vertex is then moved along its grid edge, towards the cavity node, until its
 //   exact distance to the outer surface is at least `wall` (bisection on the edge, whose cavity
-//   end has wall + c·h), so the wall holds at every vertex exactly;
-// - parts thinner than two walls have no node with d_out >= wall + c·h: they stay solid;
+//   end has wall + margin), so the wall holds at every vertex exactly;
+// - parts thinner than two walls have no node with d_out >= wall + margin: they stay solid;
 // - shells enclosing less than min_shell_fraction of the void, and shells that bound an island of
 //   material inside the void (negative volume), are dropped: the specks are filled, the islands
 //   join the void.

@@ -136,3 +136,20 @@ TEST_CASE("the contoured cavity is the same for any thread count") {
   CHECK(one.cavity.V == three.cavity.V);
   CHECK(one.cavity.F == three.cavity.F);
 }
+
+TEST_CASE("a node cap that forces a grid coarser than the wall still gives a printable cavity") {
+  // At 1500 nodes the spacing grows past the wall (√3·h > wall), and the margin grows with it so
+  // that no grid edge reaches from a cavity node to the outer surface.
+  const double R = 10.0, r = 7.0, wall = 1.0;
+  const Mesh outer = make_icosphere(R, 4);
+  const Mesh inner = make_icosphere(r, 4);
+  const TriangleBvh outer_bvh(outer.V, outer.F);
+  ContourCavityOptions options;
+  options.wall = wall;
+  options.max_nodes = 1500;
+  const ContourCavity c = contour_cavity(outer, outer_bvh, inner, options);
+  REQUIRE(c.ok);
+  CHECK(std::sqrt(3.0) * c.grid.spacing > wall);
+  check_printable(outer, outer_bvh, c, wall);
+  CHECK(c.shells == 1);
+}
