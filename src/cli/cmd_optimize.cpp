@@ -77,7 +77,7 @@ const CommandHelp kHelp = {
          "cavity (contour: closed, embedded, the wall kept exactly), or the offset surface when it verifies as it is and "
          "the contour otherwise (auto)",
          "contour"},
-        {"--cavity-cells", "C", "2", "[1.25, 8]", "contour grid cells per wall thickness", "3"},
+        {"--cavity-cells", "C", "1.5", "[1.25, 8]", "contour grid cells per wall thickness", "3"},
         kPoseOptionSpecs[0],
         kPoseOptionSpecs[1],
         kPoseOptionSpecs[2],

@@ -34,8 +34,8 @@ namespace offsetopt {
 
 struct ContourCavityOptions {
   double wall = 0.0;               // the wall to keep, mesh units, > 0
-  double cells_per_wall = 2.0;     // h = wall / cells_per_wall, in [1.25, 8]
-  double margin_cells = 0.5;       // c, in [0.25, 2]
+  double cells_per_wall = 1.5;     // h = wall / cells_per_wall, in [1.25, 8]
+  double margin_cells = 0.25;      // c, in [0.25, 2]
   std::int64_t max_nodes = std::int64_t{1} << 25;  // h grows when the box needs more nodes
   double min_shell_fraction = 1e-3;  // shells below this fraction of the void are filled
   int threads = 2;                 // 1..64; the result is the same for any count

@@ -51,8 +51,8 @@ struct OptimizeSettings {
   // The contoured cavity: grid spacing wall / cavity_cells_per_wall, interpolation margin
   // cavity_margin_cells · h (shape/contour_cavity.h); at most max_correction_rounds solves again
   // with the contour's moments.
-  double cavity_cells_per_wall = 2.0;
-  double cavity_margin_cells = 0.5;
+  double cavity_cells_per_wall = 1.5;
+  double cavity_margin_cells = 0.25;
   int max_correction_rounds = 6;
   // `--cavity offset` only: after a solve, vertices on folds of the inner surface get their upper
   // bound multiplied by repair_shrink and vertices on walls thinner than half the requested one
