@@ -16,15 +16,15 @@
 #include "meshio_test_util.h"
 #include "mass/mass_properties.h"
 #include "mass/volume_integrals.h"
-#include "mesh/crc32.h"
-#include "mesh/inflate.h"
-#include "mesh/load_mesh.h"
+#include "io/crc32.h"
+#include "io/inflate.h"
+#include "meshio/load_mesh.h"
 #include "mesh/primitives.h"
-#include "mesh/read_raw_mesh.h"
-#include "mesh/write_3mf.h"
-#include "mesh/write_mesh.h"
-#include "mesh/xml_scanner.h"
-#include "mesh/zip_archive.h"
+#include "meshio/read_raw_mesh.h"
+#include "meshio/write_3mf.h"
+#include "meshio/write_mesh.h"
+#include "io/xml_scanner.h"
+#include "io/zip_archive.h"
 
 using namespace offsetopt;
 using namespace meshio_test;

@@ -7,10 +7,10 @@
 #include <locale>
 
 #include "meshio_test_util.h"
-#include "mesh/load_mesh.h"
+#include "meshio/load_mesh.h"
 #include "mesh/primitives.h"
-#include "mesh/read_raw_mesh.h"
-#include "mesh/write_mesh.h"
+#include "meshio/read_raw_mesh.h"
+#include "meshio/write_mesh.h"
 
 using namespace offsetopt;
 using namespace meshio_test;

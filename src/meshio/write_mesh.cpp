@@ -1,4 +1,4 @@
-#include "mesh/write_mesh.h"
+#include "meshio/write_mesh.h"
 
 #include <charconv>
 #include <cmath>
@@ -8,8 +8,8 @@
 
 #include <Eigen/Geometry>
 
-#include "mesh/load_mesh.h"
-#include "mesh/write_3mf.h"
+#include "meshio/load_mesh.h"
+#include "meshio/write_3mf.h"
 #include "util/format_double.h"
 
 namespace offsetopt {

@@ -1,8 +1,8 @@
-#include "mesh/load_mesh.h"
+#include "meshio/load_mesh.h"
 
 #include <algorithm>
 
-#include "mesh/validate_mesh.h"
+#include "meshio/validate_mesh.h"
 #include "util/format_double.h"
 
 namespace offsetopt {

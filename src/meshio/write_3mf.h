@@ -1,5 +1,5 @@
 // 3MF output (3MF Consortium, "3D Manufacturing Format, Core Specification" 1.3; namespace
-// http://schemas.microsoft.com/3dmanufacturing/core/2015/02): a zip (mesh/zip_archive.h,
+// http://schemas.microsoft.com/3dmanufacturing/core/2015/02): a zip (io/zip_archive.h,
 // stored entries, fixed timestamps) of [Content_Types].xml, _rels/.rels and 3D/3dmodel.model.
 // The mesh is ONE object of type "model" whose <mesh> holds every shell (a printable solid's
 // outer surface and its cavity shells), with one build item. Coordinates are shortest round-trip

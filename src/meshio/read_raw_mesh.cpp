@@ -1,4 +1,4 @@
-#include "mesh/read_raw_mesh.h"
+#include "meshio/read_raw_mesh.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -7,13 +7,13 @@
 #include <cerrno>
 #include <cstring>
 
-#include "mesh/load_mesh.h"
-#include "mesh/read_3mf.h"
-#include "mesh/read_obj.h"
-#include "mesh/read_off.h"
-#include "mesh/read_ply.h"
-#include "mesh/read_stl.h"
-#include "mesh/read_text.h"
+#include "meshio/load_mesh.h"
+#include "meshio/read_3mf.h"
+#include "meshio/read_obj.h"
+#include "meshio/read_off.h"
+#include "meshio/read_ply.h"
+#include "meshio/read_stl.h"
+#include "meshio/read_text.h"
 
 namespace offsetopt {
 

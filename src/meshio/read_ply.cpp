@@ -1,9 +1,9 @@
-#include "mesh/read_ply.h"
+#include "meshio/read_ply.h"
 
 #include <cstring>
 
-#include "mesh/load_mesh.h"
-#include "mesh/read_text.h"
+#include "meshio/load_mesh.h"
+#include "meshio/read_text.h"
 
 namespace offsetopt {
 

@@ -1,3 +1,11 @@
+// src/meshio: mesh files. The readers (OBJ, STL, OFF, PLY, 3MF, dispatched by read_raw_mesh.h,
+// with the shared text scanning of read_text.h and the OBJ reader's polygon triangulation,
+// triangulate_polygon.h), the writers (write_mesh.h, write_3mf.h), validation as a printable solid
+// (validate_mesh.h) and the input boundary every command goes through (load_mesh, this header).
+// Layer: above geometry, beside io; it may include util/, optim/, mesh/, geometry/ and io/ (the
+// zip and XML byte formats 3MF needs), nothing above (sparse, spectral, skeleton, mass, shape,
+// cli). Library code: it returns values and throws MeshInputError, it never prints.
+//
 // The input boundary: read a mesh file of any supported format, validate it once, repair only
 // what is safe, and refuse the rest with one line naming the file and the line or face.
 // Every command goes through here; nothing after it re-validates.
@@ -7,7 +15,7 @@
 #include <vector>
 
 #include "mesh/mesh.h"
-#include "mesh/read_raw_mesh.h"
+#include "meshio/read_raw_mesh.h"
 
 namespace offsetopt {
 
@@ -24,7 +32,7 @@ struct LoadOptions {
   bool flip_inside_out = true;
   // Refuse a mesh of several components (separate shells, or a solid with cavities). Off by
   // default: such a mesh is accepted with a warning when every shell is closed and nested with
-  // the right orientation (see the policy table in mesh/validate_mesh.h).
+  // the right orientation (see the policy table in meshio/validate_mesh.h).
   bool single_component = false;
 };
 
@@ -44,7 +52,7 @@ struct LoadedMesh {
 
 // Reads OBJ, STL (ascii/binary), OFF or PLY (ascii/binary), chosen by extension (by content when
 // the extension is unknown), repairs what is safe and refuses the rest: the policy table is in
-// mesh/validate_mesh.h. Warnings name what was repaired and where.
+// meshio/validate_mesh.h. Warnings name what was repaired and where.
 LoadedMesh load_mesh(const std::string& path, const LoadOptions& options = {});
 
 // The same repair-or-refuse step for a mesh already read (`name` is used in messages).

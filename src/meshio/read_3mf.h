@@ -1,5 +1,5 @@
 // 3MF reader (3MF Core Specification 1.3; OPC part names, ECMA-376 part 2): the zip container
-// (mesh/zip_archive.h, stored or deflate entries), the model part named by _rels/.rels (or
+// (io/zip_archive.h, stored or deflate entries), the model part named by _rels/.rels (or
 // 3D/3dmodel.model when there is no such relationship), its <object> meshes and <components>,
 // and the <build> items with their transforms. Components may live in other model parts of the
 // package (the production extension's p:path, as Bambu Studio and OrcaSlicer write them).
@@ -11,7 +11,7 @@
 // gives a warning.
 // Materials, colours, metadata and unknown extension elements are ignored.
 //
-// Limits as for the other readers (mesh/read_raw_mesh.h): the inflated parts together stay
+// Limits as for the other readers (meshio/read_raw_mesh.h): the inflated parts together stay
 // within kMaxFileBytes, vertex and triangle counts within kMaxVertices and kMaxFaces (also per
 // part, before the build), components nest at most 32 deep (which also ends reference cycles), and the build places at
 // most 2^20 object instances holding at most 64 times the vertices the parts store (plus 65,536),
@@ -22,7 +22,7 @@
 #pragma once
 #include <string>
 
-#include "mesh/read_raw_mesh.h"
+#include "meshio/read_raw_mesh.h"
 
 namespace offsetopt {
 

@@ -1,11 +1,13 @@
 // Strict, locale-independent pieces shared by the text-format readers (OBJ, ASCII STL, OFF,
-// ASCII PLY): line splitting with line numbers, whitespace tokens, whole-token number parsing,
-// and quoting of untrusted bytes for error messages.
+// ASCII PLY): line splitting with line numbers, whitespace tokens and whole-token number parsing
+// (the quoting of untrusted bytes for error messages is util/quote_bytes.h, included here).
 #pragma once
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "util/quote_bytes.h"
 
 namespace offsetopt {
 
@@ -38,10 +40,6 @@ bool parse_real(std::string_view token, double& value);
 // The whole token must be a decimal integer with optional sign. `overflow` is set (and the
 // function returns true) when it is well-formed but does not fit in 64 bits.
 bool parse_integer(std::string_view token, std::int64_t& value, bool& overflow);
-
-// `bytes` quoted for an error message: printable ASCII kept, everything else as \xNN, cut to
-// 40 characters with "..." so a hostile file cannot flood the terminal.
-std::string quote_bytes(std::string_view bytes);
 
 // Line number (1-based) of byte `offset` in `text`, counting line ends like LineScanner.
 int line_of_offset(std::string_view text, std::size_t offset);

@@ -1,10 +1,10 @@
-#include "mesh/read_text.h"
+#include "meshio/read_text.h"
 
 #include <charconv>
 #include <cstring>
 #include <limits>
 
-#include "mesh/load_mesh.h"
+#include "meshio/load_mesh.h"
 
 namespace offsetopt {
 
@@ -115,27 +115,6 @@ bool parse_integer(std::string_view token, std::int64_t& value, bool& overflow) 
   if (result.ec != std::errc() || result.ptr != body.data() + body.size()) return false;
   value = parsed;
   return true;
-}
-
-std::string quote_bytes(std::string_view bytes) {
-  static const char* const kHex = "0123456789abcdef";
-  std::string out;
-  const std::size_t limit = 40;
-  for (std::size_t i = 0; i < bytes.size(); ++i) {
-    if (out.size() >= limit) {
-      out += "...";
-      break;
-    }
-    const unsigned char c = static_cast<unsigned char>(bytes[i]);
-    if (c >= 0x20 && c < 0x7f && c != '\\' && c != '\'') {
-      out += static_cast<char>(c);
-    } else {
-      out += "\\x";
-      out += kHex[c >> 4];
-      out += kHex[c & 15];
-    }
-  }
-  return out;
 }
 
 int line_of_offset(std::string_view text, std::size_t offset) {

@@ -1,4 +1,4 @@
-#include "mesh/triangulate_polygon.h"
+#include "meshio/triangulate_polygon.h"
 
 #include <cmath>
 

@@ -14,7 +14,7 @@
 //   vertices             <= kMaxVertices (2^25 = 33,554,432)
 //   triangles            <= kMaxFaces    (2^25, after triangulation)
 //   polygon corners      any number in OBJ (split by our own ear clipping; a work cap refuses
-//                        pathological outlines, mesh/read_obj.h)
+//                        pathological outlines, meshio/read_obj.h)
 // and a header count is only believed when the bytes left in the file can hold that many
 // elements at their smallest encoding.
 #pragma once
@@ -70,7 +70,7 @@ class RawMeshBuilder {
   // A polygon of n >= 3 corners (indices as found, unchecked) becomes n - 2 triangles.
   void add_polygon(const int* corners, int n, int line = 0);
   // A polygon of n > 3 corners the reader split itself (OBJ: ear clipping in the polygon's
-  // plane, mesh/triangulate_polygon.h): `triangle_corners` holds 3 (n - 2) vertex indices.
+  // plane, meshio/triangulate_polygon.h): `triangle_corners` holds 3 (n - 2) vertex indices.
   void add_polygon_triangles(const int* triangle_corners, int n, int line = 0);
   std::int64_t vertex_count() const { return static_cast<std::int64_t>(xyz_.size() / 3); }
   std::vector<std::string>& warnings() { return warnings_; }

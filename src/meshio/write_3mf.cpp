@@ -1,10 +1,10 @@
-#include "mesh/write_3mf.h"
+#include "meshio/write_3mf.h"
 
 #include <charconv>
 #include <cmath>
 
-#include "mesh/load_mesh.h"
-#include "mesh/zip_archive.h"
+#include "meshio/load_mesh.h"
+#include "io/zip_archive.h"
 #include "util/format_double.h"
 
 namespace offsetopt {

@@ -1,4 +1,4 @@
-#include "mesh/read_obj.h"
+#include "meshio/read_obj.h"
 
 #define TINYOBJLOADER_IMPLEMENTATION
 #define TINYOBJLOADER_USE_DOUBLE
@@ -7,9 +7,9 @@
 #include <istream>
 #include <streambuf>
 
-#include "mesh/load_mesh.h"
-#include "mesh/read_text.h"
-#include "mesh/triangulate_polygon.h"
+#include "meshio/load_mesh.h"
+#include "meshio/read_text.h"
+#include "meshio/triangulate_polygon.h"
 
 namespace offsetopt {
 
@@ -199,7 +199,7 @@ RawMesh read_obj(const std::string& name, const std::string& text) {
   }
 
   // Pass 3: triangles. Polygons whose corners all index a vertex are split in their own plane
-  // (mesh/triangulate_polygon.h); the others keep the fan, for validate_mesh to report.
+  // (meshio/triangulate_polygon.h); the others keep the fan, for validate_mesh to report.
   {
     const std::int64_t vertices = builder.vertex_count();
     long long budget = kTriangulationBudget;

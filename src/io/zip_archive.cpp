@@ -1,10 +1,10 @@
-#include "mesh/zip_archive.h"
+#include "io/zip_archive.h"
 
 #include <stdexcept>
 
-#include "mesh/crc32.h"
-#include "mesh/inflate.h"
-#include "mesh/read_text.h"
+#include "io/crc32.h"
+#include "io/inflate.h"
+#include "util/quote_bytes.h"
 
 namespace offsetopt {
 

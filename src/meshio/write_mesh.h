@@ -8,9 +8,9 @@
 
 namespace offsetopt {
 
-// Throws MeshInputError (mesh/load_mesh.h) for an unsupported extension and std::runtime_error
+// Throws MeshInputError (meshio/load_mesh.h) for an unsupported extension and std::runtime_error
 // when the file cannot be written.
-// `unit` is written into 3MF files (one of units_3mf() in mesh/write_3mf.h: the coordinates are
+// `unit` is written into 3MF files (one of units_3mf() in meshio/write_3mf.h: the coordinates are
 // not scaled, only labelled); the other formats carry no unit and ignore it.
 void write_mesh(const std::string& path, const Mesh& mesh, const std::string& unit = "millimeter");
 

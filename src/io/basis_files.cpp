@@ -1,4 +1,4 @@
-#include "spectral/basis_files.h"
+#include "io/basis_files.h"
 
 #include <algorithm>
 #include <cmath>

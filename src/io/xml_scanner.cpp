@@ -1,8 +1,8 @@
-#include "mesh/xml_scanner.h"
+#include "io/xml_scanner.h"
 
 #include <cstdint>
 
-#include "mesh/read_text.h"
+#include "util/quote_bytes.h"
 
 namespace offsetopt {
 

@@ -1,4 +1,4 @@
-#include "mesh/validate_mesh.h"
+#include "meshio/validate_mesh.h"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <functional>
 
-#include "mesh/read_raw_mesh.h"
+#include "meshio/read_raw_mesh.h"
 #include "util/format_double.h"
 
 namespace offsetopt {

@@ -1,4 +1,4 @@
-#include "mesh/inflate.h"
+#include "io/inflate.h"
 
 #include <array>
 #include <cstdint>

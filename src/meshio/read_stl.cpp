@@ -1,12 +1,12 @@
-#include "mesh/read_stl.h"
+#include "meshio/read_stl.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <type_traits>
 
-#include "mesh/load_mesh.h"
-#include "mesh/read_text.h"
+#include "meshio/load_mesh.h"
+#include "meshio/read_text.h"
 
 namespace offsetopt {
 

@@ -1,4 +1,4 @@
-#include "mesh/read_3mf.h"
+#include "meshio/read_3mf.h"
 
 #include <array>
 #include <cstdint>
@@ -6,10 +6,10 @@
 #include <string_view>
 #include <vector>
 
-#include "mesh/load_mesh.h"
-#include "mesh/read_text.h"
-#include "mesh/xml_scanner.h"
-#include "mesh/zip_archive.h"
+#include "meshio/load_mesh.h"
+#include "meshio/read_text.h"
+#include "io/xml_scanner.h"
+#include "io/zip_archive.h"
 
 namespace offsetopt {
 

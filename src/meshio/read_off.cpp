@@ -1,7 +1,7 @@
-#include "mesh/read_off.h"
+#include "meshio/read_off.h"
 
-#include "mesh/load_mesh.h"
-#include "mesh/read_text.h"
+#include "meshio/load_mesh.h"
+#include "meshio/read_text.h"
 
 namespace offsetopt {
 

@@ -28,11 +28,13 @@
 // faces with three distinct (collinear) corners, exactly zero area in double arithmetic (a note
 // with a count: OpenSCAD's STL exports close T-junctions with them; they add nothing to any
 // volume integral and the cotan Laplacian mollifies them, spectral/intrinsic_mollification.h). Nesting is found by
-// ray parity from a point on each shell (bounding boxes first), for up to 10,000 shells; beyond
-// that every shell counts as outermost.
-// Limits of the readers (mesh/read_raw_mesh.h): files up to 2 GiB, regular files only; at most
+// ray parity from a point on each shell (bounding boxes first, geometry/aabb.h; the ray test is
+// geometry/ray_triangle.h), for up to 10,000 shells; beyond that every shell counts as outermost.
+// Each check is its own function in validate_mesh.cpp, in the order above; validate_mesh()
+// composes them.
+// Limits of the readers (meshio/read_raw_mesh.h): files up to 2 GiB, regular files only; at most
 // 2^25 (33,554,432) vertices and 2^25 triangles; OBJ polygons of any corner count (ear clipping
-// with a work cap, mesh/triangulate_polygon.h).
+// with a work cap, meshio/triangulate_polygon.h).
 //
 // Input policy (the README copies this table).
 //   defect                        check        load_mesh (inspect, basis, skeleton, optimize)
@@ -79,7 +81,7 @@
 // those of the solid they bound, so `inspect` accepts them. A command whose method assumes one
 // connected surface (a spectral basis with a single constant mode, one meso-skeleton) sets
 // LoadOptions::single_component and gets a clear refusal instead. Overlapping (intersecting)
-// parts are not detected here (src/mesh cannot use the BVH): the CLI layer finds self-intersecting
+// parts are not detected here (they need the BVH): the CLI layer finds self-intersecting
 // face pairs and pinches with geometry/mesh_defects.h; `check` refuses them, the other commands
 // warn, since an overlap counts twice in the mass.
 #pragma once

@@ -1,9 +1,9 @@
 // The zip container of 3MF packages (PKWARE APPNOTE.TXT 6.3.x, sections 4.3 and 4.4; 3MF Core
 // Specification 1.3, section 2 "OPC"): local file headers, central directory, end record.
 //
-// Writing uses the STORED method only, with CRC-32 (mesh/crc32.h), version 2.0, no extra fields
+// Writing uses the STORED method only, with CRC-32 (io/crc32.h), version 2.0, no extra fields
 // and a fixed timestamp (1980-01-01 00:00), so the same entries give byte-identical archives.
-// Reading accepts STORED and DEFLATE (mesh/inflate.h) entries of a single-disk archive without
+// Reading accepts STORED and DEFLATE (io/inflate.h) entries of a single-disk archive without
 // zip64 or encryption, checks every offset and length against the archive's bytes and every
 // entry's CRC-32, and never inflates more than a caller-given number of bytes.
 #pragma once

@@ -11,7 +11,7 @@
 #pragma once
 #include <string>
 
-#include "mesh/read_raw_mesh.h"
+#include "meshio/read_raw_mesh.h"
 
 namespace offsetopt {
 
