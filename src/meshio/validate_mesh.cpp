@@ -6,12 +6,23 @@
 #include <cstdint>
 #include <functional>
 
+#include <Eigen/Geometry>
+
+#include "geometry/aabb.h"
+#include "geometry/ray_triangle.h"
 #include "meshio/read_raw_mesh.h"
 #include "util/format_double.h"
+#include "util/neumaier_sum.h"
 
 namespace offsetopt {
 
 namespace {
+
+constexpr int kMaxShellsForNesting = 10000;
+// Ray-triangle tests the nesting check may spend (a few seconds at most). Its cost is the sum,
+// over the shells, of the faces of every other shell whose box contains the shell's test point:
+// up to #shells x #F, so a file of 10,000 nested shells inside one large one took minutes.
+constexpr long long kMaxNestingTriangleTests = 100000000;
 
 class DisjointSets {
  public:
@@ -38,29 +49,6 @@ class DisjointSets {
   std::vector<std::uint32_t> parent_;
 };
 
-// Neumaier's compensated sum: the volume of a large fine mesh is a sum of many small terms.
-class CompensatedSum {
- public:
-  void add(double x) {
-    const double t = sum_ + x;
-    if (std::fabs(sum_) >= std::fabs(x)) compensation_ += (sum_ - t) + x;
-    else compensation_ += (x - t) + sum_;
-    sum_ = t;
-  }
-  double value() const { return sum_ + compensation_; }
-
- private:
-  double sum_ = 0, compensation_ = 0;
-};
-
-using Vec3 = std::array<double, 3>;
-
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
 // Sorts `items` by `less`, a strict total order whose first key is bucket(item) in
 // [0, buckets): a counting sort on the bucket, then std::sort inside each (small) bucket. The
 // result is the same as std::sort's, in linear time for mesh-sized buckets.
@@ -78,68 +66,316 @@ void bucket_sort(std::vector<T>& items, std::size_t buckets, Bucket bucket, Less
   items.swap(sorted);
 }
 
+Eigen::Vector3d row(const Mesh& mesh, int v) { return mesh.V.row(v).transpose(); }
+
+double diagonal(const Aabb& box) { return (box.hi - box.lo).norm(); }
+
+// Counts one more instance of `d`; `note` records its details when `first` says it is the one to
+// report (the first found, or one on a smaller face).
+template <typename Note>
+void count_instance(Defect& d, bool first, Note note) {
+  if (first) note(d);
+  ++d.count;
+}
+
+// ---- The checks, in the order validate_mesh runs them. Each returns its findings: a Defect
+// ---- with count 0 when there is none, else the count and the first offending face, vertex or
+// ---- edge (describe_defect turns that into the sentence, DefectSource into file and line).
+
+struct CoordinateFindings {
+  Defect non_finite{DefectKind::kNonFiniteCoordinate}, too_large{DefectKind::kCoordinateTooLarge};
+  std::vector<char> bad_vertex;  // per vertex: one of the two defects
+};
+
+// Vertices with a NaN or infinite coordinate, else with one beyond kMaxCoordinate in magnitude.
+CoordinateFindings check_coordinates(const Mesh& mesh) {
+  const long long nv = mesh.V.rows();
+  CoordinateFindings out;
+  out.bad_vertex.assign(static_cast<std::size_t>(nv), 0);
+  auto note_vertex = [&out](Defect& d, long long v, double x) {
+    count_instance(d, d.count == 0, [&](Defect& first) {
+      first.vertex = v;
+      first.value = x;
+    });
+    out.bad_vertex[static_cast<std::size_t>(v)] = 1;
+  };
+  for (long long v = 0; v < nv; ++v) {
+    int worst = -1;  // first non-finite coordinate, else first too large one
+    for (int k = 0; k < 3 && worst < 0; ++k)
+      if (!std::isfinite(mesh.V(v, k))) worst = k;
+    if (worst >= 0) {
+      note_vertex(out.non_finite, v, mesh.V(v, worst));
+      continue;
+    }
+    for (int k = 0; k < 3 && worst < 0; ++k)
+      if (std::fabs(mesh.V(v, k)) > kMaxCoordinate) worst = k;
+    if (worst >= 0) note_vertex(out.too_large, v, mesh.V(v, worst));
+  }
+  return out;
+}
+
+// Faces with a vertex index outside [0, #V): the first such index of the first such face.
+Defect check_vertex_indices(const Mesh& mesh) {
+  const long long nv = mesh.V.rows(), nf = mesh.F.rows();
+  Defect out_of_range{DefectKind::kIndexOutOfRange};
+  out_of_range.bound = nv;
+  for (long long f = 0; f < nf; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int i = mesh.F(f, k);
+      if (i >= 0 && i < nv) continue;
+      count_instance(out_of_range, out_of_range.count == 0, [&](Defect& first) {
+        first.face = f;
+        first.value = i;
+      });
+      break;
+    }
+  }
+  return out_of_range;
+}
+
+// Vertices no face uses (a note, not a defect): how many, and the first.
+void note_unreferenced_vertices(const Mesh& mesh, MeshValidation& out) {
+  const long long nv = mesh.V.rows(), nf = mesh.F.rows();
+  std::vector<char> referenced(static_cast<std::size_t>(nv), 0);
+  for (long long f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) referenced[static_cast<std::size_t>(mesh.F(f, k))] = 1;
+  for (long long v = 0; v < nv; ++v)
+    if (!referenced[static_cast<std::size_t>(v)]) {
+      if (out.unreferenced_vertices == 0) out.first_unreferenced = v;
+      ++out.unreferenced_vertices;
+    }
+}
+
+// Faces that repeat a vertex (a defect; load_mesh drops them: added to out.droppable_faces),
+// and faces of exactly zero area with three distinct corners (a note in `out`).
+Defect check_degenerate_faces(const Mesh& mesh, const std::vector<char>& bad_vertex, MeshValidation& out) {
+  const long long nf = mesh.F.rows();
+  Defect degenerate{DefectKind::kDegenerateFace};
+  for (long long f = 0; f < nf; ++f) {
+    const int a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
+    bool repeated = a == b || b == c || a == c;
+    bool zero_area = false;
+    if (!repeated && !bad_vertex[static_cast<std::size_t>(a)] && !bad_vertex[static_cast<std::size_t>(b)] &&
+        !bad_vertex[static_cast<std::size_t>(c)]) {
+      const Eigen::Vector3d pa = row(mesh, a);
+      const Eigen::Vector3d n = (row(mesh, b) - pa).cross(row(mesh, c) - pa);
+      zero_area = n[0] == 0 && n[1] == 0 && n[2] == 0;
+    }
+    if (zero_area) {
+      // Three distinct collinear corners (CAD exports): a valid part of a closed surface that
+      // adds nothing to any volume integral; a note, not a defect.
+      if (out.zero_area_faces == 0) out.first_zero_area_face = f;
+      ++out.zero_area_faces;
+      continue;
+    }
+    if (!repeated) continue;
+    ++out.repeated_vertex_faces;
+    out.droppable_faces.push_back(f);
+    count_instance(degenerate, degenerate.count == 0, [&](Defect& first) {
+      first.face = f;
+      first.value = 0;
+    });
+  }
+  return degenerate;
+}
+
+// Later faces over the same three vertices as an earlier one, either orientation: found by
+// sorting the sorted vertex triples. Same-orientation copies are counted in `out` and added to
+// out.droppable_faces (which leaves here sorted and unique).
+Defect check_duplicate_faces(const Mesh& mesh, MeshValidation& out) {
+  const long long nv = mesh.V.rows(), nf = mesh.F.rows();
+  std::vector<std::array<int, 4>> keys(static_cast<std::size_t>(nf));
+  for (long long f = 0; f < nf; ++f) {
+    std::array<int, 3> t = {mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
+    std::sort(t.begin(), t.end());
+    keys[static_cast<std::size_t>(f)] = {t[0], t[1], t[2], static_cast<int>(f)};
+  }
+  bucket_sort(keys, static_cast<std::size_t>(nv), [](const std::array<int, 4>& k) { return k[0]; },
+              std::less<std::array<int, 4>>());
+  auto same_cycle = [&mesh](long long f, long long g) {
+    for (int r = 0; r < 3; ++r)
+      if (mesh.F(g, 0) == mesh.F(f, r) && mesh.F(g, 1) == mesh.F(f, (r + 1) % 3) && mesh.F(g, 2) == mesh.F(f, (r + 2) % 3))
+        return true;
+    return false;
+  };
+  Defect duplicate{DefectKind::kDuplicateFace};
+  // `first` starts the run of equal triples (walking back from each copy was quadratic in
+  // the number of copies: minutes for 200,000 copies of one face).
+  std::size_t first = 0;
+  for (std::size_t i = 1; i < keys.size(); ++i) {
+    if (keys[i][0] != keys[i - 1][0] || keys[i][1] != keys[i - 1][1] || keys[i][2] != keys[i - 1][2]) {
+      first = i;
+      continue;
+    }
+    const long long original = keys[first][3], copy = keys[i][3];
+    const bool same = same_cycle(original, copy);
+    if (same) {
+      ++out.same_orientation_duplicates;
+      out.droppable_faces.push_back(copy);
+    }
+    count_instance(duplicate, duplicate.count == 0 || copy < duplicate.face, [&](Defect& d) {
+      d.face = copy;
+      d.other_face = original;
+      d.value = same ? 1 : -1;
+    });
+  }
+  std::sort(out.droppable_faces.begin(), out.droppable_faces.end());
+  out.droppable_faces.erase(std::unique(out.droppable_faces.begin(), out.droppable_faces.end()), out.droppable_faces.end());
+  return duplicate;
+}
+
 struct HalfEdge {
   int lo, hi;    // undirected edge, lo < hi
   int face;
   bool forward;  // traversed lo -> hi
 };
 
-struct Box {
-  Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  void add(const Vec3& p) {
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], p[k]);
-      hi[k] = std::max(hi[k], p[k]);
-    }
-  }
-  bool contains(const Vec3& p) const {
-    for (int k = 0; k < 3; ++k)
-      if (p[k] < lo[k] || p[k] > hi[k]) return false;
-    return true;
-  }
-  double diagonal() const {
-    const Vec3 d = sub(hi, lo);
-    return std::sqrt(dot(d, d));
-  }
+// Corner 3 f + k of face f at `vertex` (its first corner there when the face repeats it).
+std::uint32_t corner_of(const Mesh& mesh, int face, int vertex) {
+  int k = 0;
+  while (k < 2 && mesh.F(face, k) != vertex) ++k;
+  return static_cast<std::uint32_t>(3 * face + k);
+}
+
+struct EdgeFindings {
+  Defect boundary{DefectKind::kBoundaryEdge}, non_manifold{DefectKind::kNonManifoldEdge},
+      inconsistent{DefectKind::kInconsistentOrientation};
+  long long edges = 0;  // undirected edges
+  // The corners (3 f + k) joined across every shared edge: the fans check_manifold_vertices counts.
+  DisjointSets fans{0};
 };
+
+// Per undirected edge: one face (boundary), three or more (non-manifold), or two traversing it
+// the same way (inconsistent orientation); the first of each by smallest face.
+EdgeFindings check_edges(const Mesh& mesh) {
+  const long long nv = mesh.V.rows(), nf = mesh.F.rows();
+  std::vector<HalfEdge> half_edges;
+  half_edges.reserve(static_cast<std::size_t>(3 * nf));
+  for (long long f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int u = mesh.F(f, k), w = mesh.F(f, (k + 1) % 3);
+      if (u == w) continue;
+      half_edges.push_back({std::min(u, w), std::max(u, w), static_cast<int>(f), u < w});
+    }
+  bucket_sort(half_edges, static_cast<std::size_t>(nv), [](const HalfEdge& e) { return e.lo; },
+              [](const HalfEdge& a, const HalfEdge& b) {
+                if (a.lo != b.lo) return a.lo < b.lo;
+                if (a.hi != b.hi) return a.hi < b.hi;
+                if (a.face != b.face) return a.face < b.face;
+                return a.forward < b.forward;
+              });
+  EdgeFindings out;
+  out.fans = DisjointSets(static_cast<std::size_t>(3 * nf));
+  auto note_edge = [](Defect& d, const HalfEdge& e, long long face, long long other, double value) {
+    count_instance(d, d.count == 0 || face < d.face, [&](Defect& first) {
+      first.face = face;
+      first.other_face = other;
+      first.edge_from = e.lo;
+      first.edge_to = e.hi;
+      first.value = value;
+    });
+  };
+  for (std::size_t i = 0; i < half_edges.size();) {
+    std::size_t j = i + 1;
+    while (j < half_edges.size() && half_edges[j].lo == half_edges[i].lo && half_edges[j].hi == half_edges[i].hi) ++j;
+    ++out.edges;
+    const HalfEdge& e = half_edges[i];
+    const std::size_t n = j - i;
+    if (n == 1) {
+      note_edge(out.boundary, e, e.face, -1, 1);
+    } else if (n > 2) {
+      note_edge(out.non_manifold, e, e.face, half_edges[i + 1].face, static_cast<double>(n));
+    } else if (half_edges[i].forward == half_edges[i + 1].forward) {
+      note_edge(out.inconsistent, e, e.face, half_edges[i + 1].face, 2);
+    }
+    for (std::size_t k = i + 1; k < j; ++k) {
+      out.fans.unite(corner_of(mesh, half_edges[i].face, e.lo), corner_of(mesh, half_edges[k].face, e.lo));
+      out.fans.unite(corner_of(mesh, half_edges[i].face, e.hi), corner_of(mesh, half_edges[k].face, e.hi));
+    }
+    i = j;
+  }
+  return out;
+}
+
+// Vertices whose corners, joined across shared edges (`fans`), form two or more fans. Corners
+// grouped by vertex with a counting sort.
+Defect check_manifold_vertices(const Mesh& mesh, DisjointSets& fans) {
+  const long long nv = mesh.V.rows(), nf = mesh.F.rows();
+  std::vector<std::uint32_t> start(static_cast<std::size_t>(nv) + 1, 0);
+  for (long long c = 0; c < 3 * nf; ++c) ++start[static_cast<std::size_t>(mesh.F(c / 3, c % 3)) + 1];
+  for (long long v = 0; v < nv; ++v) start[static_cast<std::size_t>(v) + 1] += start[static_cast<std::size_t>(v)];
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1), roots(static_cast<std::size_t>(3 * nf));
+  for (long long c = 0; c < 3 * nf; ++c) {
+    const std::size_t v = static_cast<std::size_t>(mesh.F(c / 3, c % 3));
+    // A face that repeats a vertex counts once at it: through its first corner there.
+    roots[fill[v]++] = fans.find(corner_of(mesh, static_cast<int>(c / 3), static_cast<int>(v)));
+  }
+  Defect pinched{DefectKind::kNonManifoldVertex};
+  for (long long v = 0; v < nv; ++v) {
+    auto begin = roots.begin() + start[static_cast<std::size_t>(v)], end = roots.begin() + start[static_cast<std::size_t>(v) + 1];
+    if (end - begin < 2) continue;
+    std::sort(begin, end);
+    const long long count = std::unique(begin, end) - begin;
+    if (count < 2) continue;
+    count_instance(pinched, pinched.count == 0, [&](Defect& first) {
+      first.vertex = v;
+      first.value = static_cast<double>(count);
+    });
+  }
+  return pinched;
+}
+
+// Connected pieces (faces sharing a vertex), numbered in order of their first face: sets
+// out.face_component and out.components; returns the faces of each, ascending.
+std::vector<std::vector<int>> find_components(const Mesh& mesh, MeshValidation& out) {
+  const long long nv = mesh.V.rows(), nf = mesh.F.rows();
+  std::vector<std::vector<int>> faces_of;
+  DisjointSets vertex_sets(static_cast<std::size_t>(nv));
+  for (long long f = 0; f < nf; ++f) {
+    vertex_sets.unite(static_cast<std::uint32_t>(mesh.F(f, 0)), static_cast<std::uint32_t>(mesh.F(f, 1)));
+    vertex_sets.unite(static_cast<std::uint32_t>(mesh.F(f, 0)), static_cast<std::uint32_t>(mesh.F(f, 2)));
+  }
+  std::vector<int> id_of_root(static_cast<std::size_t>(nv), -1);
+  out.face_component.resize(static_cast<std::size_t>(nf));
+  for (long long f = 0; f < nf; ++f) {
+    const std::uint32_t root = vertex_sets.find(static_cast<std::uint32_t>(mesh.F(f, 0)));
+    if (id_of_root[root] < 0) {
+      id_of_root[root] = static_cast<int>(faces_of.size());
+      faces_of.emplace_back();
+    }
+    out.face_component[static_cast<std::size_t>(f)] = id_of_root[root];
+    faces_of[static_cast<std::size_t>(id_of_root[root])].push_back(static_cast<int>(f));
+  }
+  out.components = static_cast<int>(faces_of.size());
+  return faces_of;
+}
 
 enum class RayHit { kMiss, kHit, kAmbiguous };
 
-// Möller-Trumbore; kAmbiguous when the ray passes within a relative 1e-9 of an edge or the
-// origin lies (nearly) on the triangle, where the parity count cannot be trusted.
-RayHit cast(const Vec3& origin, const Vec3& direction, const Vec3& a, const Vec3& b, const Vec3& c, double length_scale) {
-  const Vec3 e1 = sub(b, a), e2 = sub(c, a);
-  const Vec3 p = cross(direction, e2);
-  const double det = dot(e1, p);
-  const double scale = std::sqrt(dot(e1, e1) * dot(e2, e2));
-  if (!(std::fabs(det) > 1e-12 * scale)) return RayHit::kMiss;  // parallel (grazing hits are vanishingly rare)
-  const Vec3 t_vec = sub(origin, a);
-  const double u = dot(t_vec, p) / det;
+// geometry/ray_triangle.h with a relative 1e-9 tolerance: kAmbiguous when the ray passes that
+// close to an edge or the origin lies (nearly) on the triangle, where the parity count cannot be
+// trusted; hits behind the origin and rays parallel to the plane miss.
+RayHit cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Eigen::Vector3d& a,
+            const Eigen::Vector3d& b, const Eigen::Vector3d& c, double length_scale) {
   const double eps = 1e-9;
-  if (u < -eps || u > 1 + eps) return RayHit::kMiss;
-  const Vec3 q = cross(t_vec, e1);
-  const double v = dot(direction, q) / det;
-  if (v < -eps || u + v > 1 + eps) return RayHit::kMiss;
-  const double t = dot(e2, q) / det;
-  if (t < -eps * length_scale) return RayHit::kMiss;
-  if (u < eps || v < eps || u + v > 1 - eps || t < eps * length_scale) return RayHit::kAmbiguous;
+  const RayTriangleHit hit = ray_triangle(origin, direction, a, b, c, eps);
+  if (!hit.hit || hit.t < -eps * length_scale) return RayHit::kMiss;
+  if (hit.ambiguous || hit.t < eps * length_scale) return RayHit::kAmbiguous;
   return RayHit::kHit;
 }
 
-Vec3 row(const Mesh& mesh, int v) { return {mesh.V(v, 0), mesh.V(v, 1), mesh.V(v, 2)}; }
-
 // Number of shells among `faces_of` (other than `self`) that contain `point`, by ray parity.
-int nesting_depth(const Mesh& mesh, const Vec3& point, int self, const std::vector<std::vector<int>>& faces_of,
-                  const std::vector<Box>& boxes) {
-  static const Vec3 kDirections[3] = {{0.3183098861837907, 0.5772156649015329, 0.7517464825841436},
-                                      {-0.6, 0.48, 0.64},
-                                      {0.48, -0.64, 0.6}};
+int nesting_depth(const Mesh& mesh, const Eigen::Vector3d& point, int self, const std::vector<std::vector<int>>& faces_of,
+                  const std::vector<Aabb>& boxes) {
+  static const Eigen::Vector3d kDirections[3] = {{0.3183098861837907, 0.5772156649015329, 0.7517464825841436},
+                                                 {-0.6, 0.48, 0.64},
+                                                 {0.48, -0.64, 0.6}};
   int depth = 0;
   for (std::size_t shell = 0; shell < faces_of.size(); ++shell) {
     if (static_cast<int>(shell) == self || !boxes[shell].contains(point)) continue;
-    const double length_scale = boxes[shell].diagonal();
+    const double length_scale = diagonal(boxes[shell]);
     int crossings = 0;
-    for (const Vec3& direction : kDirections) {
+    for (const Eigen::Vector3d& direction : kDirections) {
       crossings = 0;
       bool ambiguous = false;
       for (const int f : faces_of[shell]) {
@@ -158,11 +394,127 @@ int nesting_depth(const Mesh& mesh, const Vec3& point, int self, const std::vect
   return depth;
 }
 
-constexpr int kMaxShellsForNesting = 10000;
-// Ray-triangle tests the nesting check may spend (a few seconds at most). Its cost is the sum,
-// over the shells, of the faces of every other shell whose box contains the shell's test point:
-// up to #shells x #F, so a file of 10,000 nested shells inside one large one took minutes.
-constexpr long long kMaxNestingTriangleTests = 100000000;
+// A point of each shell: the centroid of its largest face, safely inside that face.
+std::vector<Eigen::Vector3d> shell_points(const Mesh& mesh, const std::vector<std::vector<int>>& faces_of) {
+  std::vector<Eigen::Vector3d> points(faces_of.size());
+  for (std::size_t s = 0; s < faces_of.size(); ++s) {
+    int best = faces_of[s][0];
+    double best_area = -1;
+    for (const int f : faces_of[s]) {
+      const Eigen::Vector3d a = row(mesh, mesh.F(f, 0));
+      const Eigen::Vector3d n = (row(mesh, mesh.F(f, 1)) - a).cross(row(mesh, mesh.F(f, 2)) - a);
+      const double area = n.dot(n);
+      if (area > best_area) {
+        best_area = area;
+        best = f;
+      }
+    }
+    Eigen::Vector3d& point = points[s];
+    point.setZero();
+    for (int k = 0; k < 3; ++k) point += row(mesh, mesh.F(best, k)) / 3.0;
+  }
+  return points;
+}
+
+// Signed volumes per shell and in all (out.component_volume, out.volume), each shell's nesting
+// depth (out.component_depth, when at most kMaxShellsForNesting shells and
+// kMaxNestingTriangleTests ray-triangle tests; else all 0), then the zero-volume and inside-out
+// shells, and shells that cross each other (the oriented total is not positive). Appends the
+// defects found to out.defects in DefectKind order.
+void check_shells(const Mesh& mesh, const std::vector<std::vector<int>>& faces_of, MeshValidation& out) {
+  const long long nf = mesh.F.rows();
+  const int shells = out.components;
+  std::vector<Aabb> boxes(static_cast<std::size_t>(shells));
+  Aabb all;
+  for (long long f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = row(mesh, mesh.F(f, k));
+      boxes[static_cast<std::size_t>(out.face_component[static_cast<std::size_t>(f)])].extend(p);
+      all.extend(p);
+    }
+  const Eigen::Vector3d centre = all.center();
+  out.component_volume.assign(static_cast<std::size_t>(shells), 0.0);
+  NeumaierSum total;
+  for (int s = 0; s < shells; ++s) {
+    NeumaierSum sum;
+    for (const int f : faces_of[static_cast<std::size_t>(s)]) {
+      const Eigen::Vector3d a = row(mesh, mesh.F(f, 0)) - centre, b = row(mesh, mesh.F(f, 1)) - centre,
+                            c = row(mesh, mesh.F(f, 2)) - centre;
+      sum.add(a.dot(b.cross(c)));  // six times the tetrahedron's volume; divided once below
+    }
+    out.component_volume[static_cast<std::size_t>(s)] = sum.value() / 6.0;
+    total.add(sum.value());
+  }
+  out.volume = total.value() / 6.0;
+  out.volume_computed = true;
+  out.component_depth.assign(static_cast<std::size_t>(shells), 0);
+  bool nesting_checked = shells == 1;
+  if (shells > 1 && shells <= kMaxShellsForNesting) {
+    const std::vector<Eigen::Vector3d> points = shell_points(mesh, faces_of);
+    // Beyond the budget the nesting is left unchecked, as beyond kMaxShellsForNesting.
+    long long tests = 0;
+    for (int s = 0; s < shells && tests <= kMaxNestingTriangleTests; ++s)
+      for (int t = 0; t < shells; ++t)
+        if (t != s && boxes[static_cast<std::size_t>(t)].contains(points[static_cast<std::size_t>(s)]))
+          tests += static_cast<long long>(faces_of[static_cast<std::size_t>(t)].size());
+    nesting_checked = tests <= kMaxNestingTriangleTests;
+    if (nesting_checked)
+      for (int s = 0; s < shells; ++s)
+        out.component_depth[static_cast<std::size_t>(s)] =
+            nesting_depth(mesh, points[static_cast<std::size_t>(s)], s, faces_of, boxes);
+  }
+  Defect zero{DefectKind::kZeroVolume}, inverted{DefectKind::kInsideOut};
+  // A volume is zero when it is round-off of the coordinates in a box of this diagonal.
+  const auto is_zero_volume = [](double volume, double box_diagonal) {
+    return std::fabs(volume) <= 1e-12 * box_diagonal * box_diagonal * box_diagonal;
+  };
+  for (int s = 0; s < shells; ++s) {
+    const double volume = out.component_volume[static_cast<std::size_t>(s)];
+    const bool is_zero = is_zero_volume(volume, diagonal(boxes[static_cast<std::size_t>(s)]));
+    const bool wrong_sign = (volume > 0) != (out.component_depth[static_cast<std::size_t>(s)] % 2 == 0);
+    if (!is_zero && !wrong_sign) continue;
+    Defect& d = is_zero ? zero : inverted;
+    count_instance(d, d.count == 0, [&](Defect& first) {
+      first.face = faces_of[static_cast<std::size_t>(s)][0];
+      first.value = volume;
+      first.bound = nesting_checked ? out.component_depth[static_cast<std::size_t>(s)] : -1;  // -1: unknown
+    });
+  }
+  if (zero.count > 0) out.defects.push_back(zero);
+  if (inverted.count > 0) out.defects.push_back(inverted);
+  // Every shell faces the right way (or every one the wrong way, which loading fixes by flipping
+  // all faces), yet the total is not positive: a cavity encloses more than the part around it,
+  // which only shells that cross each other can do. Nesting is decided at one point per shell,
+  // so such shells pass the checks above and would reach the optimiser as a solid of negative
+  // mass.
+  const bool all_inverted = inverted.count == shells;
+  const double oriented_total = all_inverted ? -out.volume : out.volume;
+  if (zero.count == 0 && (inverted.count == 0 || all_inverted) && shells > 1 &&
+      (oriented_total <= 0.0 || is_zero_volume(oriented_total, diagonal(all)))) {
+    Defect overlap{DefectKind::kOverlappingShells};
+    overlap.bound = all_inverted ? 1 : 0;
+    double largest_cavity = 0;
+    for (int s = 0; s < shells; ++s) {
+      const double volume = (all_inverted ? -1.0 : 1.0) * out.component_volume[static_cast<std::size_t>(s)];
+      if (volume >= 0) continue;
+      ++overlap.count;
+      if (-volume > largest_cavity) {
+        largest_cavity = -volume;
+        overlap.face = faces_of[static_cast<std::size_t>(s)][0];
+      }
+    }
+    overlap.value = oriented_total;
+    if (overlap.count > 0) out.defects.push_back(overlap);
+  }
+}
+
+// V - E + F over the referenced vertices, and the genus when the mesh is a closed 2-manifold.
+void note_topology(long long edges, bool closed_manifold, MeshValidation& out) {
+  out.euler_characteristic = (out.vertices - out.unreferenced_vertices) - edges + out.faces;
+  if (!closed_manifold) return;
+  const long long twice_genus = 2LL * out.components - out.euler_characteristic;
+  if (twice_genus >= 0 && twice_genus % 2 == 0) out.genus = twice_genus / 2;
+}
 
 }  // namespace
 
@@ -174,384 +526,43 @@ const Defect* MeshValidation::find(DefectKind kind) const {
 
 MeshValidation validate_mesh(const Mesh& mesh) {
   MeshValidation out;
-  const long long nv = mesh.V.rows(), nf = mesh.F.rows();
-  out.vertices = nv;
-  out.faces = nf;
+  out.vertices = mesh.V.rows();
+  out.faces = mesh.F.rows();
   auto add = [&out](const Defect& d) {
     if (d.count > 0) out.defects.push_back(d);
   };
-
-  if (nf == 0) {
-    Defect d;
-    d.kind = DefectKind::kEmptyMesh;
-    d.count = 1;
-    d.bound = nv;
-    out.defects.push_back(d);
-    out.unreferenced_vertices = nv;
-    out.first_unreferenced = nv > 0 ? 0 : -1;
+  if (out.faces == 0) {
+    Defect empty{DefectKind::kEmptyMesh};
+    empty.count = 1;
+    empty.bound = out.vertices;
+    out.defects.push_back(empty);
+    out.unreferenced_vertices = out.vertices;
+    out.first_unreferenced = out.vertices > 0 ? 0 : -1;
     return out;
   }
-
-  // Coordinates.
-  Defect non_finite{DefectKind::kNonFiniteCoordinate}, too_large{DefectKind::kCoordinateTooLarge};
-  std::vector<char> bad_vertex(static_cast<std::size_t>(nv), 0);
-  auto note_vertex = [&bad_vertex](Defect& d, long long v, double x) {
-    if (d.count == 0) {
-      d.vertex = v;
-      d.value = x;
-    }
-    ++d.count;
-    bad_vertex[static_cast<std::size_t>(v)] = 1;
-  };
-  for (long long v = 0; v < nv; ++v) {
-    int worst = -1;  // first non-finite coordinate, else first too large one
-    for (int k = 0; k < 3 && worst < 0; ++k)
-      if (!std::isfinite(mesh.V(v, k))) worst = k;
-    if (worst >= 0) {
-      note_vertex(non_finite, v, mesh.V(v, worst));
-      continue;
-    }
-    for (int k = 0; k < 3 && worst < 0; ++k)
-      if (std::fabs(mesh.V(v, k)) > kMaxCoordinate) worst = k;
-    if (worst >= 0) note_vertex(too_large, v, mesh.V(v, worst));
-  }
-  add(non_finite);
-  add(too_large);
-  const bool coordinates_ok = non_finite.count == 0 && too_large.count == 0;
-
-  // Indices.
-  Defect out_of_range{DefectKind::kIndexOutOfRange};
-  out_of_range.bound = nv;
-  for (long long f = 0; f < nf; ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const int i = mesh.F(f, k);
-      if (i >= 0 && i < nv) continue;
-      if (out_of_range.count == 0) {
-        out_of_range.face = f;
-        out_of_range.value = i;
-      }
-      ++out_of_range.count;
-      break;
-    }
-  }
+  const CoordinateFindings coordinates = check_coordinates(mesh);
+  add(coordinates.non_finite);
+  add(coordinates.too_large);
+  const Defect out_of_range = check_vertex_indices(mesh);
   if (out_of_range.count > 0) {
     add(out_of_range);
     return out;  // nothing below can index V safely
   }
-
-  // Unreferenced vertices (a note).
-  std::vector<char> referenced(static_cast<std::size_t>(nv), 0);
-  for (long long f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) referenced[static_cast<std::size_t>(mesh.F(f, k))] = 1;
-  for (long long v = 0; v < nv; ++v)
-    if (!referenced[static_cast<std::size_t>(v)]) {
-      if (out.unreferenced_vertices == 0) out.first_unreferenced = v;
-      ++out.unreferenced_vertices;
-    }
-
-  // Degenerate faces.
-  Defect degenerate{DefectKind::kDegenerateFace};
-  for (long long f = 0; f < nf; ++f) {
-    const int a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
-    bool repeated = a == b || b == c || a == c;
-    bool zero_area = false;
-    if (!repeated && !bad_vertex[static_cast<std::size_t>(a)] && !bad_vertex[static_cast<std::size_t>(b)] &&
-        !bad_vertex[static_cast<std::size_t>(c)]) {
-      const Vec3 pa = row(mesh, a);
-      const Vec3 n = cross(sub(row(mesh, b), pa), sub(row(mesh, c), pa));
-      zero_area = n[0] == 0 && n[1] == 0 && n[2] == 0;
-    }
-    if (zero_area) {
-      // Three distinct collinear corners (CAD exports): a valid part of a closed surface that
-      // adds nothing to any volume integral; a note, not a defect.
-      if (out.zero_area_faces == 0) out.first_zero_area_face = f;
-      ++out.zero_area_faces;
-      continue;
-    }
-    if (!repeated) continue;
-    ++out.repeated_vertex_faces;
-    out.droppable_faces.push_back(f);
-    if (degenerate.count == 0) {
-      degenerate.face = f;
-      degenerate.value = 0;
-    }
-    ++degenerate.count;
-  }
-  add(degenerate);
-
-  // Duplicate faces: sort by the sorted vertex triple.
-  {
-    std::vector<std::array<int, 4>> keys(static_cast<std::size_t>(nf));
-    for (long long f = 0; f < nf; ++f) {
-      std::array<int, 3> t = {mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)};
-      std::sort(t.begin(), t.end());
-      keys[static_cast<std::size_t>(f)] = {t[0], t[1], t[2], static_cast<int>(f)};
-    }
-    bucket_sort(keys, static_cast<std::size_t>(nv), [](const std::array<int, 4>& k) { return k[0]; },
-                std::less<std::array<int, 4>>());
-    auto same_cycle = [&mesh](long long f, long long g) {
-      for (int r = 0; r < 3; ++r)
-        if (mesh.F(g, 0) == mesh.F(f, r) && mesh.F(g, 1) == mesh.F(f, (r + 1) % 3) && mesh.F(g, 2) == mesh.F(f, (r + 2) % 3))
-          return true;
-      return false;
-    };
-    Defect duplicate{DefectKind::kDuplicateFace};
-    // `first` starts the run of equal triples (walking back from each copy was quadratic in
-    // the number of copies: minutes for 200,000 copies of one face).
-    std::size_t first = 0;
-    for (std::size_t i = 1; i < keys.size(); ++i) {
-      if (keys[i][0] != keys[i - 1][0] || keys[i][1] != keys[i - 1][1] || keys[i][2] != keys[i - 1][2]) {
-        first = i;
-        continue;
-      }
-      const long long original = keys[first][3], copy = keys[i][3];
-      const bool same = same_cycle(original, copy);
-      if (same) {
-        ++out.same_orientation_duplicates;
-        out.droppable_faces.push_back(copy);
-      }
-      if (duplicate.count == 0 || copy < duplicate.face) {
-        duplicate.face = copy;
-        duplicate.other_face = original;
-        duplicate.value = same ? 1 : -1;
-      }
-      ++duplicate.count;
-    }
-    add(duplicate);
-    std::sort(out.droppable_faces.begin(), out.droppable_faces.end());
-    out.droppable_faces.erase(std::unique(out.droppable_faces.begin(), out.droppable_faces.end()), out.droppable_faces.end());
-  }
-
-  // Edges.
-  std::vector<HalfEdge> half_edges;
-  half_edges.reserve(static_cast<std::size_t>(3 * nf));
-  for (long long f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int u = mesh.F(f, k), w = mesh.F(f, (k + 1) % 3);
-      if (u == w) continue;
-      half_edges.push_back({std::min(u, w), std::max(u, w), static_cast<int>(f), u < w});
-    }
-  bucket_sort(half_edges, static_cast<std::size_t>(nv), [](const HalfEdge& e) { return e.lo; },
-              [](const HalfEdge& a, const HalfEdge& b) {
-                if (a.lo != b.lo) return a.lo < b.lo;
-                if (a.hi != b.hi) return a.hi < b.hi;
-                if (a.face != b.face) return a.face < b.face;
-                return a.forward < b.forward;
-              });
-  Defect boundary{DefectKind::kBoundaryEdge}, non_manifold_edge{DefectKind::kNonManifoldEdge},
-      inconsistent{DefectKind::kInconsistentOrientation};
-  auto note_edge = [](Defect& d, const HalfEdge& e, long long face, long long other, double value) {
-    if (d.count == 0 || face < d.face) {
-      d.face = face;
-      d.other_face = other;
-      d.edge_from = e.lo;
-      d.edge_to = e.hi;
-      d.value = value;
-    }
-    ++d.count;
-  };
-  DisjointSets corners(static_cast<std::size_t>(3 * nf));
-  auto corner_of = [&mesh](int face, int vertex) {
-    int k = 0;
-    while (k < 2 && mesh.F(face, k) != vertex) ++k;
-    return static_cast<std::uint32_t>(3 * face + k);
-  };
-  long long edge_count = 0;
-  for (std::size_t i = 0; i < half_edges.size();) {
-    std::size_t j = i + 1;
-    while (j < half_edges.size() && half_edges[j].lo == half_edges[i].lo && half_edges[j].hi == half_edges[i].hi) ++j;
-    ++edge_count;
-    const HalfEdge& e = half_edges[i];
-    const std::size_t n = j - i;
-    if (n == 1) {
-      note_edge(boundary, e, e.face, -1, 1);
-    } else if (n > 2) {
-      note_edge(non_manifold_edge, e, e.face, half_edges[i + 1].face, static_cast<double>(n));
-    } else if (half_edges[i].forward == half_edges[i + 1].forward) {
-      note_edge(inconsistent, e, e.face, half_edges[i + 1].face, 2);
-    }
-    for (std::size_t k = i + 1; k < j; ++k) {
-      corners.unite(corner_of(half_edges[i].face, e.lo), corner_of(half_edges[k].face, e.lo));
-      corners.unite(corner_of(half_edges[i].face, e.hi), corner_of(half_edges[k].face, e.hi));
-    }
-    i = j;
-  }
-  std::vector<HalfEdge>().swap(half_edges);
-  out.edges = edge_count;
-  add(boundary);
-  add(non_manifold_edge);
-
-  // Non-manifold vertices: the corners around a vertex, joined across shared edges, must form
-  // one fan. Corners grouped by vertex with a counting sort.
-  {
-    std::vector<std::uint32_t> start(static_cast<std::size_t>(nv) + 1, 0);
-    for (long long c = 0; c < 3 * nf; ++c) ++start[static_cast<std::size_t>(mesh.F(c / 3, c % 3)) + 1];
-    for (long long v = 0; v < nv; ++v) start[static_cast<std::size_t>(v) + 1] += start[static_cast<std::size_t>(v)];
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1), roots(static_cast<std::size_t>(3 * nf));
-    for (long long c = 0; c < 3 * nf; ++c) {
-      const std::size_t v = static_cast<std::size_t>(mesh.F(c / 3, c % 3));
-      // A face that repeats a vertex counts once at it: through its first corner there.
-      roots[fill[v]++] = corners.find(corner_of(static_cast<int>(c / 3), static_cast<int>(v)));
-    }
-    Defect pinched{DefectKind::kNonManifoldVertex};
-    for (long long v = 0; v < nv; ++v) {
-      auto begin = roots.begin() + start[static_cast<std::size_t>(v)], end = roots.begin() + start[static_cast<std::size_t>(v) + 1];
-      if (end - begin < 2) continue;
-      std::sort(begin, end);
-      const long long fans = std::unique(begin, end) - begin;
-      if (fans < 2) continue;
-      if (pinched.count == 0) {
-        pinched.vertex = v;
-        pinched.value = static_cast<double>(fans);
-      }
-      ++pinched.count;
-    }
-    add(pinched);
-  }
-  add(inconsistent);
-
-  // Components: faces sharing a vertex, numbered in order of their first face.
-  std::vector<std::vector<int>> faces_of;
-  {
-    DisjointSets vertex_sets(static_cast<std::size_t>(nv));
-    for (long long f = 0; f < nf; ++f) {
-      vertex_sets.unite(static_cast<std::uint32_t>(mesh.F(f, 0)), static_cast<std::uint32_t>(mesh.F(f, 1)));
-      vertex_sets.unite(static_cast<std::uint32_t>(mesh.F(f, 0)), static_cast<std::uint32_t>(mesh.F(f, 2)));
-    }
-    std::vector<int> id_of_root(static_cast<std::size_t>(nv), -1);
-    out.face_component.resize(static_cast<std::size_t>(nf));
-    for (long long f = 0; f < nf; ++f) {
-      const std::uint32_t root = vertex_sets.find(static_cast<std::uint32_t>(mesh.F(f, 0)));
-      if (id_of_root[root] < 0) {
-        id_of_root[root] = static_cast<int>(faces_of.size());
-        faces_of.emplace_back();
-      }
-      out.face_component[static_cast<std::size_t>(f)] = id_of_root[root];
-      faces_of[static_cast<std::size_t>(id_of_root[root])].push_back(static_cast<int>(f));
-    }
-    out.components = static_cast<int>(faces_of.size());
-  }
-
-  const bool closed_manifold = boundary.count == 0 && non_manifold_edge.count == 0;
-  if (closed_manifold && !out.find(DefectKind::kNonManifoldVertex)) {
-    long long referenced_count = nv - out.unreferenced_vertices;
-    out.euler_characteristic = referenced_count - edge_count + nf;
-    const long long twice_genus = 2LL * out.components - out.euler_characteristic;
-    if (twice_genus >= 0 && twice_genus % 2 == 0) out.genus = twice_genus / 2;
-  } else if (edge_count >= 0) {
-    out.euler_characteristic = (nv - out.unreferenced_vertices) - edge_count + nf;
-  }
-
-  // Volumes per shell, nesting, and the sign each shell's volume must have.
-  if (closed_manifold && inconsistent.count == 0 && coordinates_ok) {
-    const int shells = out.components;
-    std::vector<Box> boxes(static_cast<std::size_t>(shells));
-    Box all;
-    for (long long f = 0; f < nf; ++f)
-      for (int k = 0; k < 3; ++k) {
-        const Vec3 p = row(mesh, mesh.F(f, k));
-        boxes[static_cast<std::size_t>(out.face_component[static_cast<std::size_t>(f)])].add(p);
-        all.add(p);
-      }
-    const Vec3 centre = {0.5 * (all.lo[0] + all.hi[0]), 0.5 * (all.lo[1] + all.hi[1]), 0.5 * (all.lo[2] + all.hi[2])};
-    out.component_volume.assign(static_cast<std::size_t>(shells), 0.0);
-    CompensatedSum total;
-    for (int s = 0; s < shells; ++s) {
-      CompensatedSum sum;
-      for (const int f : faces_of[static_cast<std::size_t>(s)]) {
-        const Vec3 a = sub(row(mesh, mesh.F(f, 0)), centre), b = sub(row(mesh, mesh.F(f, 1)), centre),
-                   c = sub(row(mesh, mesh.F(f, 2)), centre);
-        sum.add(dot(a, cross(b, c)));  // six times the tetrahedron's volume; divided once below
-      }
-      out.component_volume[static_cast<std::size_t>(s)] = sum.value() / 6.0;
-      total.add(sum.value());
-    }
-    out.volume = total.value() / 6.0;
-    out.volume_computed = true;
-    out.component_depth.assign(static_cast<std::size_t>(shells), 0);
-    bool nesting_checked = shells == 1;
-    if (shells > 1 && shells <= kMaxShellsForNesting) {
-      std::vector<Vec3> points(static_cast<std::size_t>(shells));
-      for (int s = 0; s < shells; ++s) {
-        // A point of this shell: the centroid of its largest face, safely inside that face.
-        int best = faces_of[static_cast<std::size_t>(s)][0];
-        double best_area = -1;
-        for (const int f : faces_of[static_cast<std::size_t>(s)]) {
-          const Vec3 a = row(mesh, mesh.F(f, 0));
-          const Vec3 n = cross(sub(row(mesh, mesh.F(f, 1)), a), sub(row(mesh, mesh.F(f, 2)), a));
-          const double area = dot(n, n);
-          if (area > best_area) {
-            best_area = area;
-            best = f;
-          }
-        }
-        Vec3& point = points[static_cast<std::size_t>(s)];
-        point = {0, 0, 0};
-        for (int k = 0; k < 3; ++k) {
-          const Vec3 p = row(mesh, mesh.F(best, k));
-          for (int i = 0; i < 3; ++i) point[i] += p[i] / 3.0;
-        }
-      }
-      // Beyond the budget the nesting is left unchecked, as beyond kMaxShellsForNesting.
-      long long tests = 0;
-      for (int s = 0; s < shells && tests <= kMaxNestingTriangleTests; ++s)
-        for (int t = 0; t < shells; ++t)
-          if (t != s && boxes[static_cast<std::size_t>(t)].contains(points[static_cast<std::size_t>(s)]))
-            tests += static_cast<long long>(faces_of[static_cast<std::size_t>(t)].size());
-      nesting_checked = tests <= kMaxNestingTriangleTests;
-      if (nesting_checked)
-        for (int s = 0; s < shells; ++s)
-          out.component_depth[static_cast<std::size_t>(s)] =
-              nesting_depth(mesh, points[static_cast<std::size_t>(s)], s, faces_of, boxes);
-    }
-    Defect zero{DefectKind::kZeroVolume}, inverted{DefectKind::kInsideOut};
-    // A volume is zero when it is round-off of the coordinates in a box of this diagonal.
-    const auto is_zero_volume = [](double volume, double diagonal) {
-      return std::fabs(volume) <= 1e-12 * diagonal * diagonal * diagonal;
-    };
-    for (int s = 0; s < shells; ++s) {
-      const double volume = out.component_volume[static_cast<std::size_t>(s)];
-      const double diagonal = boxes[static_cast<std::size_t>(s)].diagonal();
-      const long long first_face = faces_of[static_cast<std::size_t>(s)][0];
-      const bool is_zero = is_zero_volume(volume, diagonal);
-      const bool wrong_sign = (volume > 0) != (out.component_depth[static_cast<std::size_t>(s)] % 2 == 0);
-      if (!is_zero && !wrong_sign) continue;
-      Defect& d = is_zero ? zero : inverted;
-      if (d.count == 0) {
-        d.face = first_face;
-        d.value = volume;
-        d.bound = nesting_checked ? out.component_depth[static_cast<std::size_t>(s)] : -1;  // -1: unknown
-      }
-      ++d.count;
-    }
-    add(zero);
-    add(inverted);
-    // Every shell faces the right way (or every one the wrong way, which loading fixes by flipping
-    // all faces), yet the total is not positive: a cavity encloses more than the part around it,
-    // which only shells that cross each other can do. Nesting is decided at one point per shell,
-    // so such shells pass the checks above and would reach the optimiser as a solid of negative
-    // mass.
-    const bool all_inverted = inverted.count == shells;
-    const double oriented_total = all_inverted ? -out.volume : out.volume;
-    if (zero.count == 0 && (inverted.count == 0 || all_inverted) && shells > 1 &&
-        (oriented_total <= 0.0 || is_zero_volume(oriented_total, all.diagonal()))) {
-      Defect overlap{DefectKind::kOverlappingShells};
-      overlap.bound = all_inverted ? 1 : 0;
-      double largest_cavity = 0;
-      for (int s = 0; s < shells; ++s) {
-        const double volume = (all_inverted ? -1.0 : 1.0) * out.component_volume[static_cast<std::size_t>(s)];
-        if (volume >= 0) continue;
-        ++overlap.count;
-        if (-volume > largest_cavity) {
-          largest_cavity = -volume;
-          overlap.face = faces_of[static_cast<std::size_t>(s)][0];
-        }
-      }
-      overlap.value = oriented_total;
-      add(overlap);
-    }
-  }
-
+  note_unreferenced_vertices(mesh, out);
+  add(check_degenerate_faces(mesh, coordinates.bad_vertex, out));
+  add(check_duplicate_faces(mesh, out));
+  EdgeFindings edges = check_edges(mesh);
+  out.edges = edges.edges;
+  add(edges.boundary);
+  add(edges.non_manifold);
+  add(check_manifold_vertices(mesh, edges.fans));
+  edges.fans = DisjointSets(0);
+  add(edges.inconsistent);
+  const std::vector<std::vector<int>> faces_of = find_components(mesh, out);
+  const bool closed_manifold = edges.boundary.count == 0 && edges.non_manifold.count == 0;
+  note_topology(edges.edges, closed_manifold && !out.find(DefectKind::kNonManifoldVertex), out);
+  const bool coordinates_ok = coordinates.non_finite.count == 0 && coordinates.too_large.count == 0;
+  if (closed_manifold && edges.inconsistent.count == 0 && coordinates_ok) check_shells(mesh, faces_of, out);
   if (out.components > 1) {
     Defect several{DefectKind::kSeveralComponents};
     several.count = out.components;
