@@ -22,9 +22,9 @@
 #include <cstdlib>
 #include <string>
 
+#include "io/zip_archive.h"
 #include "meshio/load_mesh.h"
 #include "meshio/read_raw_mesh.h"
-#include "io/zip_archive.h"
 
 namespace offsetopt::fuzz {
 

@@ -6,10 +6,10 @@
 #include <string_view>
 #include <vector>
 
-#include "meshio/load_mesh.h"
-#include "meshio/read_text.h"
 #include "io/xml_scanner.h"
 #include "io/zip_archive.h"
+#include "meshio/load_mesh.h"
+#include "meshio/read_text.h"
 
 namespace offsetopt {
 

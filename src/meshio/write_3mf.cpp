@@ -3,8 +3,8 @@
 #include <charconv>
 #include <cmath>
 
-#include "meshio/load_mesh.h"
 #include "io/zip_archive.h"
+#include "meshio/load_mesh.h"
 #include "util/format_double.h"
 
 namespace offsetopt {

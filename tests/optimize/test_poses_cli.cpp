@@ -14,9 +14,9 @@
 #include "geometry/pose.h"
 #include "io/json.h"
 #include "mesh/demo_meshes.h"
+#include "mesh/primitives.h"
 #include "meshio/load_mesh.h"
 #include "meshio/read_raw_mesh.h"
-#include "mesh/primitives.h"
 #include "meshio/write_mesh.h"
 #include "util/det_math.h"
 
