@@ -147,22 +147,7 @@ class TextCursor {
   std::size_t remaining() const { return text_.size() - position_; }
   int line() const { return line_; }
   bool next(std::string_view& token) {
-    while (position_ < text_.size()) {
-      const char c = text_[position_];
-      if (c == '\n') {
-        ++line_;
-      } else if (c == '\r') {
-        if (!(position_ + 1 < text_.size() && text_[position_ + 1] == '\n')) ++line_;
-      } else if (c != ' ' && c != '\t' && c != '\v' && c != '\f') {
-        break;
-      }
-      ++position_;
-    }
-    if (position_ >= text_.size()) return false;
-    const std::size_t start = position_;
-    while (position_ < text_.size() && !std::strchr(" \t\v\f\r\n", text_[position_])) ++position_;
-    token = std::string_view(text_).substr(start, position_ - start);
-    return true;
+    return next_token(text_, position_, line_, token);
   }
   std::string_view take(const Element& element, std::uint64_t index) {
     std::string_view token;

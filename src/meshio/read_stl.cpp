@@ -129,22 +129,7 @@ class Tokens {
  public:
   Tokens(const std::string& name, const std::string& text) : name_(name), text_(text) {}
   bool next(std::string_view& token) {
-    while (position_ < text_.size()) {
-      const char c = text_[position_];
-      if (c == '\n') {
-        ++line_;
-      } else if (c == '\r') {
-        if (!(position_ + 1 < text_.size() && text_[position_ + 1] == '\n')) ++line_;
-      } else if (c != ' ' && c != '\t' && c != '\v' && c != '\f') {
-        break;
-      }
-      ++position_;
-    }
-    if (position_ >= text_.size()) return false;
-    const std::size_t start = position_;
-    while (position_ < text_.size() && !std::strchr(" \t\v\f\r\n", text_[position_])) ++position_;
-    token = std::string_view(text_).substr(start, position_ - start);
-    return true;
+    return next_token(text_, position_, line_, token);
   }
   void skip_line() {
     while (position_ < text_.size() && text_[position_] != '\n' && text_[position_] != '\r') ++position_;

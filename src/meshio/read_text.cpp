@@ -117,6 +117,25 @@ bool parse_integer(std::string_view token, std::int64_t& value, bool& overflow) 
   return true;
 }
 
+bool next_token(std::string_view text, std::size_t& position, int& line, std::string_view& token) {
+  while (position < text.size()) {
+    const char c = text[position];
+    if (c == '\n') {
+      ++line;
+    } else if (c == '\r') {
+      if (!(position + 1 < text.size() && text[position + 1] == '\n')) ++line;
+    } else if (c != ' ' && c != '\t' && c != '\v' && c != '\f') {
+      break;
+    }
+    ++position;
+  }
+  if (position >= text.size()) return false;
+  const std::size_t start = position;
+  while (position < text.size() && !std::strchr(" \t\v\f\r\n", text[position])) ++position;
+  token = text.substr(start, position - start);
+  return true;
+}
+
 int line_of_offset(std::string_view text, std::size_t offset) {
   int line = 1;
   for (std::size_t i = 0; i < offset && i < text.size(); ++i) {

@@ -41,6 +41,11 @@ bool parse_real(std::string_view token, double& value);
 // function returns true) when it is well-formed but does not fit in 64 bits.
 bool parse_integer(std::string_view token, std::int64_t& value, bool& overflow);
 
+// The next token of `text` at or after `position` (tokens end at spaces, tabs, \v, \f, line ends
+// and NUL), moving `position` past it and counting in `line` the line ends skipped (as
+// LineScanner does); false at the end of the text.
+bool next_token(std::string_view text, std::size_t& position, int& line, std::string_view& token);
+
 // Line number (1-based) of byte `offset` in `text`, counting line ends like LineScanner.
 int line_of_offset(std::string_view text, std::size_t offset);
 
