@@ -12,9 +12,9 @@
 #include "mass/stability.h"
 #include "mass/surface_area.h"
 #include "mass/volume_integrals.h"
-#include "mesh/load_mesh.h"
-#include "mesh/read_raw_mesh.h"
-#include "mesh/validate_mesh.h"
+#include "meshio/load_mesh.h"
+#include "meshio/read_raw_mesh.h"
+#include "meshio/validate_mesh.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 // package's entries can inflate to (inflatable_bytes), at the same 256 bytes per byte as the
 // other readers.
 #include "fuzz/fuzz_support.h"
-#include "mesh/read_3mf.h"
+#include "meshio/read_3mf.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::size_t budget = offsetopt::fuzz::kBytesPerInputByte * (size + offsetopt::fuzz::inflatable_bytes(data, size)) +

@@ -5,7 +5,7 @@
 //    invalid_argument, bad_alloc, ...) escapes the harness and libFuzzer reports it as a crash.
 //  - An error message is one line of printable ASCII of bounded length that starts with the file
 //    name: hostile bytes must come out quoted (quote_bytes), never flood a terminal.
-//  - A RawMesh respects the caps of mesh/read_raw_mesh.h and its per-element line tables.
+//  - A RawMesh respects the caps of meshio/read_raw_mesh.h and its per-element line tables.
 //  - Memory is proportional to the input: the peak of live heap bytes while one input is
 //    processed stays below kBytesPerInputByte * size + kFixedBytes. Measured with the sanitizer
 //    allocator's hooks (every malloc and operator new of the process goes through them), so this
@@ -22,9 +22,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "mesh/load_mesh.h"
-#include "mesh/read_raw_mesh.h"
-#include "mesh/zip_archive.h"
+#include "io/zip_archive.h"
+#include "meshio/load_mesh.h"
+#include "meshio/read_raw_mesh.h"
 
 namespace offsetopt::fuzz {
 

@@ -1,6 +1,6 @@
 #include "cli/cli_support.h"
 
-#include "mesh/write_3mf.h"
+#include "meshio/write_3mf.h"
 #include "util/format_double.h"
 
 #include <sys/stat.h>

@@ -8,7 +8,8 @@
 
 #include "cli/commands.h"
 #include "geometry/mesh_defects.h"
-#include "mesh/load_mesh.h"
+#include "meshio/load_mesh.h"
+#include "util/seconds_since.h"
 
 namespace offsetopt::cli {
 
@@ -43,11 +44,6 @@ void write_text(const std::string& path, const std::string& text, const std::vec
 // Same protection for mesh outputs: UsageError when `output` names one of `inputs`.
 void refuse_overwriting_input(const std::string& output, const std::vector<std::string>& inputs);
 
-// Wall-clock seconds since `start` (stage timings for progress lines and reports).
-inline double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 // One row of a command's option table: the single place an option is declared. The help text is
 // generated from the table, and each parser refuses anything not in it (require_known_option),
 // so every accepted option is in the help; tests/cli/test_help_agreement.cpp runs every row's
@@ -79,10 +75,10 @@ std::vector<std::string> split_words(const std::string& text, const char* separa
 // The names of an option table row: "-o, --output" -> {"-o", "--output"}.
 std::vector<std::string> option_names(const char* names);
 
-// The value of --unit: one of the 3MF units (mesh/write_3mf.h), else UsageError.
+// The value of --unit: one of the 3MF units (meshio/write_3mf.h), else UsageError.
 std::string parse_unit(const std::string& text);
 
-// load_mesh, then the geometric defects src/mesh cannot see (geometry/mesh_defects.h): faces that
+// load_mesh, then the geometric defects validate_mesh does not check (geometry/mesh_defects.h): faces that
 // cross each other and pinches are accepted, each with one warning naming the count and the
 // first pair in the file's numbering. Every command but `check` loads through here.
 LoadedMesh load_input(const std::string& path, const LoadOptions& options = {});

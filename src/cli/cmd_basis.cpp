@@ -8,9 +8,9 @@
 
 #include "cli/cli_support.h"
 #include "cli/commands.h"
+#include "io/basis_files.h"
 #include "io/json.h"
-#include "mesh/load_mesh.h"
-#include "spectral/basis_files.h"
+#include "meshio/load_mesh.h"
 #include "spectral/cotan_laplacian.h"
 #include "spectral/manifold_harmonics.h"
 #include "spectral/mass_matrix.h"

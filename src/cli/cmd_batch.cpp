@@ -24,8 +24,8 @@
 #include "cli/cli_support.h"
 #include "cli/commands.h"
 #include "io/json.h"
-#include "mesh/load_mesh.h"
-#include "mesh/read_raw_mesh.h"
+#include "meshio/load_mesh.h"
+#include "meshio/read_raw_mesh.h"
 #include "util/format_double.h"
 
 namespace offsetopt::cli {

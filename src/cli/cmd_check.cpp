@@ -6,8 +6,8 @@
 #include "cli/cli_support.h"
 #include "cli/commands.h"
 #include "geometry/mesh_defects.h"
-#include "mesh/read_raw_mesh.h"
-#include "mesh/validate_mesh.h"
+#include "meshio/read_raw_mesh.h"
+#include "meshio/validate_mesh.h"
 #include "util/format_double.h"
 
 namespace offsetopt::cli {

@@ -6,8 +6,8 @@
 #include "cli/cli_support.h"
 #include "cli/commands.h"
 #include "mesh/demo_meshes.h"
-#include "mesh/load_mesh.h"
-#include "mesh/write_mesh.h"
+#include "meshio/load_mesh.h"
+#include "meshio/write_mesh.h"
 
 namespace offsetopt::cli {
 

@@ -11,7 +11,7 @@
 #include "mass/stability.h"
 #include "mass/surface_area.h"
 #include "mass/volume_integrals.h"
-#include "mesh/load_mesh.h"
+#include "meshio/load_mesh.h"
 #include "util/format_double.h"
 
 namespace offsetopt::cli {

@@ -10,8 +10,8 @@
 #include "cli/pose_options.h"
 #include "cli/write_preview.h"
 #include "io/json.h"
-#include "mesh/load_mesh.h"
-#include "mesh/write_mesh.h"
+#include "meshio/load_mesh.h"
+#include "meshio/write_mesh.h"
 #include "shape/offset_optimization.h"
 
 namespace offsetopt::cli {

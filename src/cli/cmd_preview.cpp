@@ -12,7 +12,7 @@
 #include "cli/commands.h"
 #include "cli/write_preview.h"
 #include "io/json.h"
-#include "mesh/load_mesh.h"
+#include "meshio/load_mesh.h"
 
 namespace offsetopt::cli {
 

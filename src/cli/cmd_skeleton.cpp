@@ -10,8 +10,8 @@
 #include "cli/commands.h"
 #include "geometry/bvh.h"
 #include "io/json.h"
-#include "mesh/load_mesh.h"
-#include "mesh/write_mesh.h"
+#include "meshio/load_mesh.h"
+#include "meshio/write_mesh.h"
 #include "shape/offset_field.h"
 #include "skeleton/laplacian_contraction.h"
 

@@ -14,7 +14,7 @@
 
 #include "cli/cli_support.h"
 #include "cli/commands.h"
-#include "mesh/load_mesh.h"
+#include "meshio/load_mesh.h"
 #include "util/deterministic_eigen.h"
 
 namespace {

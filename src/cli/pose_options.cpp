@@ -2,7 +2,7 @@
 
 #include "geometry/flatten_base.h"
 #include "mass/mass_properties.h"
-#include "mesh/validate_mesh.h"
+#include "meshio/validate_mesh.h"
 #include "util/format_double.h"
 
 namespace offsetopt::cli {

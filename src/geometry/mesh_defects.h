@@ -1,5 +1,5 @@
-// Defects of a closed mesh that validate_mesh (src/mesh, which sits below src/geometry) cannot
-// see because they need geometry: faces that cross each other, and pinches. `offsetopt check`
+// Defects of a closed mesh that validate_mesh (meshio/validate_mesh.h) does not check because
+// they need the BVH: faces that cross each other, and pinches. `offsetopt check`
 // refuses both (exit 2); the other commands accept them with a warning (cli/cli_support.h); the
 // optimiser's verification compares the written cavity's pair count with the input's own.
 //

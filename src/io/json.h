@@ -1,3 +1,9 @@
+// src/io: generic file and byte formats that know nothing of meshes as solids: JSON (this
+// header), the zip container (zip_archive.h) with CRC-32 (crc32.h) and raw DEFLATE (inflate.h), a
+// strict XML scanner (xml_scanner.h), and the .npy / CSV / Matrix Market / scalar PLY writers of
+// `offsetopt basis` (basis_files.h). Layer: above geometry, beside meshio, which uses it; it may
+// include util/, optim/, mesh/ (the Mesh type) and geometry/, never meshio/ or anything above.
+//
 // A minimal JSON document model and writer for reports. Objects keep insertion order so the
 // output is byte-identical run to run; doubles use shortest round-trip text; non-finite doubles
 // become null (JSON has no NaN). Parsing is provided only for tests and golden-file comparison.

@@ -2,7 +2,7 @@
 
 #include <Eigen/Geometry>
 
-#include "mass/compensated_sum.h"
+#include "util/neumaier_sum.h"
 
 namespace offsetopt {
 

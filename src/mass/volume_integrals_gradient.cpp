@@ -4,7 +4,7 @@
 
 #include <Eigen/Geometry>
 
-#include "mass/compensated_sum.h"
+#include "util/neumaier_sum.h"
 
 namespace offsetopt {
 

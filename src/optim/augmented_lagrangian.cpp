@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "util/neumaier_sum.h"
+
 namespace offsetopt {
 
 namespace {
@@ -15,25 +17,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kMaxLeastViolationRestarts = 10;
 
 double clamp_to(double v, double lo, double hi) { return std::min(hi, std::max(lo, v)); }
-
-// Neumaier's compensated sum: the linear block adds up to 10⁶ penalty terms per evaluation.
-class CompensatedSum {
- public:
-  void add(double v) {
-    const double t = sum_ + v;
-    if (std::fabs(sum_) >= std::fabs(v)) {
-      carry_ += (sum_ - t) + v;
-    } else {
-      carry_ += (v - t) + sum_;
-    }
-    sum_ = t;
-  }
-  double value() const { return sum_ + carry_; }
-
- private:
-  double sum_ = 0.0;
-  double carry_ = 0.0;
-};
 
 // Evaluates f, ∇f and all nonlinear constraints with their Jacobian at one point (A x is added by
 // linear_pass), and keeps the last point so the outer loop reads the values at the subproblem's
@@ -359,7 +342,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
       return kNaN;
     }
     grad = sf * ev.grad;
-    CompensatedSum sum;
+    NeumaierSum sum;  // the linear block adds up to 10⁶ penalty terms per evaluation
     sum.add(sf * ev.f);
     for (int i = 0; i < nn; ++i) {
       const double s = rows.scale(i);
@@ -394,7 +377,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
       return kNaN;
     }
     grad.setZero();
-    CompensatedSum sum;
+    NeumaierSum sum;  // the linear block adds up to 10⁶ penalty terms per evaluation
     for (int i = 0; i < nn; ++i) {
       const double s = rows.scale(i);
       const double dv = s * (ev.c(i) - clamp_to(ev.c(i), rows.lo(i), rows.hi(i)));

@@ -21,16 +21,13 @@
 #include "shape/verify_offsets.h"
 #include "skeleton/laplacian_contraction.h"
 #include "util/format_double.h"
+#include "util/seconds_since.h"
 
 namespace offsetopt {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 Json vec3(const Eigen::Vector3d& v) { return Json::array_of({v.x(), v.y(), v.z()}); }
 

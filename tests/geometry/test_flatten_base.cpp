@@ -23,7 +23,7 @@
 #include "mass/volume_integrals.h"
 #include "mesh/demo_meshes.h"
 #include "mesh/primitives.h"
-#include "mesh/validate_mesh.h"
+#include "meshio/validate_mesh.h"
 #include "util/det_math.h"
 
 using namespace offsetopt;

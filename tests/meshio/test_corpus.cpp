@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "meshio/load_mesh.h"
+#include "meshio/read_raw_mesh.h"
+#include "meshio/validate_mesh.h"
 #include "meshio_test_util.h"
-#include "mesh/load_mesh.h"
-#include "mesh/read_raw_mesh.h"
-#include "mesh/validate_mesh.h"
 
 using namespace offsetopt;
 using namespace meshio_test;

@@ -11,17 +11,17 @@
 #include <string>
 #include <vector>
 
-#include "meshio_test_util.h"
-#include "sliver_box.h"
 #include "geometry/bvh.h"
 #include "geometry/intersecting_faces.h"
 #include "geometry/mesh_defects.h"
 #include "mass/mass_properties.h"
-#include "mesh/load_mesh.h"
 #include "mesh/primitives.h"
-#include "mesh/read_obj.h"
-#include "mesh/triangulate_polygon.h"
-#include "mesh/validate_mesh.h"
+#include "meshio/load_mesh.h"
+#include "meshio/read_obj.h"
+#include "meshio/triangulate_polygon.h"
+#include "meshio/validate_mesh.h"
+#include "meshio_test_util.h"
+#include "sliver_box.h"
 #include "util/det_math.h"
 
 using namespace offsetopt;

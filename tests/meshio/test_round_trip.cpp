@@ -6,11 +6,11 @@
 #include <clocale>
 #include <locale>
 
-#include "meshio_test_util.h"
-#include "mesh/load_mesh.h"
 #include "mesh/primitives.h"
-#include "mesh/read_raw_mesh.h"
-#include "mesh/write_mesh.h"
+#include "meshio/load_mesh.h"
+#include "meshio/read_raw_mesh.h"
+#include "meshio/write_mesh.h"
+#include "meshio_test_util.h"
 
 using namespace offsetopt;
 using namespace meshio_test;

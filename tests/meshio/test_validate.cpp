@@ -8,10 +8,10 @@
 
 #include <Eigen/Geometry>
 
-#include "meshio_test_util.h"
-#include "mesh/load_mesh.h"
 #include "mesh/primitives.h"
-#include "mesh/validate_mesh.h"
+#include "meshio/load_mesh.h"
+#include "meshio/validate_mesh.h"
+#include "meshio_test_util.h"
 #include "util/det_math.h"
 #include "util/rng.h"
 

@@ -25,7 +25,7 @@
 
 #include "../temp_dir.h"
 #include "io/json.h"
-#include "mesh/read_raw_mesh.h"
+#include "meshio/read_raw_mesh.h"
 
 using offsetopt::Json;
 

@@ -14,10 +14,10 @@
 #include "geometry/pose.h"
 #include "io/json.h"
 #include "mesh/demo_meshes.h"
-#include "mesh/load_mesh.h"
-#include "mesh/read_raw_mesh.h"
 #include "mesh/primitives.h"
-#include "mesh/write_mesh.h"
+#include "meshio/load_mesh.h"
+#include "meshio/read_raw_mesh.h"
+#include "meshio/write_mesh.h"
 #include "util/det_math.h"
 
 using namespace offsetopt;

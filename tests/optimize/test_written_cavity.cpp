@@ -21,7 +21,7 @@
 #include "mass/mass_properties.h"
 #include "mass/stability.h"
 #include "mass/volume_integrals.h"
-#include "mesh/read_raw_mesh.h"
+#include "meshio/read_raw_mesh.h"
 
 using namespace offsetopt;
 using offsetopt::test::closed_and_oriented;

@@ -23,7 +23,7 @@
 #include "io/json.h"
 #include "mass/mass_properties.h"
 #include "mesh/primitives.h"
-#include "mesh/write_mesh.h"
+#include "meshio/write_mesh.h"
 #include "shape/preview_svg.h"
 #include "util/det_math.h"
 #include "util/format_double.h"

@@ -14,7 +14,7 @@
 #include <string>
 
 #include "io/json.h"
-#include "mesh/load_mesh.h"
+#include "meshio/load_mesh.h"
 #include "skeleton/laplacian_contraction.h"
 
 using namespace offsetopt;

@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "io/json.h"
-#include "mesh/load_mesh.h"
+#include "meshio/load_mesh.h"
 #include "spectral/manifold_harmonics.h"
 #include "test_meshes.h"
 #include "util/format_double.h"

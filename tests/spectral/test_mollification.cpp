@@ -9,7 +9,7 @@
 
 #include "../meshio/sliver_box.h"
 #include "mesh/primitives.h"
-#include "mesh/validate_mesh.h"
+#include "meshio/validate_mesh.h"
 #include "spectral/cotan_laplacian.h"
 #include "spectral/intrinsic_mollification.h"
 #include "spectral/mass_matrix.h"
