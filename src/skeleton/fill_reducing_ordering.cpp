@@ -7,7 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "spectral/worker_pool.h"
+#include "util/parallel.h"
 
 namespace offsetopt {
 

@@ -6,6 +6,8 @@
 #include <system_error>
 #include <thread>
 
+#include "util/parallel.h"
+
 namespace offsetopt {
 
 namespace {
@@ -20,6 +22,10 @@ bool accept_merge(int columns, double zero_fraction) {
   if (columns <= 48) return zero_fraction < 0.1;
   return zero_fraction < 0.05;
 }
+
+// Below this many multiply-adds in all fronts the factorisation runs on one thread (the subtrees
+// would be too small to be worth a thread each).
+constexpr double kMinParallelFactorWork = 2e7 + 1;
 
 double trapezoid(double columns, double rows_below) { return columns * (columns + 1.0) / 2.0 + columns * rows_below; }
 
@@ -227,7 +233,7 @@ void SupernodalCholesky::plan_threads(int threads) {
     if (parent_supernode_[u] != -1) subtree[static_cast<std::size_t>(parent_supernode_[u])] += subtree[u];
   }
   std::vector<int> owner(static_cast<std::size_t>(supernodes), -1);
-  if (threads > 1 && total > 2e7) {
+  if (execution_policy(threads, total, kMinParallelFactorWork) == ExecutionPolicy::parallel) {
     // Open the heaviest subtree until it no longer exceeds half of the open subtrees' work.
     std::vector<int> open;
     for (int s = 0; s < supernodes; ++s)

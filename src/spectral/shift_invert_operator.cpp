@@ -161,6 +161,9 @@ using Factor = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, 
 // for a dense factor and the matrix large enough to gain from it.
 constexpr int kMaxDenseSeparator = 2500;
 constexpr int kMinSplitSize = 20000;
+// A column of the dense separator factor is computed on the pool's threads from this many
+// multiply-adds ((rows below) x (columns left of it)) on.
+constexpr double kMinParallelColumnWork = 200001;
 
 // Lower triangle (column-major) of D = Lr diag(d) Lrᵀ for a dense unit lower Lr stored by rows
 // (row i holds columns 0..i-1 at i(i-1)/2): T(i, j) = sum_{k <= j} Lr(i, k) d_k Lr(j, k).
@@ -212,7 +215,7 @@ bool dense_ldlt(const std::vector<double>& S, int m, std::vector<double>& rows, 
         li[j] = sum / pivot;
       }
     };
-    if (pool && pool->size() > 1 && (m - j) * j > 200000)
+    if (execution_policy(pool, static_cast<double>(m - j) * j, kMinParallelColumnWork) == ExecutionPolicy::parallel)
       pool->run([&](int part) { column(part, pool->size()); });
     else
       column(0, 1);

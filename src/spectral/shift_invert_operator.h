@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "mesh/mesh.h"
-#include "spectral/worker_pool.h"
+#include "util/parallel.h"
 
 namespace offsetopt {
 

@@ -11,7 +11,7 @@
 #include "spectral/nested_dissection.h"
 #include "spectral/panel_matrix.h"
 #include "spectral/shift_invert_operator.h"
-#include "spectral/worker_pool.h"
+#include "util/parallel.h"
 #include "test_meshes.h"
 #include "util/rng.h"
 
