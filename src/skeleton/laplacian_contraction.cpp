@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "geometry/cotan_laplacian.h"
 #include "skeleton/fill_reducing_ordering.h"
 #include "skeleton/supernodal_cholesky.h"
-#include "spectral/cotan_laplacian.h"
 
 namespace offsetopt {
 

@@ -5,7 +5,7 @@
 // Each step solves, in least squares, for the #V by 3 positions X':
 //     [ W_L L_t ]        [     0     ]
 //     [  W_H    ]  X' =  [ W_H X_t   ]
-// L_t is the cotangent Laplacian (spectral/cotan_laplacian.h, PSD convention: L_ii >= 0,
+// L_t is the cotangent Laplacian (geometry/cotan_laplacian.h, PSD convention: L_ii >= 0,
 // L_ij = -(cot a + cot b)/2) of the current geometry X_t; W_L is a scalar multiplied by s_L after
 // every step; W_H = diag(W_H0 sqrt(A_i^0 / A_i^t)) with A_i the one-ring area of vertex i, so
 // vertices whose neighbourhood has already collapsed are held in place. The normal equations
@@ -27,8 +27,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/intrinsic_mollification.h"
 #include "mesh/mesh.h"
-#include "spectral/intrinsic_mollification.h"
 
 namespace offsetopt {
 
@@ -63,7 +63,7 @@ struct ContractionOptions {
   // Guards (see above).
   double cotan_sine_floor = 1e-3;
   // Intrinsic mollification of L_t (Sharp & Crane 2020, section 4.5; see
-  // spectral/intrinsic_mollification.h), relative to the current mean edge length: contracted
+  // geometry/intrinsic_mollification.h), relative to the current mean edge length: contracted
   // triangles collapse to needles and segments, and mollified weights stay bounded where the sine
   // floor alone lets them grow to 1/floor. 0 leaves only the sine floor.
   double mollify_margin = kDefaultMollifyMargin;

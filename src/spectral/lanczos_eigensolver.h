@@ -1,6 +1,6 @@
 // The k smallest eigenpairs of a graph/mesh Laplacian: L φ = λ M φ with L symmetric positive
-// semi-definite (#V by #V, e.g. spectral/cotan_laplacian.h) and M diagonal positive (the lumped
-// mass of spectral/mass_matrix.h), or L φ = λ φ when no mass is given (the paper's choice,
+// semi-definite (#V by #V, e.g. geometry/cotan_laplacian.h) and M diagonal positive (the lumped
+// mass of geometry/lumped_mass.h), or L φ = λ φ when no mass is given (the paper's choice,
 // Musialski et al. 2015 section 5.1; Vallet & Lévy 2008 for the generalised form).
 //
 // Method: block Krylov–Schur (thick-restart block Lanczos; Stewart 2001, Zhou & Saad 2008) with

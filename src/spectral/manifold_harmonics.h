@@ -5,13 +5,13 @@
 //  - BasisKind::Mass: L γ = λ M γ with the lumped mass M; columns have γᵀMγ = 1. This is the
 //    discretisation that converges to the Laplace–Beltrami eigenfunctions under refinement
 //    (λ ≈ l(l+1)/R² on a sphere of radius R), independent of how densely a region is sampled.
-// Assembly by spectral/cotan_laplacian.h and spectral/mass_matrix.h, eigenpairs by
+// Assembly by geometry/cotan_laplacian.h and geometry/lumped_mass.h, eigenpairs by
 // spectral/lanczos_eigensolver.h (nested-dissection ordering on the vertex positions).
 #pragma once
 #include <string>
 
+#include "geometry/cotan_laplacian.h"
 #include "mesh/mesh.h"
-#include "spectral/cotan_laplacian.h"
 #include "spectral/lanczos_eigensolver.h"
 
 namespace offsetopt {

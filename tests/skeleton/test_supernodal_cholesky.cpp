@@ -6,10 +6,10 @@
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
+#include "geometry/cotan_laplacian.h"
 #include "mesh/primitives.h"
 #include "skeleton/fill_reducing_ordering.h"
 #include "skeleton/supernodal_cholesky.h"
-#include "spectral/cotan_laplacian.h"
 #include "util/rng.h"
 
 using namespace offsetopt;

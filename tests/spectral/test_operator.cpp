@@ -6,13 +6,13 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 
-#include "spectral/cotan_laplacian.h"
-#include "spectral/mass_matrix.h"
+#include "geometry/cotan_laplacian.h"
+#include "geometry/lumped_mass.h"
 #include "spectral/nested_dissection.h"
 #include "spectral/panel_matrix.h"
 #include "spectral/shift_invert_operator.h"
-#include "util/parallel.h"
 #include "test_meshes.h"
+#include "util/parallel.h"
 #include "util/rng.h"
 
 using namespace offsetopt;
