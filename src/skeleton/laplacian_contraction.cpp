@@ -7,8 +7,8 @@
 #include <string>
 
 #include "geometry/cotan_laplacian.h"
-#include "skeleton/fill_reducing_ordering.h"
-#include "skeleton/supernodal_cholesky.h"
+#include "sparse/fill_reducing_ordering.h"
+#include "sparse/supernodal_cholesky.h"
 
 namespace offsetopt {
 

@@ -11,8 +11,8 @@
 // vertices whose neighbourhood has already collapsed are held in place. The normal equations
 //     (W_L^2 L_t^T L_t + W_H^2) X' = W_H^2 X_t
 // are symmetric positive definite (W_H > 0); their sparsity pattern (the 2-ring of the mesh) never
-// changes, so it is analysed once (fill-reducing ordering, skeleton/fill_reducing_ordering.h;
-// supernodal structure, skeleton/supernodal_cholesky.h) and refactorised numerically every step,
+// changes, so it is analysed once (fill-reducing ordering, sparse/fill_reducing_ordering.h;
+// supernodal structure, sparse/supernodal_cholesky.h) and refactorised numerically every step,
 // the three coordinates solved as one 3-column right-hand side.
 //
 // The contraction runs in a normalised frame (bounding box centred at the origin, diagonal 1) so
@@ -98,7 +98,7 @@ struct ContractionResult {
   double area_ratio = 1.0;
   double volume_ratio = 1.0;
   std::vector<ContractionStep> history;  // one entry per completed step
-  // The fill-reducing ordering chosen for the normal equations (skeleton/fill_reducing_ordering.h)
+  // The fill-reducing ordering chosen for the normal equations (sparse/fill_reducing_ordering.h)
   // and its predicted cost: flops = sum of squared column counts of the factor.
   std::string ordering;
   double predicted_factor_flops = 0.0;

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <memory>
 
-#include "spectral/nested_dissection.h"
+#include "sparse/nested_dissection.h"
 
 namespace offsetopt {
 

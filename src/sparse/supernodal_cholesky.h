@@ -1,3 +1,9 @@
+// src/sparse (this is the folder's main header): sparse symmetric positive definite solvers for
+// the mesh matrices of the layers above. It owns the fill-reducing orderings (nested dissection on
+// vertex positions, minimum degree, the symbolic counts that choose between them) and the
+// supernodal Cholesky factorisation with its solves. It may include util, optim, mesh, geometry,
+// meshio, io and itself; the eigensolver (src/spectral) and the contraction (src/skeleton) use it.
+//
 // Sparse Cholesky factorisation A = L L^T of a symmetric positive definite matrix by the
 // multifrontal method with relaxed supernodes (Duff & Reid 1983; Liu 1992, "The multifrontal
 // method for sparse matrix solution"; amalgamation thresholds after CHOLMOD, Chen, Davis, Hager &

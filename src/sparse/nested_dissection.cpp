@@ -1,4 +1,4 @@
-#include "spectral/nested_dissection.h"
+#include "sparse/nested_dissection.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

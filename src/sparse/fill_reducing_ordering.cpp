@@ -1,4 +1,4 @@
-#include "skeleton/fill_reducing_ordering.h"
+#include "sparse/fill_reducing_ordering.h"
 
 #include <Eigen/OrderingMethods>
 #include <algorithm>

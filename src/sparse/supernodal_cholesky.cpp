@@ -1,4 +1,4 @@
-#include "skeleton/supernodal_cholesky.h"
+#include "sparse/supernodal_cholesky.h"
 
 #include <Eigen/Cholesky>
 #include <algorithm>

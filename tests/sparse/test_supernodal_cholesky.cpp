@@ -8,8 +8,8 @@
 
 #include "geometry/cotan_laplacian.h"
 #include "mesh/primitives.h"
-#include "skeleton/fill_reducing_ordering.h"
-#include "skeleton/supernodal_cholesky.h"
+#include "sparse/fill_reducing_ordering.h"
+#include "sparse/supernodal_cholesky.h"
 #include "util/rng.h"
 
 using namespace offsetopt;
