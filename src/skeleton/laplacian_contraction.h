@@ -1,3 +1,8 @@
+// src/skeleton (this is the folder's main header): the meso-skeleton by Laplacian contraction.
+// It owns the contraction and its options, statuses and history; the Laplacian comes from
+// src/geometry and the ordering and Cholesky of the normal equations from src/sparse. It may
+// include util, optim, mesh, geometry, meshio, io, sparse and itself (not spectral).
+//
 // Meso-skeleton by Laplacian contraction (Au, Tai, Chu, Cohen-Or & Lee 2008, "Skeleton
 // Extraction by Mesh Contraction"; the first stage of Tagliasacchi, Alhashim, Olson & Zhang 2012,
 // "Mean Curvature Skeletons"; used by Musialski et al. 2015, section 4, for offset directions).

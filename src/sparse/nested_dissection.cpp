@@ -1,184 +1,152 @@
 #include "sparse/nested_dissection.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <utility>
+#include <cstdint>
+#include <numeric>
+
+#include "sparse/minimum_degree_ordering.h"
 
 namespace offsetopt {
 
-std::string NestedDissectionOptions::check() const {
-  if (leaf_size < 1) return "leaf_size must be at least 1";
-  return {};
-}
-
 namespace {
 
-class Dissector {
- public:
-  Dissector(const Eigen::SparseMatrix<double>& pattern, const Vertices& positions, int leaf_size)
-      : positions_(positions), leaf_size_(leaf_size), side_(static_cast<std::size_t>(pattern.rows()), 0) {
-    build_adjacency(pattern);
-  }
+using SparseMatrix = Eigen::SparseMatrix<double>;
 
-  std::vector<int> run(DissectionSplit* split) {
-    std::vector<int> all(side_.size());
-    for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+// Minimum degree restricted to the submatrix of `ids` (sorted), appended to `order`.
+void append_amd(const SparseMatrix& pattern, const std::vector<int>& ids, std::vector<int>& local, std::vector<int>& order) {
+  if (ids.size() <= 2) {
+    order.insert(order.end(), ids.begin(), ids.end());
+    return;
+  }
+  for (std::size_t k = 0; k < ids.size(); ++k) local[static_cast<std::size_t>(ids[k])] = static_cast<int>(k);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (std::size_t k = 0; k < ids.size(); ++k)
+    for (SparseMatrix::InnerIterator it(pattern, ids[k]); it; ++it)
+      if (local[static_cast<std::size_t>(it.row())] >= 0) entries.emplace_back(local[static_cast<std::size_t>(it.row())], static_cast<int>(k), 1.0);
+  SparseMatrix sub(static_cast<Eigen::Index>(ids.size()), static_cast<Eigen::Index>(ids.size()));
+  sub.setFromTriplets(entries.begin(), entries.end());
+  for (int i : ids) local[static_cast<std::size_t>(i)] = -1;
+  for (int k : minimum_degree_ordering(sub)) order.push_back(ids[static_cast<std::size_t>(k)]);
+}
+
+// Geometric nested dissection on `graph` (the mesh's 1-ring graph) for a matrix whose pattern
+// links vertices up to `hops` apart (2 for L^T L): a separator is the band of one half within
+// `hops` steps of the other.
+class NestedDissection {
+ public:
+  NestedDissection(const SparseMatrix& pattern, const SparseMatrix& graph, int hops, const Vertices& positions)
+      : pattern_(pattern), graph_(graph), hops_(hops), positions_(positions), side_(static_cast<std::size_t>(graph.rows()), 0),
+        local_(static_cast<std::size_t>(graph.rows()), -1), key_(static_cast<std::size_t>(graph.rows()), 0.0) {}
+
+  std::vector<int> run() {
+    std::vector<int> all(static_cast<std::size_t>(graph_.rows()));
+    std::iota(all.begin(), all.end(), 0);
     order_.reserve(all.size());
-    split_ = split;
-    dissect(all);
-    return std::move(order_);
+    dissect(all, 0);
+    return order_;
   }
 
  private:
-  // Symmetric adjacency without the diagonal, in CSR form (both triangles, whatever was stored).
-  void build_adjacency(const Eigen::SparseMatrix<double>& pattern) {
-    const int n = static_cast<int>(pattern.rows());
-    std::vector<int> degree(static_cast<std::size_t>(n) + 1, 0);
-    for (int col = 0; col < n; ++col) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(pattern, col); it; ++it) {
-        const int row = static_cast<int>(it.row());
-        if (row == col) continue;
-        ++degree[static_cast<std::size_t>(row)];
-        ++degree[static_cast<std::size_t>(col)];
-      }
-    }
-    start_.assign(static_cast<std::size_t>(n) + 1, 0);
-    for (int i = 0; i < n; ++i) start_[i + 1] = start_[i] + degree[i];
-    neighbours_.resize(static_cast<std::size_t>(start_[n]));
-    std::vector<int> fill(start_.begin(), start_.end() - 1);
-    for (int col = 0; col < n; ++col) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(pattern, col); it; ++it) {
-        const int row = static_cast<int>(it.row());
-        if (row == col) continue;
-        neighbours_[fill[row]++] = col;
-        neighbours_[fill[col]++] = row;
-      }
-    }
-    // Duplicates (both triangles stored) are harmless: they only repeat a test.
-  }
+  static constexpr std::size_t kLeafSize = 256;
+  // The first cuts try 13 directions (axes, face and body diagonals), the others the 3 axes:
+  // the top separators decide most of the fill.
+  static constexpr int kManyDirectionsDepth = 3;
+  static constexpr std::size_t kManyDirectionsSize = 4096;
 
-  // Candidate cut normals: the leading principal axis of the subset; for the large subsets of the
-  // first levels, whose separators dominate the factorisation cost, also the second axis and the
-  // two diagonals between them (about 10% fewer operations than the leading axis alone, at half
-  // the ordering time of trying all four everywhere).
-  std::vector<Eigen::Vector3d> cut_directions(const std::vector<int>& subset) const {
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    for (int v : subset) centroid += positions_.row(v).transpose();
-    centroid /= static_cast<double>(subset.size());
-    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-    for (int v : subset) {
-      const Eigen::Vector3d d = positions_.row(v).transpose() - centroid;
-      covariance += d * d.transpose();
-    }
-    // compute() is the iterative solver: no libm trigonometry (computeDirect uses acos/cos).
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
-    const Eigen::Vector3d major = eigen.eigenvectors().col(2);
-    const Eigen::Vector3d middle = eigen.eigenvectors().col(1);
-    if (subset.size() * 16 < side_.size()) return {major};
-    return {major, middle, (major + middle).normalized(), (major - middle).normalized()};
-  }
-
-  struct Split {
-    std::vector<int> first, second, separator;
-    double score = 0.0;
-  };
-
-  // Splits at the median of positions·direction; the separator is the smaller of the two sides'
-  // boundaries (vertices with a neighbour on the other side).
-  Split split_along(const std::vector<int>& subset, const Eigen::Vector3d& direction) {
-    keyed_.clear();
-    for (int v : subset) keyed_.emplace_back(positions_.row(v).dot(direction), v);
-    const std::size_t half = keyed_.size() / 2;
-    std::nth_element(keyed_.begin(), keyed_.begin() + static_cast<std::ptrdiff_t>(half), keyed_.end());
-    const int first_tag = ++tag_counter_, second_tag = ++tag_counter_;
-    for (std::size_t i = 0; i < keyed_.size(); ++i) side_[keyed_[i].second] = i < half ? first_tag : second_tag;
-
-    Split split;
-    std::vector<int> first_boundary, second_boundary;
-    for (std::size_t i = 0; i < keyed_.size(); ++i) {
-      const int v = keyed_[i].second;
-      const int other = i < half ? second_tag : first_tag;
-      bool on_boundary = false;
-      for (int p = start_[v]; p < start_[v + 1]; ++p) {
-        if (side_[neighbours_[p]] == other) {
-          on_boundary = true;
+  // Splits `ids` at the median along d and returns the separator: the vertices of the half with
+  // fewer vertices next to the other half that lie within hops_ edges of it. On return side_
+  // marks the halves 1 and 2 and the separator 3.
+  std::vector<int> split(std::vector<int>& ids, std::size_t middle, const double* d) {
+    for (int i : ids) key_[static_cast<std::size_t>(i)] = positions_(i, 0) * d[0] + positions_(i, 1) * d[1] + positions_(i, 2) * d[2];
+    std::nth_element(ids.begin(), ids.begin() + static_cast<std::ptrdiff_t>(middle), ids.end(), [&](int a, int b) {
+      const double pa = key_[static_cast<std::size_t>(a)], pb = key_[static_cast<std::size_t>(b)];
+      return pa < pb || (pa == pb && a < b);
+    });
+    for (std::size_t k = 0; k < ids.size(); ++k) side_[static_cast<std::size_t>(ids[k])] = k < middle ? 1 : 2;
+    // Vertices of each half with a neighbour in the other half: the first layer of a separator.
+    std::vector<int> boundary[3];
+    for (int i : ids) {
+      const int mine = side_[static_cast<std::size_t>(i)];
+      for (SparseMatrix::InnerIterator it(graph_, i); it; ++it) {
+        const int other = side_[static_cast<std::size_t>(it.row())];
+        if (other != 0 && other != mine) {
+          boundary[mine].push_back(i);
           break;
         }
       }
-      std::vector<int>& interior = i < half ? split.first : split.second;
-      std::vector<int>& boundary = i < half ? first_boundary : second_boundary;
-      (on_boundary ? boundary : interior).push_back(v);
     }
-    if (second_boundary.size() < first_boundary.size()) {
-      split.first.insert(split.first.end(), first_boundary.begin(), first_boundary.end());
-      split.separator = std::move(second_boundary);
-    } else {
-      split.second.insert(split.second.end(), second_boundary.begin(), second_boundary.end());
-      split.separator = std::move(first_boundary);
+    const int separator_side = boundary[1].size() <= boundary[2].size() ? 1 : 2;
+    std::vector<int> separator = std::move(boundary[separator_side]);
+    for (int i : separator) side_[static_cast<std::size_t>(i)] = 3;
+    // Further layers, hops_ in all, grown inside the separator's half.
+    std::size_t layer_begin = 0;
+    for (int hop = 1; hop < hops_; ++hop) {
+      const std::size_t layer_end = separator.size();
+      for (std::size_t k = layer_begin; k < layer_end; ++k)
+        for (SparseMatrix::InnerIterator it(graph_, separator[k]); it; ++it) {
+          const std::size_t j = static_cast<std::size_t>(it.row());
+          if (side_[j] == separator_side) {
+            side_[j] = 3;
+            separator.push_back(static_cast<int>(j));
+          }
+        }
+      layer_begin = layer_end;
     }
-    const double imbalance =
-        std::abs(static_cast<double>(split.first.size()) - static_cast<double>(split.second.size())) /
-        static_cast<double>(subset.size());
-    split.score = static_cast<double>(split.separator.size()) * (1.0 + imbalance);
-    return split;
+    return separator;
   }
 
-  void dissect(std::vector<int>& subset) {
-    if (static_cast<int>(subset.size()) <= leaf_size_) {
-      // Canonical order inside a leaf, so the result does not depend on nth_element's arrangement.
-      std::sort(subset.begin(), subset.end());
-      order_.insert(order_.end(), subset.begin(), subset.end());
+  void dissect(std::vector<int> ids, int depth) {
+    if (ids.size() <= kLeafSize || depth > 48) {
+      std::sort(ids.begin(), ids.end());
+      append_amd(pattern_, ids, local_, order_);
       return;
     }
-    Split best;
-    bool have_best = false;
-    for (const Eigen::Vector3d& direction : cut_directions(subset)) {
-      Split candidate = split_along(subset, direction);
-      if (!have_best || candidate.score < best.score) {
-        best = std::move(candidate);
-        have_best = true;
+    static const double directions[13][3] = {{1, 0, 0},  {0, 1, 0},  {0, 0, 1},  {1, 1, 0},  {1, -1, 0},
+                                             {1, 0, 1},  {1, 0, -1}, {0, 1, 1},  {0, 1, -1}, {1, 1, 1},
+                                             {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+    const int direction_count = depth < kManyDirectionsDepth && ids.size() > kManyDirectionsSize ? 13 : 3;
+    const std::size_t middle = ids.size() / 2;
+    int best_direction = 0;
+    std::size_t best_size = 0;
+    for (int direction = 0; direction < direction_count; ++direction) {
+      const std::size_t size = split(ids, middle, directions[direction]).size();
+      if (direction == 0 || size < best_size) {
+        best_size = size;
+        best_direction = direction;
       }
+      for (int i : ids) side_[static_cast<std::size_t>(i)] = 0;
     }
-    subset.clear();
-    subset.shrink_to_fit();
-    if (best.first.empty() || best.second.empty()) {
-      // Nothing to gain (e.g. all vertices coincide): order the rest as one block.
-      std::vector<int> rest = std::move(best.first);
-      rest.insert(rest.end(), best.second.begin(), best.second.end());
-      rest.insert(rest.end(), best.separator.begin(), best.separator.end());
-      std::sort(rest.begin(), rest.end());
-      order_.insert(order_.end(), rest.begin(), rest.end());
-      return;
+    std::vector<int> separator = split(ids, middle, directions[best_direction]);
+    std::vector<int> first, second;
+    for (int i : ids) {
+      const int side = side_[static_cast<std::size_t>(i)];
+      if (side == 1) first.push_back(i);
+      else if (side == 2) second.push_back(i);
+      side_[static_cast<std::size_t>(i)] = 0;
     }
-    for (int v : best.separator) side_[v] = -1;  // a separator vertex belongs to no later subset
-    if (split_) {  // the top level: record the sizes of its three parts, once
-      *split_ = {static_cast<int>(best.first.size()), static_cast<int>(best.second.size()),
-                 static_cast<int>(best.separator.size())};
-      split_ = nullptr;
-    }
-    dissect(best.first);
-    dissect(best.second);
-    std::sort(best.separator.begin(), best.separator.end());
-    order_.insert(order_.end(), best.separator.begin(), best.separator.end());
+    ids.clear();
+    ids.shrink_to_fit();
+    dissect(std::move(first), depth + 1);
+    dissect(std::move(second), depth + 1);
+    std::sort(separator.begin(), separator.end());
+    append_amd(pattern_, separator, local_, order_);
   }
 
+  const SparseMatrix& pattern_;
+  const SparseMatrix& graph_;
+  const int hops_;
   const Vertices& positions_;
-  int leaf_size_;
-  std::vector<int> side_;
-  int tag_counter_ = 0;
-  std::vector<int> start_, neighbours_;
-  std::vector<std::pair<double, int>> keyed_;
+  std::vector<std::uint8_t> side_;  // bytes: the random accesses of the cuts stay in cache
+  std::vector<int> local_;
+  std::vector<double> key_;
   std::vector<int> order_;
-  DissectionSplit* split_ = nullptr;
 };
 
 }  // namespace
 
-std::vector<int> nested_dissection(const Eigen::SparseMatrix<double>& pattern, const Vertices& positions,
-                                   const NestedDissectionOptions& options, DissectionSplit* split) {
-  if (split) *split = {};
-  Dissector dissector(pattern, positions, options.leaf_size);
-  return dissector.run(split);
+std::vector<int> nested_dissection(const SparseMatrix& pattern, const Vertices& positions, const SparseMatrix& graph,
+                                   int hops) {
+  return NestedDissection(pattern, graph, hops, positions).run();
 }
 
 }  // namespace offsetopt

@@ -96,8 +96,9 @@ struct LanczosResult {
 };
 
 // `L` #V by #V symmetric PSD (both triangles stored); `mass` the #V diagonal of M, or empty for
-// M = I; 1 ≤ k < #V. `positions` (#V by 3) enables the nested-dissection ordering (faster on
-// meshes); without it the factorisation uses AMD. Never throws on a numerical outcome.
+// M = I; 1 ≤ k < #V. `positions` (#V by 3) lets the nested-dissection ordering compete with
+// minimum degree (sparse/fill_reducing_ordering.h; faster on sphere-like meshes); without it the
+// factorisation uses minimum degree. Never throws on a numerical outcome.
 LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass, int k,
                                   const LanczosOptions& options = {}, const Vertices* positions = nullptr);
 

@@ -1,5 +1,6 @@
-// The nested-dissection ordering of the shift-invert factorisation: a permutation, deterministic,
-// with less fill than the natural order and close to AMD's.
+// Nested dissection on the 1-ring pattern of L + sI: a permutation, deterministic, with less fill
+// than the natural order and close to minimum degree's (the 2-ring pattern of L^T L is covered by
+// tests/sparse/test_supernodal_cholesky.cpp through fill_reducing_ordering).
 #include <doctest/doctest.h>
 
 #include <Eigen/OrderingMethods>
@@ -30,7 +31,7 @@ TEST_CASE("nested dissection returns a permutation that beats the natural order 
   const Mesh mesh = test::bumpy_icosphere(5);  // 10242 vertices
   Eigen::SparseMatrix<double> A = cotan_laplacian(mesh.V, mesh.F);
   for (Eigen::Index i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += 1.0;
-  const std::vector<int> order = nested_dissection(A, mesh.V);
+  const std::vector<int> order = nested_dissection(A, mesh.V, A, 1);
   REQUIRE(order.size() == static_cast<std::size_t>(A.rows()));
   std::vector<int> sorted = order;
   std::sort(sorted.begin(), sorted.end());
@@ -45,5 +46,5 @@ TEST_CASE("nested dissection returns a permutation that beats the natural order 
   CHECK(nd < factor_nonzeros(A, natural) / 2);
   CHECK(nd < 1.1 * static_cast<double>(factor_nonzeros(A, amd_order)));
   // Deterministic.
-  CHECK(nested_dissection(A, mesh.V) == order);
+  CHECK(nested_dissection(A, mesh.V, A, 1) == order);
 }
