@@ -6,7 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-#include "../spectral/test_meshes.h"
+#include "../test_meshes.h"
 #include "geometry/cotan_laplacian.h"
 #include "geometry/lumped_mass.h"
 

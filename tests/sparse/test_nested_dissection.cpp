@@ -7,7 +7,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 
-#include "../spectral/test_meshes.h"
+#include "../test_meshes.h"
 #include "geometry/cotan_laplacian.h"
 #include "sparse/nested_dissection.h"
 

@@ -6,11 +6,11 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 
+#include "../test_meshes.h"
 #include "geometry/cotan_laplacian.h"
 #include "geometry/lumped_mass.h"
 #include "spectral/panel_matrix.h"
 #include "spectral/shift_invert_operator.h"
-#include "test_meshes.h"
 #include "util/parallel.h"
 #include "util/rng.h"
 
