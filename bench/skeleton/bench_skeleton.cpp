@@ -13,7 +13,7 @@
 #include <string>
 
 #include "geometry/bvh.h"
-#include "mesh/load_mesh.h"
+#include "meshio/load_mesh.h"
 #include "mesh/primitives.h"
 #include "shape/offset_field.h"
 #include "skeleton/laplacian_contraction.h"

@@ -8,12 +8,12 @@
 
 #include "cli/cli_support.h"
 #include "cli/commands.h"
+#include "geometry/cotan_laplacian.h"
+#include "geometry/lumped_mass.h"
 #include "io/basis_files.h"
 #include "io/json.h"
 #include "meshio/load_mesh.h"
-#include "spectral/cotan_laplacian.h"
 #include "spectral/manifold_harmonics.h"
-#include "spectral/mass_matrix.h"
 
 namespace offsetopt::cli {
 

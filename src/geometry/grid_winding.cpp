@@ -4,7 +4,7 @@
 #include <cmath>
 #include <utility>
 
-#include "spectral/worker_pool.h"
+#include "util/parallel.h"
 
 namespace offsetopt {
 

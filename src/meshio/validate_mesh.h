@@ -27,7 +27,7 @@
 // oriented. Unreferenced vertices are not a defect (reported as a note), nor are zero-area
 // faces with three distinct (collinear) corners, exactly zero area in double arithmetic (a note
 // with a count: OpenSCAD's STL exports close T-junctions with them; they add nothing to any
-// volume integral and the cotan Laplacian mollifies them, spectral/intrinsic_mollification.h). Nesting is found by
+// volume integral and the cotan Laplacian mollifies them, geometry/intrinsic_mollification.h). Nesting is found by
 // ray parity from a point on each shell (bounding boxes first, geometry/aabb.h; the ray test is
 // geometry/ray_triangle.h), for up to 10,000 shells; beyond that every shell counts as outermost.
 // Each check is its own function in validate_mesh.cpp, in the order above; validate_mesh()

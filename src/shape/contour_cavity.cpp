@@ -10,7 +10,7 @@
 #include "geometry/grid_winding.h"
 #include "geometry/marching_tetrahedra.h"
 #include "geometry/mesh_shells.h"
-#include "spectral/worker_pool.h"
+#include "util/parallel.h"
 
 namespace offsetopt {
 

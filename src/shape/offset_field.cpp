@@ -10,7 +10,7 @@
 #include "geometry/ray_cast.h"
 #include "geometry/vertex_cone.h"
 #include "geometry/vertex_normals.h"
-#include "spectral/worker_pool.h"
+#include "util/parallel.h"
 
 namespace offsetopt {
 

@@ -7,7 +7,7 @@
 
 #include "mass/volume_integrals_gradient.h"
 #include "shape/smooth_clamp.h"
-#include "spectral/worker_pool.h"
+#include "util/parallel.h"
 
 namespace offsetopt {
 

@@ -11,7 +11,7 @@
 #include "mass/mass_properties.h"
 #include "mass/stability.h"
 #include "mass/volume_integrals.h"
-#include "spectral/worker_pool.h"
+#include "util/parallel.h"
 #include "util/det_math.h"
 #include "util/format_double.h"
 

@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "skeleton/fill_reducing_ordering.h"
-#include "skeleton/supernodal_cholesky.h"
-#include "spectral/cotan_laplacian.h"
+#include "geometry/cotan_laplacian.h"
+#include "sparse/fill_reducing_ordering.h"
+#include "sparse/supernodal_cholesky.h"
 
 namespace offsetopt {
 

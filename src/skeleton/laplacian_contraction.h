@@ -1,3 +1,8 @@
+// src/skeleton (this is the folder's main header): the meso-skeleton by Laplacian contraction.
+// It owns the contraction and its options, statuses and history; the Laplacian comes from
+// src/geometry and the ordering and Cholesky of the normal equations from src/sparse. It may
+// include util, optim, mesh, geometry, meshio, io, sparse and itself (not spectral).
+//
 // Meso-skeleton by Laplacian contraction (Au, Tai, Chu, Cohen-Or & Lee 2008, "Skeleton
 // Extraction by Mesh Contraction"; the first stage of Tagliasacchi, Alhashim, Olson & Zhang 2012,
 // "Mean Curvature Skeletons"; used by Musialski et al. 2015, section 4, for offset directions).
@@ -5,14 +10,14 @@
 // Each step solves, in least squares, for the #V by 3 positions X':
 //     [ W_L L_t ]        [     0     ]
 //     [  W_H    ]  X' =  [ W_H X_t   ]
-// L_t is the cotangent Laplacian (spectral/cotan_laplacian.h, PSD convention: L_ii >= 0,
+// L_t is the cotangent Laplacian (geometry/cotan_laplacian.h, PSD convention: L_ii >= 0,
 // L_ij = -(cot a + cot b)/2) of the current geometry X_t; W_L is a scalar multiplied by s_L after
 // every step; W_H = diag(W_H0 sqrt(A_i^0 / A_i^t)) with A_i the one-ring area of vertex i, so
 // vertices whose neighbourhood has already collapsed are held in place. The normal equations
 //     (W_L^2 L_t^T L_t + W_H^2) X' = W_H^2 X_t
 // are symmetric positive definite (W_H > 0); their sparsity pattern (the 2-ring of the mesh) never
-// changes, so it is analysed once (fill-reducing ordering, skeleton/fill_reducing_ordering.h;
-// supernodal structure, skeleton/supernodal_cholesky.h) and refactorised numerically every step,
+// changes, so it is analysed once (fill-reducing ordering, sparse/fill_reducing_ordering.h;
+// supernodal structure, sparse/supernodal_cholesky.h) and refactorised numerically every step,
 // the three coordinates solved as one 3-column right-hand side.
 //
 // The contraction runs in a normalised frame (bounding box centred at the origin, diagonal 1) so
@@ -27,8 +32,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/intrinsic_mollification.h"
 #include "mesh/mesh.h"
-#include "spectral/intrinsic_mollification.h"
 
 namespace offsetopt {
 
@@ -63,7 +68,7 @@ struct ContractionOptions {
   // Guards (see above).
   double cotan_sine_floor = 1e-3;
   // Intrinsic mollification of L_t (Sharp & Crane 2020, section 4.5; see
-  // spectral/intrinsic_mollification.h), relative to the current mean edge length: contracted
+  // geometry/intrinsic_mollification.h), relative to the current mean edge length: contracted
   // triangles collapse to needles and segments, and mollified weights stay bounded where the sine
   // floor alone lets them grow to 1/floor. 0 leaves only the sine floor.
   double mollify_margin = kDefaultMollifyMargin;
@@ -98,7 +103,7 @@ struct ContractionResult {
   double area_ratio = 1.0;
   double volume_ratio = 1.0;
   std::vector<ContractionStep> history;  // one entry per completed step
-  // The fill-reducing ordering chosen for the normal equations (skeleton/fill_reducing_ordering.h)
+  // The fill-reducing ordering chosen for the normal equations (sparse/fill_reducing_ordering.h)
   // and its predicted cost: flops = sum of squared column counts of the factor.
   std::string ordering;
   double predicted_factor_flops = 0.0;

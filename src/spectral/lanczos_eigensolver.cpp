@@ -10,7 +10,7 @@
 
 #include "spectral/panel_matrix.h"
 #include "spectral/shift_invert_operator.h"
-#include "spectral/worker_pool.h"
+#include "util/parallel.h"
 #include "util/rng.h"
 
 namespace offsetopt {

@@ -1,6 +1,6 @@
 // The k smallest eigenpairs of a graph/mesh Laplacian: L φ = λ M φ with L symmetric positive
-// semi-definite (#V by #V, e.g. spectral/cotan_laplacian.h) and M diagonal positive (the lumped
-// mass of spectral/mass_matrix.h), or L φ = λ φ when no mass is given (the paper's choice,
+// semi-definite (#V by #V, e.g. geometry/cotan_laplacian.h) and M diagonal positive (the lumped
+// mass of geometry/lumped_mass.h), or L φ = λ φ when no mass is given (the paper's choice,
 // Musialski et al. 2015 section 5.1; Vallet & Lévy 2008 for the generalised form).
 //
 // Method: block Krylov–Schur (thick-restart block Lanczos; Stewart 2001, Zhou & Saad 2008) with
@@ -96,8 +96,9 @@ struct LanczosResult {
 };
 
 // `L` #V by #V symmetric PSD (both triangles stored); `mass` the #V diagonal of M, or empty for
-// M = I; 1 ≤ k < #V. `positions` (#V by 3) enables the nested-dissection ordering (faster on
-// meshes); without it the factorisation uses AMD. Never throws on a numerical outcome.
+// M = I; 1 ≤ k < #V. `positions` (#V by 3) lets the nested-dissection ordering compete with
+// minimum degree (sparse/fill_reducing_ordering.h; faster on sphere-like meshes); without it the
+// factorisation uses minimum degree. Never throws on a numerical outcome.
 LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass, int k,
                                   const LanczosOptions& options = {}, const Vertices* positions = nullptr);
 

@@ -1,6 +1,6 @@
 #include "spectral/manifold_harmonics.h"
 
-#include "spectral/mass_matrix.h"
+#include "geometry/lumped_mass.h"
 
 namespace offsetopt {
 

@@ -163,9 +163,12 @@ AlignedVector duplicated(const double* Z, int j, int p) {
   return Zd;
 }
 
+// Fewer panels than this run on the calling thread: waking the pool costs more than it saves.
+constexpr double kMinParallelPanels = 16;
+
 template <class Body>
 void for_panels(Eigen::Index panels, WorkerPool* pool, const Body& body) {
-  if (!pool || pool->size() == 1 || panels < 16) {
+  if (execution_policy(pool, static_cast<double>(panels), kMinParallelPanels) == ExecutionPolicy::serial) {
     for (Eigen::Index p = 0; p < panels; ++p) body(p);
     return;
   }
@@ -179,7 +182,8 @@ void for_panels(Eigen::Index panels, WorkerPool* pool, const Body& body) {
 
 void panel_project(const PanelMatrix& A, int a0, int j, const PanelMatrix& B, int b0, int b, double* C,
                    WorkerPool* pool) {
-  if (!pool || pool->size() == 1 || j < 4 * pool->size()) {
+  // At least four columns of A per thread.
+  if (execution_policy(pool, j, 4.0 * (pool ? pool->size() : 1)) == ExecutionPolicy::serial) {
     project_serial(A, a0, j, B, b0, b, C);
     return;
   }
@@ -221,7 +225,7 @@ void panel_combine(const PanelMatrix& A, int a0, int j, const double* Z, int p, 
     if (in_place)
       std::memcpy(X.column(panel, x0), buffer.data(), sizeof(double) * static_cast<std::size_t>(p * P));
   };
-  if (!pool || pool->size() == 1 || A.panels() < 16) {
+  if (execution_policy(pool, static_cast<double>(A.panels()), kMinParallelPanels) == ExecutionPolicy::serial) {
     for (Eigen::Index panel = 0; panel < A.panels(); ++panel) body(panel, buffers[0]);
     return;
   }

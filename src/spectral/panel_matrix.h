@@ -12,7 +12,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "spectral/worker_pool.h"
+#include "util/parallel.h"
 
 namespace offsetopt {
 

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/cotan_laplacian.h"
 #include "mesh/primitives.h"
 #include "skeleton/laplacian_contraction.h"
-#include "spectral/cotan_laplacian.h"
 
 using namespace offsetopt;
 

@@ -11,10 +11,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "../test_meshes.h"
 #include "io/json.h"
 #include "meshio/load_mesh.h"
 #include "spectral/manifold_harmonics.h"
-#include "test_meshes.h"
 #include "util/format_double.h"
 
 using namespace offsetopt;

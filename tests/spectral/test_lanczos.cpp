@@ -6,11 +6,11 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-#include "spectral/cotan_laplacian.h"
+#include "../test_meshes.h"
+#include "geometry/cotan_laplacian.h"
+#include "geometry/lumped_mass.h"
 #include "spectral/lanczos_eigensolver.h"
 #include "spectral/manifold_harmonics.h"
-#include "spectral/mass_matrix.h"
-#include "test_meshes.h"
 
 using namespace offsetopt;
 

@@ -1,18 +1,17 @@
-// The building blocks of the solver: the nested-dissection ordering, the shift-invert operator
-// (block triangular solves) and the panel kernels, each against a plain dense computation.
+// The building blocks of the solver: the shift-invert operator (block triangular solves) and the
+// panel kernels, each against a plain dense computation (the ordering's tests: tests/sparse).
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 
-#include "spectral/cotan_laplacian.h"
-#include "spectral/mass_matrix.h"
-#include "spectral/nested_dissection.h"
+#include "../test_meshes.h"
+#include "geometry/cotan_laplacian.h"
+#include "geometry/lumped_mass.h"
 #include "spectral/panel_matrix.h"
 #include "spectral/shift_invert_operator.h"
-#include "spectral/worker_pool.h"
-#include "test_meshes.h"
+#include "util/parallel.h"
 #include "util/rng.h"
 
 using namespace offsetopt;
@@ -27,39 +26,7 @@ RowMatrix random_block(Eigen::Index rows, Eigen::Index cols, std::uint64_t seed)
   return X;
 }
 
-long factor_nonzeros(const Eigen::SparseMatrix<double>& A, const std::vector<int>& order) {
-  const int n = static_cast<int>(A.rows());
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P(n);
-  for (int i = 0; i < n; ++i) P.indices()[order[i]] = i;
-  Eigen::SparseMatrix<double> permuted;
-  permuted = A.twistedBy(P);
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt(permuted);
-  return static_cast<long>(ldlt.matrixL().nestedExpression().nonZeros());
-}
-
 }  // namespace
-
-TEST_CASE("nested dissection returns a permutation that beats the natural order and is near AMD") {
-  const Mesh mesh = test::bumpy_icosphere(5);  // 10242 vertices
-  Eigen::SparseMatrix<double> A = cotan_laplacian(mesh.V, mesh.F);
-  for (Eigen::Index i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += 1.0;
-  const std::vector<int> order = nested_dissection(A, mesh.V);
-  REQUIRE(order.size() == static_cast<std::size_t>(A.rows()));
-  std::vector<int> sorted = order;
-  std::sort(sorted.begin(), sorted.end());
-  for (std::size_t i = 0; i < sorted.size(); ++i) REQUIRE(sorted[i] == static_cast<int>(i));
-  std::vector<int> natural(order.size());
-  for (std::size_t i = 0; i < natural.size(); ++i) natural[i] = static_cast<int>(i);
-  Eigen::AMDOrdering<int> amd;
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
-  amd(A, inverse);
-  const std::vector<int> amd_order(inverse.indices().data(), inverse.indices().data() + A.rows());
-  const long nd = factor_nonzeros(A, order);
-  CHECK(nd < factor_nonzeros(A, natural) / 2);
-  CHECK(nd < 1.1 * static_cast<double>(factor_nonzeros(A, amd_order)));
-  // Deterministic.
-  CHECK(nested_dissection(A, mesh.V) == order);
-}
 
 TEST_CASE("shift-invert operator equals D (L + sM)^-1 D on blocks of any width") {
   const Mesh mesh = test::bumpy_icosphere(2);
@@ -156,21 +123,15 @@ TEST_CASE("panel kernels match dense products, with and without threads") {
   }
 }
 
-TEST_CASE("the factorisation split at the first dissection level gives the same operator") {
-  // 40962 vertices: large enough for the split (A, B and a dense separator).
+TEST_CASE("the factorisation on two threads gives the same operator, in either ordering") {
+  // 40962 vertices: large enough for the factorisation's subtrees to run on two threads.
   const Mesh mesh = test::bumpy_icosphere(6);
   const Eigen::SparseMatrix<double> L = cotan_laplacian(mesh.V, mesh.F);
   const Eigen::VectorXd mass = lumped_mass(mesh.V, mesh.F);
-  DissectionSplit split;
-  nested_dissection(L, mesh.V, {}, &split);
-  REQUIRE(split.first > 0);
-  REQUIRE(split.second > 0);
-  CHECK(split.first + split.second + split.separator == L.rows());
-  CHECK(split.separator < 2500);
   WorkerPool pool(2);
   const ShiftInvertOperator divided(L, mass, 0.3, &mesh.V, &pool);
   const ShiftInvertOperator serial(L, mass, 0.3, &mesh.V);
-  const ShiftInvertOperator whole(L, mass, 0.3, nullptr);  // AMD: one factorisation
+  const ShiftInvertOperator whole(L, mass, 0.3, nullptr);  // minimum degree only
   REQUIRE(divided.status() == ShiftInvertOperator::Status::Ok);
   REQUIRE(whole.status() == ShiftInvertOperator::Status::Ok);
   const RowMatrix X = random_block(L.rows(), 6, 9);

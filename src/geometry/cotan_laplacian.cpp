@@ -1,4 +1,4 @@
-#include "spectral/cotan_laplacian.h"
+#include "geometry/cotan_laplacian.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

@@ -1,10 +1,12 @@
-#include "skeleton/supernodal_cholesky.h"
+#include "sparse/supernodal_cholesky.h"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <stdexcept>
 #include <system_error>
 #include <thread>
+
+#include "util/parallel.h"
 
 namespace offsetopt {
 
@@ -20,6 +22,10 @@ bool accept_merge(int columns, double zero_fraction) {
   if (columns <= 48) return zero_fraction < 0.1;
   return zero_fraction < 0.05;
 }
+
+// Below this many multiply-adds in all fronts the factorisation runs on one thread (the subtrees
+// would be too small to be worth a thread each).
+constexpr double kMinParallelFactorWork = 2e7 + 1;
 
 double trapezoid(double columns, double rows_below) { return columns * (columns + 1.0) / 2.0 + columns * rows_below; }
 
@@ -227,7 +233,7 @@ void SupernodalCholesky::plan_threads(int threads) {
     if (parent_supernode_[u] != -1) subtree[static_cast<std::size_t>(parent_supernode_[u])] += subtree[u];
   }
   std::vector<int> owner(static_cast<std::size_t>(supernodes), -1);
-  if (threads > 1 && total > 2e7) {
+  if (execution_policy(threads, total, kMinParallelFactorWork) == ExecutionPolicy::parallel) {
     // Open the heaviest subtree until it no longer exceeds half of the open subtrees' work.
     std::vector<int> open;
     for (int s = 0; s < supernodes; ++s)
@@ -405,6 +411,41 @@ bool SupernodalCholesky::factorize(const SparseMatrix& A) {
     if (!factor_supernode(s, A, workspaces[0], updates, thread_count_ > 1)) return false;
   factorized_ = true;
   return true;
+}
+
+BlockLdlt SupernodalCholesky::block_ldlt(int max_width) const {
+  if (!factorized_) throw std::logic_error("SupernodalCholesky::block_ldlt without a successful factorisation");
+  if (max_width < 1) throw std::invalid_argument("SupernodalCholesky::block_ldlt: max_width must be >= 1");
+  BlockLdlt out;
+  out.order = to_caller_;
+  out.pivots.resize(static_cast<std::size_t>(n_));
+  out.values.reserve(values_.size());
+  const int supernodes = supernode_count();
+  for (int s = 0; s < supernodes; ++s) {
+    const std::size_t u = static_cast<std::size_t>(s);
+    const int begin = first_column_[u], k = first_column_[u + 1] - begin, r = row_start_[u + 1] - row_start_[u];
+    const Eigen::Map<const Eigen::MatrixXd> block(values_.data() + value_start_[u], k + r, k);
+    for (int c = 0; c < k; ++c) out.pivots[static_cast<std::size_t>(begin + c)] = block(c, c) * block(c, c);
+    // Runs of at most max_width columns: a run's rows below are the supernode's later columns,
+    // then the supernode's rows below.
+    for (int c0 = 0; c0 < k; c0 += max_width) {
+      BlockLdlt::Supernode t;
+      t.first = begin + c0;
+      t.width = std::min(max_width, k - c0);
+      t.row_begin = static_cast<int>(out.rows.size());
+      t.row_count = k - c0 - t.width + r;
+      for (int i = c0 + t.width; i < k; ++i) out.rows.push_back(begin + i);
+      out.rows.insert(out.rows.end(), row_indices_.begin() + row_start_[u], row_indices_.begin() + row_start_[u + 1]);
+      t.triangle = out.values.size();
+      for (int i = 1; i < t.width; ++i)
+        for (int j = 0; j < i; ++j) out.values.push_back(block(c0 + i, c0 + j) / block(c0 + j, c0 + j));
+      t.below = out.values.size();
+      for (int i = c0 + t.width; i < k + r; ++i)
+        for (int j = 0; j < t.width; ++j) out.values.push_back(block(i, c0 + j) / block(c0 + j, c0 + j));
+      out.supernodes.push_back(t);
+    }
+  }
+  return out;
 }
 
 void SupernodalCholesky::solve_in_place(Eigen::MatrixXd& B) const {

@@ -6,9 +6,9 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-#include "spectral/cotan_laplacian.h"
-#include "spectral/mass_matrix.h"
-#include "test_meshes.h"
+#include "../test_meshes.h"
+#include "geometry/cotan_laplacian.h"
+#include "geometry/lumped_mass.h"
 
 using namespace offsetopt;
 

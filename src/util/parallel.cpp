@@ -1,4 +1,4 @@
-#include "spectral/worker_pool.h"
+#include "util/parallel.h"
 
 #include <system_error>
 

@@ -1,3 +1,12 @@
+// src/geometry (this header opens the folder's mesh operators): computations on a mesh's
+// shape. It owns spatial queries (BVH, ray casting, point in solid, closest point, triangle
+// intersections, self-intersections and pinches), hulls, plane sections, poses and the flat-base
+// cut, polygon triangulation, grid winding numbers, marching tetrahedra, mesh shells, and the
+// discrete differential operators of a surface: the cotan Laplacian (this file), the lumped area
+// matrix (lumped_mass.h; an area per vertex, not physical mass, which is src/mass) and their
+// intrinsic mollification. It may include util, optim, mesh and itself; the eigensolver
+// (src/spectral) and the contraction (src/skeleton) sit above it and take its operators.
+//
 // Cotangent Laplacian of a triangle mesh (Pinkall & Polthier 1993; Meyer et al. 2003), in the
 // positive semi-definite convention of DESIGN.md and Musialski et al. 2015 eq. 2 (sign flipped to
 // make it PSD):
@@ -16,7 +25,7 @@
 //
 // Zero-area and needle triangles (CAD exports, collapsing triangles in skeleton contraction):
 // when any triangle misses the strict triangle inequality by the margin of
-// spectral/intrinsic_mollification.h, every edge is lengthened by the same epsilon and the whole
+// geometry/intrinsic_mollification.h, every edge is lengthened by the same epsilon and the whole
 // matrix is built from edge lengths (cot of the angle at corner i = (l_j² + l_k² - l_i²) / (4·area),
 // area by Heron), which keeps every weight bounded by about (mean edge) / delta and L PSD (each
 // triangle's block is that of a valid Euclidean triangle). When epsilon is 0 the formulas above
@@ -25,8 +34,8 @@
 #include <Eigen/Sparse>
 #include <string>
 
+#include "geometry/intrinsic_mollification.h"
 #include "mesh/mesh.h"
-#include "spectral/intrinsic_mollification.h"
 
 namespace offsetopt {
 

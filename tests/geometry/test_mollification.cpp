@@ -8,11 +8,11 @@
 #include <cmath>
 
 #include "../meshio/sliver_box.h"
+#include "geometry/cotan_laplacian.h"
+#include "geometry/intrinsic_mollification.h"
+#include "geometry/lumped_mass.h"
 #include "mesh/primitives.h"
 #include "meshio/validate_mesh.h"
-#include "spectral/cotan_laplacian.h"
-#include "spectral/intrinsic_mollification.h"
-#include "spectral/mass_matrix.h"
 
 using namespace offsetopt;
 

@@ -1,4 +1,4 @@
-#include "spectral/intrinsic_mollification.h"
+#include "geometry/intrinsic_mollification.h"
 
 #include <algorithm>
 #include <cmath>

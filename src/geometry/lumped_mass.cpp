@@ -1,4 +1,4 @@
-#include "spectral/mass_matrix.h"
+#include "geometry/lumped_mass.h"
 
 #include <Eigen/Geometry>
 

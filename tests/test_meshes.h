@@ -1,5 +1,6 @@
-// Meshes the spectral tests run on. TODO(lead, when merging): add every demo mesh from
-// mesh/demo_meshes.h to test_meshes() once it is on main; until then these primitives stand in.
+// Meshes the geometry, sparse and spectral tests run on. TODO(lead, when merging): add every
+// demo mesh from mesh/demo_meshes.h to test_meshes() once it is on main; until then these
+// primitives stand in.
 #pragma once
 #include <string>
 #include <utility>

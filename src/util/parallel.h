@@ -1,0 +1,77 @@
+// src/util: the lowest layer, beside src/optim. It owns what every other folder may use and that
+// knows nothing of meshes: deterministic maths (det_math), error-free expansions, dual numbers,
+// shortest round-trip number text, the project's RNG, and this file's thread pool and
+// serial-or-parallel policy. It includes only the standard library, Eigen and itself.
+//
+// Threads with a fixed partition and a fixed reduction order (DESIGN.md): work is always split
+// into the same parts, each part writes outputs no other part touches, and every sum stays inside
+// one part in the order the single-threaded code uses, so results are bit for bit the same for
+// any number of threads. Used by the eigensolver, the sparse factorisations, the offset field,
+// the reduced problem, verification, grid winding numbers and the contoured cavity.
+//
+// The size policy (after Manifold's autoPolicy, Manifold/src/parallel.h): whether a loop is worth
+// waking the pool for is decided by one function, execution_policy(), from the work's size and
+// the call site's threshold (in the call site's own unit: panels, rows, multiply-adds). Because
+// of the fixed partition, the decision only changes speed, never a result.
+#pragma once
+#include <condition_variable>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace offsetopt {
+
+class WorkerPool {
+ public:
+  // `threads` >= 1 in total, the calling thread included; fewer when the system refuses to start
+  // more (see size()).
+  explicit WorkerPool(int threads);
+  ~WorkerPool();
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  int size() const { return static_cast<int>(workers_.size()) + 1; }
+  // Runs task(part) for every part in [0, size()), part 0 on the calling thread; returns when
+  // all are done. Tasks must not throw.
+  void run(const std::function<void(int)>& task);
+  // Runs task(p) once for every p in [0, parts), part p on thread p mod size(); returns when all
+  // are done. For work cut into a fixed number of parts, which must all run even when the pool
+  // got fewer threads than asked for. Tasks must not throw.
+  void run_parts(int parts, const std::function<void(int)>& task);
+
+ private:
+  void work(int part);
+
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable start_, done_;
+  const std::function<void(int)>* task_ = nullptr;
+  unsigned long generation_ = 0;
+  int pending_ = 0;
+  bool stop_ = false;
+};
+
+// Splits [0, count) into `parts` contiguous ranges, sizes differing by at most `granule`
+// multiples: range p is [split_point(p), split_point(p + 1)).
+inline long split_point(long count, int parts, int p, long granule = 1) {
+  const long units = (count + granule - 1) / granule;
+  const long point = units * p / parts * granule;
+  return point < count ? point : count;
+}
+
+enum class ExecutionPolicy { serial, parallel };
+
+// parallel when there is more than one thread to run on (`threads`: the pool's size, or the
+// threads a caller was given) and `work` is at least `min_parallel_work`, both in the caller's
+// unit; serial otherwise.
+inline ExecutionPolicy execution_policy(int threads, double work, double min_parallel_work) {
+  return threads > 1 && work >= min_parallel_work ? ExecutionPolicy::parallel : ExecutionPolicy::serial;
+}
+
+// The same for a pool that may be absent (nullptr: serial).
+inline ExecutionPolicy execution_policy(const WorkerPool* pool, double work, double min_parallel_work) {
+  return execution_policy(pool ? pool->size() : 1, work, min_parallel_work);
+}
+
+}  // namespace offsetopt

@@ -1,0 +1,68 @@
+// The worker pool (util/parallel.h): run() gives each thread its part; run_parts() runs a fixed number of parts,
+// each exactly once, however many threads the pool has (fewer than asked when the system refuses).
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <vector>
+
+#include "util/parallel.h"
+
+using namespace offsetopt;
+
+TEST_CASE("worker pool: run_parts runs every part exactly once on 1, 2, 3 and 5 threads") {
+  for (int threads : {1, 2, 3, 5}) {
+    CAPTURE(threads);
+    WorkerPool pool(threads);
+    CHECK(pool.size() >= 1);
+    CHECK(pool.size() <= threads);
+    for (int parts : {1, 2, 4, 7}) {
+      CAPTURE(parts);
+      std::vector<std::atomic<int>> runs(static_cast<std::size_t>(parts));
+      for (auto& r : runs) r = 0;
+      for (int repeat = 0; repeat < 3; ++repeat) pool.run_parts(parts, [&](int part) { ++runs[static_cast<std::size_t>(part)]; });
+      for (int p = 0; p < parts; ++p) CHECK(runs[static_cast<std::size_t>(p)] == 3);
+    }
+  }
+}
+
+TEST_CASE("worker pool: run gives each of its threads one part") {
+  WorkerPool pool(3);
+  std::vector<std::atomic<int>> runs(static_cast<std::size_t>(pool.size()));
+  for (auto& r : runs) r = 0;
+  pool.run([&](int part) { ++runs[static_cast<std::size_t>(part)]; });
+  for (auto& r : runs) CHECK(r == 1);
+}
+
+TEST_CASE("split_point: contiguous ranges from 0 to count, each ending on a granule multiple but the last") {
+  for (long count : {0L, 1L, 7L, 100L, 1001L})
+    for (int parts : {1, 2, 3, 8})
+      for (long granule : {1L, 2L, 16L}) {
+        CAPTURE(count);
+        CAPTURE(parts);
+        CAPTURE(granule);
+        CHECK(split_point(count, parts, 0, granule) == 0);
+        CHECK(split_point(count, parts, parts, granule) == count);
+        for (int p = 0; p < parts; ++p) {
+          const long lo = split_point(count, parts, p, granule), hi = split_point(count, parts, p + 1, granule);
+          CHECK(lo <= hi);
+          if (hi < count) CHECK(hi % granule == 0);
+          // Sizes differ by at most one granule.
+          CHECK(hi - lo <= ((count + granule - 1) / granule + parts - 1) / parts * granule);
+        }
+      }
+}
+
+TEST_CASE("execution_policy: parallel only with more than one thread and enough work") {
+  CHECK(execution_policy(1, 1e9, 10.0) == ExecutionPolicy::serial);
+  CHECK(execution_policy(2, 9.0, 10.0) == ExecutionPolicy::serial);
+  CHECK(execution_policy(2, 10.0, 10.0) == ExecutionPolicy::parallel);
+  CHECK(execution_policy(4, 1e9, 10.0) == ExecutionPolicy::parallel);
+  CHECK(execution_policy(static_cast<const WorkerPool*>(nullptr), 1e9, 0.0) == ExecutionPolicy::serial);
+  WorkerPool one(1);
+  CHECK(execution_policy(&one, 1e9, 0.0) == ExecutionPolicy::serial);
+  WorkerPool two(2);
+  if (two.size() == 2) {
+    CHECK(execution_policy(&two, 16.0, 16.0) == ExecutionPolicy::parallel);
+    CHECK(execution_policy(&two, 15.0, 16.0) == ExecutionPolicy::serial);
+  }
+}
