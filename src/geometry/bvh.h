@@ -8,6 +8,7 @@
 // the mesh alone (no dependence on the standard library's partial-sort order), and every query
 // result is reproducible bit for bit.
 #pragma once
+#include <utility>
 #include <vector>
 
 #include "geometry/aabb.h"
@@ -91,5 +92,51 @@ class TriangleBvh {
   double diagonal_ = 0.0;
   int leaf_size_ = 4;
 };
+
+// Visits every (face of a, face of b) pair of leaves whose boxes overlap, below the node pairs
+// `start` (popped last first; {{0, 0}} for the whole trees). With `same` (a and b one tree) the
+// pairs (i, j) and (j, i) are visited once and no face meets itself. The larger box is split
+// first; the order is a function of the trees alone. visit(f, g) returns false to stop.
+template <class Visitor>
+void traverse_face_pairs(const TriangleBvh& a, const TriangleBvh& b, bool same, std::vector<std::pair<int, int>> start,
+                         Visitor&& visit) {
+  if (a.empty() || b.empty()) return;
+  const auto& na = a.nodes();
+  const auto& nb = b.nodes();
+  std::vector<std::pair<int, int>> stack = std::move(start);
+  while (!stack.empty()) {
+    const auto [ia, ib] = stack.back();
+    stack.pop_back();
+    const BvhNode& x = na[static_cast<std::size_t>(ia)];
+    const BvhNode& y = nb[static_cast<std::size_t>(ib)];
+    if (!x.box.overlaps(y.box)) continue;
+    if (same && ia == ib) {
+      if (x.is_leaf()) {
+        for (int i = x.first; i < x.first + x.count; ++i)
+          for (int j = i + 1; j < x.first + x.count; ++j)
+            if (!visit(a.leaf_faces()[static_cast<std::size_t>(i)], a.leaf_faces()[static_cast<std::size_t>(j)])) return;
+      } else {
+        stack.emplace_back(x.right, x.right);
+        stack.emplace_back(x.left, x.right);
+        stack.emplace_back(x.left, x.left);
+      }
+      continue;
+    }
+    if (x.is_leaf() && y.is_leaf()) {
+      for (int i = x.first; i < x.first + x.count; ++i)
+        for (int j = y.first; j < y.first + y.count; ++j)
+          if (!visit(a.leaf_faces()[static_cast<std::size_t>(i)], b.leaf_faces()[static_cast<std::size_t>(j)])) return;
+      continue;
+    }
+    const bool split_a = !x.is_leaf() && (y.is_leaf() || (x.box.hi - x.box.lo).squaredNorm() >= (y.box.hi - y.box.lo).squaredNorm());
+    if (split_a) {
+      stack.emplace_back(x.right, ib);
+      stack.emplace_back(x.left, ib);
+    } else {
+      stack.emplace_back(ia, y.right);
+      stack.emplace_back(ia, y.left);
+    }
+  }
+}
 
 }  // namespace offsetopt

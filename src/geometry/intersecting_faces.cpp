@@ -9,59 +9,6 @@
 
 namespace offsetopt {
 
-namespace {
-
-struct NodePair {
-  int a, b;
-};
-
-// Visits every (leaf face of a, leaf face of b) pair under the node pairs `start` whose node
-// boxes overlap; when `same` the pair (i, j) and (j, i) are visited once. Visitor returns false
-// to stop.
-template <class Visitor>
-void traverse_pairs(const TriangleBvh& a, const TriangleBvh& b, bool same, std::vector<NodePair> start, Visitor&& visit) {
-  if (a.empty() || b.empty()) return;
-  const auto& na = a.nodes();
-  const auto& nb = b.nodes();
-  std::vector<NodePair> stack = std::move(start);
-  while (!stack.empty()) {
-    const NodePair p = stack.back();
-    stack.pop_back();
-    const BvhNode& x = na[static_cast<std::size_t>(p.a)];
-    const BvhNode& y = nb[static_cast<std::size_t>(p.b)];
-    if (!x.box.overlaps(y.box)) continue;
-    if (same && p.a == p.b) {
-      if (x.is_leaf()) {
-        for (int i = x.first; i < x.first + x.count; ++i)
-          for (int j = i + 1; j < x.first + x.count; ++j)
-            if (!visit(a.leaf_faces()[static_cast<std::size_t>(i)], a.leaf_faces()[static_cast<std::size_t>(j)])) return;
-      } else {
-        stack.push_back({x.right, x.right});
-        stack.push_back({x.left, x.right});
-        stack.push_back({x.left, x.left});
-      }
-      continue;
-    }
-    if (x.is_leaf() && y.is_leaf()) {
-      for (int i = x.first; i < x.first + x.count; ++i)
-        for (int j = y.first; j < y.first + y.count; ++j)
-          if (!visit(a.leaf_faces()[static_cast<std::size_t>(i)], b.leaf_faces()[static_cast<std::size_t>(j)])) return;
-      continue;
-    }
-    // Descend into the larger box (or the only internal node).
-    const bool split_a = !x.is_leaf() && (y.is_leaf() || (x.box.hi - x.box.lo).squaredNorm() >= (y.box.hi - y.box.lo).squaredNorm());
-    if (split_a) {
-      stack.push_back({x.right, p.b});
-      stack.push_back({x.left, p.b});
-    } else {
-      stack.push_back({p.a, y.right});
-      stack.push_back({p.a, y.left});
-    }
-  }
-}
-
-}  // namespace
-
 bool mesh_faces_intersect(const TriangleBvh& bvh, int f, int g) {
   const auto& F = bvh.faces();
   std::array<int, 3> shared_in_f{}, shared_in_g{};
@@ -91,18 +38,19 @@ bool mesh_faces_intersect(const TriangleBvh& bvh, int f, int g) {
 
 namespace {
 
-IntersectingFaces self_intersections_from(const TriangleBvh& bvh, std::vector<NodePair> start, std::size_t max_pairs) {
+// Adds a pair; false (stop searching) once there are max_pairs.
+bool record_pair(IntersectingFaces& out, int f, int g, std::size_t max_pairs) {
+  out.pairs.emplace_back(f, g);
+  if (out.pairs.size() < max_pairs) return true;
+  out.truncated = true;
+  return false;
+}
+
+IntersectingFaces self_intersections_from(const TriangleBvh& bvh, std::vector<std::pair<int, int>> start, std::size_t max_pairs) {
   IntersectingFaces out;
-  traverse_pairs(bvh, bvh, true, std::move(start), [&](int f, int g) {
-    if (!bvh.face_box(f).overlaps(bvh.face_box(g))) return true;
-    if (mesh_faces_intersect(bvh, f, g)) {
-      out.pairs.emplace_back(std::min(f, g), std::max(f, g));
-      if (out.pairs.size() >= max_pairs) {
-        out.truncated = true;
-        return false;
-      }
-    }
-    return true;
+  traverse_face_pairs(bvh, bvh, true, std::move(start), [&](int f, int g) {
+    if (!bvh.face_box(f).overlaps(bvh.face_box(g)) || !mesh_faces_intersect(bvh, f, g)) return true;
+    return record_pair(out, std::min(f, g), std::max(f, g), max_pairs);
   });
   std::sort(out.pairs.begin(), out.pairs.end());
   return out;
@@ -137,16 +85,11 @@ IntersectingFaces merge_intersections(const IntersectingFaces& a, const Intersec
 
 IntersectingFaces intersecting_faces(const TriangleBvh& a, const TriangleBvh& b, std::size_t max_pairs) {
   IntersectingFaces out;
-  traverse_pairs(a, b, false, {{0, 0}}, [&](int f, int g) {
-    if (!a.face_box(f).overlaps(b.face_box(g))) return true;
-    if (triangles_intersect(a.corner(f, 0), a.corner(f, 1), a.corner(f, 2), b.corner(g, 0), b.corner(g, 1), b.corner(g, 2))) {
-      out.pairs.emplace_back(f, g);
-      if (out.pairs.size() >= max_pairs) {
-        out.truncated = true;
-        return false;
-      }
-    }
-    return true;
+  traverse_face_pairs(a, b, false, {{0, 0}}, [&](int f, int g) {
+    if (!a.face_box(f).overlaps(b.face_box(g)) ||
+        !triangles_intersect(a.corner(f, 0), a.corner(f, 1), a.corner(f, 2), b.corner(g, 0), b.corner(g, 1), b.corner(g, 2)))
+      return true;
+    return record_pair(out, f, g, max_pairs);
   });
   std::sort(out.pairs.begin(), out.pairs.end());
   return out;

@@ -332,44 +332,7 @@ SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap
     }
     return true;
   };
-  // Simultaneous traversal of the tree with itself; (i, j) and (j, i) visited once.
-  const auto& nodes = bvh.nodes();
-  const auto& leaf = bvh.leaf_faces();
-  std::vector<std::pair<int, int>> stack = {{0, 0}};
-  bool stop = false;
-  while (!stack.empty() && !stop) {
-    const auto [a, b] = stack.back();
-    stack.pop_back();
-    const BvhNode& x = nodes[static_cast<std::size_t>(a)];
-    const BvhNode& y = nodes[static_cast<std::size_t>(b)];
-    if (!x.box.overlaps(y.box)) continue;
-    if (a == b) {
-      if (x.is_leaf()) {
-        for (int i = x.first; i < x.first + x.count && !stop; ++i)
-          for (int j = i + 1; j < x.first + x.count && !stop; ++j)
-            stop = !visit(leaf[static_cast<std::size_t>(i)], leaf[static_cast<std::size_t>(j)]);
-      } else {
-        stack.push_back({x.right, x.right});
-        stack.push_back({x.left, x.right});
-        stack.push_back({x.left, x.left});
-      }
-      continue;
-    }
-    if (x.is_leaf() && y.is_leaf()) {
-      for (int i = x.first; i < x.first + x.count && !stop; ++i)
-        for (int j = y.first; j < y.first + y.count && !stop; ++j)
-          stop = !visit(leaf[static_cast<std::size_t>(i)], leaf[static_cast<std::size_t>(j)]);
-      continue;
-    }
-    const bool split_a = !x.is_leaf() && (y.is_leaf() || (x.box.hi - x.box.lo).squaredNorm() >= (y.box.hi - y.box.lo).squaredNorm());
-    if (split_a) {
-      stack.push_back({x.right, b});
-      stack.push_back({x.left, b});
-    } else {
-      stack.push_back({a, y.right});
-      stack.push_back({a, y.left});
-    }
-  }
+  traverse_face_pairs(bvh, bvh, true, {{0, 0}}, visit);
   out.first_face = first.first;
   out.second_face = first.second;
   out.candidate_pairs = std::min(candidates, max_candidates);
