@@ -103,7 +103,7 @@ int run_optimize(const Args& args) {
   ArgCursor cursor(args);
   std::string mesh_path, output, report_path, inner_path, outer_path, skeleton_path, preview_path, unit = "millimeter";
   bool quiet = false, timings_in_report = true, goal_given = false, unit_given = false;
-  OptimizeSettings settings = OptimizeSettings::defaults();
+  OptimizeOptions settings = OptimizeOptions::defaults();
   const double big = 1e12;
   PoseOptions pose_options;
   while (!cursor.done()) {

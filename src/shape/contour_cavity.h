@@ -39,10 +39,10 @@ struct ContourCavityOptions {
   std::int64_t max_nodes = std::int64_t{1} << 25;  // h grows when the box needs more nodes
   double min_shell_fraction = 1e-3;  // shells below this fraction of the void are filled
   int threads = 2;                 // 1..64; the result is the same for any count
-};
 
-// Empty when the options are valid, else what is wrong.
-std::string check_contour_cavity_options(const ContourCavityOptions& options);
+  // Empty when the options are valid, else what is wrong.
+  std::string check() const;
+};
 
 struct ContourCavity {
   bool ok = false;

@@ -129,7 +129,8 @@ bool parse_cavity_mode(const std::string& text, CavityMode& mode) {
   return false;
 }
 
-std::string check_optimize_settings(const OptimizeSettings& s) {
+std::string OptimizeOptions::check() const {
+  const OptimizeOptions& s = *this;
   if (s.k < 0) return "--k must be >= 1 or 'all'";
   auto finite_or_default = [](double v) { return std::isfinite(v); };
   for (double v : {s.wall, s.outer_max, s.margin, s.ground_tol, s.radius, s.penalty, s.fill_density, s.fluid_density,
@@ -145,11 +146,11 @@ std::string check_optimize_settings(const OptimizeSettings& s) {
   if (s.outer && s.bounds == BoundsMode::hard && s.k == 0) return "--k all with --bounds hard and --outer is not supported";
   if (s.threads < 1 || s.threads > 64) return "--threads must be in [1, 64]";
   if (s.max_correction_rounds < 0 || s.max_correction_rounds > 20) return "correction rounds must be in [0, 20]";
-  ContourCavityOptions cavity;
-  cavity.wall = 1.0;
-  cavity.cells_per_wall = s.cavity_cells_per_wall;
-  cavity.margin_cells = s.cavity_margin_cells;
-  if (const std::string problem = check_contour_cavity_options(cavity); !problem.empty()) return "cavity: " + problem;
+  ContourCavityOptions contour;
+  contour.wall = 1.0;
+  contour.cells_per_wall = s.cavity_cells_per_wall;
+  contour.margin_cells = s.cavity_margin_cells;
+  if (const std::string problem = contour.check(); !problem.empty()) return "cavity: " + problem;
   return check_al_params(s.solver);
 }
 
@@ -176,7 +177,7 @@ struct Frame {
 };
 
 // Empty when the frame and goal are set, else why the input does not allow the goal.
-std::string make_frame(const Mesh& input, const OptimizeSettings& settings, Frame& f) {
+std::string make_frame(const Mesh& input, const OptimizeOptions& settings, Frame& f) {
   const Eigen::Index n = input.V.rows();
   f.lo = input.V.colwise().minCoeff().transpose();
   f.hi = input.V.colwise().maxCoeff().transpose();
@@ -268,7 +269,7 @@ struct Band {
   }
 };
 
-std::string make_band(const Mesh& input, const OptimizeSettings& settings, const Frame& f, Band& b) {
+std::string make_band(const Mesh& input, const OptimizeOptions& settings, const Frame& f, Band& b) {
   const Eigen::Index n = input.V.rows();
   ContractionOptions contraction_options;
   contraction_options.threads = settings.threads;
@@ -305,7 +306,7 @@ std::string make_band(const Mesh& input, const OptimizeSettings& settings, const
 // or correction (the contoured cavity's moments) from where the last solve ended.
 class OffsetSolve {
  public:
-  OffsetSolve(const Mesh& input, const OptimizeSettings& settings, const Frame& f, Band& b,
+  OffsetSolve(const Mesh& input, const OptimizeOptions& settings, const Frame& f, Band& b,
               const Eigen::MatrixXd& basis, const ReducedOptions& options, const Progress& say)
       : input_(input), settings_(settings), f_(f), b_(b), basis_(basis), options_(options), say_(say) {}
 
@@ -434,7 +435,7 @@ class OffsetSolve {
   }
 
   const Mesh& input_;
-  const OptimizeSettings& settings_;
+  const OptimizeOptions& settings_;
   const Frame& f_;
   Band& b_;
   const Eigen::MatrixXd& basis_;
@@ -455,7 +456,7 @@ struct Cavity {
   Json json = Json::object();
 };
 
-Cavity make_cavity(const OptimizeSettings& settings, const Frame& f, const Band& b, OffsetSolve& solve,
+Cavity make_cavity(const OptimizeOptions& settings, const Frame& f, const Band& b, OffsetSolve& solve,
                    Json& timings, const Progress& say) {
   auto stage_start = Clock::now();
   Cavity c;
@@ -571,7 +572,7 @@ Cavity make_cavity(const OptimizeSettings& settings, const Frame& f, const Band&
 
 // Stage "report": every option with the value used, the frame, the field, the basis, the solver,
 // the input as it was, the cavity and the verified result.
-Json make_report(const OptimizeSettings& settings, const Frame& f, const Band& b, const Json& basis_json,
+Json make_report(const OptimizeOptions& settings, const Frame& f, const Band& b, const Json& basis_json,
                  const OffsetSolve& solve, const Cavity& cavity) {
   const Eigen::Index n = f.normalized.V.rows();
   Json report = Json::object();
@@ -666,7 +667,7 @@ Json make_report(const OptimizeSettings& settings, const Frame& f, const Band& b
 }
 
 // Why the result failed, starting with what happened to the solve.
-std::string failure_reason(const OptimizeSettings& settings, const Band& b, const OffsetSolve& solve,
+std::string failure_reason(const OptimizeOptions& settings, const Band& b, const OffsetSolve& solve,
                            const Verification& verification) {
   std::string why = verification.failures.empty() ? "unknown" : verification.failures.front();
   const AlResult& solved = solve.solved;
@@ -698,11 +699,11 @@ std::string failure_reason(const OptimizeSettings& settings, const Band& b, cons
 
 }  // namespace
 
-OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& settings, const Progress& progress) {
+OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settings, const Progress& progress) {
   auto say = [&](const std::string& line) {
     if (progress) progress(line);
   };
-  if (const std::string problem = check_optimize_settings(settings); !problem.empty())
+  if (const std::string problem = settings.check(); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
   const Eigen::Index n = input.V.rows();
   const int k = settings.k;
@@ -777,7 +778,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   reduced_options.bounds = settings.bounds;
   reduced_options.start_fraction = settings.start_fraction;
   reduced_options.threads = settings.threads;
-  if (const std::string problem_text = check_reduced_options(reduced_options); !problem_text.empty())
+  if (const std::string problem_text = reduced_options.check(); !problem_text.empty())
     return failure(OptimizeStatus::bad_input, problem_text);
   OffsetSolve solve(input, settings, f, b, basis, reduced_options, say);
   solve.run();

@@ -26,7 +26,7 @@ enum class CavityMode { automatic, offset, contour };
 const char* to_string(CavityMode mode);
 bool parse_cavity_mode(const std::string& text, CavityMode& mode);
 
-struct OptimizeSettings {
+struct OptimizeOptions {
   GoalKind goal = GoalKind::stand;
   int k = 36;                    // basis size; 0 means every vertex (`--k all`, paper eq. 1)
   BasisKind basis = BasisKind::Mass;
@@ -93,11 +93,11 @@ struct OptimizeSettings {
     p.clear_violation_factor = 1e4;
     return p;
   }
-  static OptimizeSettings defaults() { return OptimizeSettings(); }
-};
+  static OptimizeOptions defaults() { return OptimizeOptions(); }
 
-// Empty when the settings are valid, else a message naming the option.
-std::string check_optimize_settings(const OptimizeSettings& settings);
+  // Empty when the options are valid, else a message naming the option.
+  std::string check() const;
+};
 
 enum class OptimizeStatus {
   verified,       // goal met and the solid is valid
@@ -114,7 +114,7 @@ struct OptimizeResult {
   std::vector<std::string> warnings;
 };
 
-OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& settings,
+OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settings,
                                 const std::function<void(const std::string&)>& progress = {});
 
 }  // namespace offsetopt

@@ -204,7 +204,8 @@ bool optional_number(const Json& object, const char* key, double& out) {
 
 }  // namespace
 
-std::string check_preview_settings(const PreviewSettings& s) {
+std::string PreviewOptions::check() const {
+  const PreviewOptions& s = *this;
   if (!(s.view_height >= 50.0 && s.view_height <= 5000.0)) return "view_height must be in [50, 5000] px";
   if (!(s.views_width >= 150.0 && s.views_width <= 20000.0)) return "views_width must be in [150, 20000] px";
   if (!(s.marker_radius >= 1.0 && s.marker_radius <= 50.0)) return "marker_radius must be in [1, 50] px";
@@ -260,7 +261,7 @@ std::string preview_input_from_report(const Json& report, PreviewInput& input) {
   return {};
 }
 
-PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const PreviewSettings& settings) {
+PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const PreviewOptions& settings) {
   PreviewResult result;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     for (int k = 0; k < 3; ++k)
@@ -271,7 +272,7 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
   // Vertices no face uses are left out (the reader drops them too), so the picture drawn from a
   // result in memory and from its file read back are the same.
   const Mesh solid = without_unused_vertices(mesh);
-  if (const std::string problem = check_preview_settings(settings); !problem.empty()) {
+  if (const std::string problem = settings.check(); !problem.empty()) {
     result.message = problem;
     return result;
   }

@@ -28,15 +28,15 @@ inline constexpr const char* kPreviewCavityColour = "#ffd34d";
 inline constexpr const char* kPreviewComAfterColour = "#ff00ff";
 inline constexpr const char* kPreviewComBeforeColour = "#00b050";
 
-struct PreviewSettings {
+struct PreviewOptions {
   double view_height = 320.0;   // px: the tallest view
   double views_width = 900.0;   // px: the three views side by side, at most
   double marker_radius = 4.5;   // px
   int bisection_cap = 200;      // waterline search (float)
-};
 
-// Empty when the settings are usable, else what is wrong.
-std::string check_preview_settings(const PreviewSettings& settings);
+  // Empty when the options are usable, else what is wrong.
+  std::string check() const;
+};
 
 // What the picture needs besides the solid: the goal and its parameters as the optimize report
 // states them. Lengths in input units; a negative length means "not given".
@@ -71,6 +71,6 @@ struct PreviewResult {
 
 // Draws `solid` (outer shell(s) outward, cavity shells inward, as optimize writes it). The same
 // solid and input give the same bytes.
-PreviewResult preview_svg(const Mesh& solid, const PreviewInput& input, const PreviewSettings& settings = {});
+PreviewResult preview_svg(const Mesh& solid, const PreviewInput& input, const PreviewOptions& settings = {});
 
 }  // namespace offsetopt

@@ -11,7 +11,8 @@
 
 namespace offsetopt {
 
-std::string check_reduced_options(const ReducedOptions& options) {
+std::string ReducedOptions::check() const {
+  const ReducedOptions& options = *this;
   if (!(options.ramp_width > 0.0) || !std::isfinite(options.ramp_width)) return "ramp width must be > 0";
   if (!(options.outer_penalty >= 0.0) || !std::isfinite(options.outer_penalty)) return "penalty must be >= 0";
   if (!(options.overshoot_weight >= 0.0) || !std::isfinite(options.overshoot_weight)) return "overshoot weight must be >= 0";

@@ -57,9 +57,10 @@ struct ReducedOptions {
   // Each evaluation is cut into two fixed parts, run on two threads when this is > 1 and the mesh
   // has at least kMinVerticesForThreads vertices (the results are the same either way).
   int threads = 2;
-};
 
-std::string check_reduced_options(const ReducedOptions& options);
+  // Empty when the options are valid, else what is wrong.
+  std::string check() const;
+};
 
 constexpr long kMinVerticesForThreads = 2000;  // see the constructor
 

@@ -13,7 +13,7 @@ using namespace offsetopt;
 
 TEST_CASE("optimize: a solve cut off by its evaluation budget says so") {
   const Mesh bottle = make_demo_mesh("bottle");
-  OptimizeSettings settings = OptimizeSettings::defaults();
+  OptimizeOptions settings = OptimizeOptions::defaults();
   settings.goal = GoalKind::stand;
   settings.solver.max_evaluations = 4;
   const OptimizeResult r = optimize_offsets(bottle, settings);
@@ -26,7 +26,7 @@ TEST_CASE("optimize: a solve cut off by its evaluation budget says so") {
 
 TEST_CASE("optimize: repairs that make the goal unreachable say the first solve had met it") {
   const Mesh bottle = make_demo_mesh("bottle");
-  OptimizeSettings settings = OptimizeSettings::defaults();
+  OptimizeOptions settings = OptimizeOptions::defaults();
   settings.goal = GoalKind::stand;
   settings.repair_shrink = 0.01;
   settings.cavity = CavityMode::offset;  // repairs run only when the offset surface is written
