@@ -7,6 +7,7 @@
 
 #include "cli/cli_support.h"
 #include "cli/commands.h"
+#include "cli/optimize_report.h"
 #include "cli/pose_options.h"
 #include "cli/write_preview.h"
 #include "io/json.h"
@@ -231,14 +232,15 @@ int run_optimize(const Args& args) {
   report["vertices"] = static_cast<long long>(loaded.mesh.V.rows());
   report["faces"] = static_cast<long long>(loaded.mesh.F.rows());
   if (pose_options.any()) report["pose"] = posed.report;
-  for (const auto& item : result.report.items()) report[item.first] = item.second;
+  const Json run_report = optimize_report(settings, result);
+  for (const auto& item : run_report.items()) report[item.first] = item.second;
   Json outputs = Json::object();
   outputs["solid"] = output;
   outputs["inner"] = inner_path.empty() ? Json() : Json(inner_path);
   outputs["outer"] = outer_path.empty() ? Json() : Json(outer_path);
   outputs["skeleton"] = skeleton_path.empty() ? Json() : Json(skeleton_path);
   report["outputs"] = outputs;
-  Json timings = result.timings;
+  Json timings = stage_timings_json(result.timings);
   timings["load"] = load_seconds;
   timings["write"] = seconds_since(write_start);
   if (timings_in_report) report["timings"] = timings;

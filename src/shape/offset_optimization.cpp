@@ -29,23 +29,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-Json vec3(const Eigen::Vector3d& v) { return Json::array_of({v.x(), v.y(), v.z()}); }
-
-Json properties_json(const Vector10d& P) {
-  Json j = Json::object();
-  j["mass"] = P(kMass);
-  j["center_of_mass"] = Json::array_of({P(kCx), P(kCy), P(kCz)});
-  Json inertia = Json::object();
-  inertia["xx"] = P(kIxx);
-  inertia["yy"] = P(kIyy);
-  inertia["zz"] = P(kIzz);
-  inertia["xy"] = P(kIxy);
-  inertia["yz"] = P(kIyz);
-  inertia["zx"] = P(kIzx);
-  j["inertia"] = inertia;
-  return j;
-}
-
 // Algebraic least-squares sphere |x|² = 2 c·x + d through the vertices of the bottom part.
 bool fit_bottom_sphere(const Mesh& mesh, double zmin, double height, Eigen::Vector3d& center, double& radius) {
   for (double fraction : {0.25, 0.4, 0.6}) {
@@ -172,7 +155,7 @@ struct Frame {
   Stability stability_before;
   Mesh normalized;
   GoalSpec goal_input, goal;
-  Json goal_json = Json::object();
+  GoalSetup setup;
   Eigen::Vector3d to_frame(const Eigen::Vector3d& p) const { return (p - origin) * scale; }
 };
 
@@ -213,7 +196,7 @@ std::string make_frame(const Mesh& input, const OptimizeOptions& settings, Frame
   g.fluid_density = settings.fluid_density;
   g.target_volume = settings.target_volume;
   g.support_polygon = f.stability_before.support_polygon;
-  f.goal_json["name"] = to_string(settings.goal);
+  f.setup.kind = settings.goal;
   if (settings.goal == GoalKind::roly_poly) {
     Eigen::Vector3d center;
     double radius = settings.radius;
@@ -225,13 +208,13 @@ std::string make_frame(const Mesh& input, const OptimizeOptions& settings, Frame
       return "no sphere could be fitted to the bottom; give --radius";
     }
     g.axis_point = center;
-    f.goal_json["sphere_center"] = vec3(center);
-    f.goal_json["sphere_radius"] = radius;
+    f.setup.sphere_center = center;
+    f.setup.sphere_radius = radius;
   } else if (settings.goal == GoalKind::spin) {
     Eigen::Index lowest = 0;
     input.V.col(2).minCoeff(&lowest);
     g.axis_point = input.V.row(lowest).transpose();
-    f.goal_json["tip"] = vec3(g.axis_point);
+    f.setup.tip = g.axis_point;
   } else if (settings.goal == GoalKind::volume && settings.target_volume >= f.before(kMass)) {
     return "--target-volume " + format_double(settings.target_volume) + " is not below the object's volume " +
            format_double(f.before(kMass));
@@ -329,10 +312,8 @@ class OffsetSolve {
           find_surface_defects(outer, inner, b_.band.fixed, b_.thin, 0.5 * f_.wall, settings_.threads);
       if (defects.empty()) break;
       ++repair_rounds;
-      Json entry = Json::object();
-      entry["intersecting_vertices"] = static_cast<long long>(defects.intersecting_vertices.size());
-      entry["thin_wall_vertices"] = static_cast<long long>(defects.thin_wall_vertices.size());
-      repairs.push_back(entry);
+      repairs.push_back({static_cast<long long>(defects.intersecting_vertices.size()),
+                         static_cast<long long>(defects.thin_wall_vertices.size())});
       say_("repair " + std::to_string(repair_rounds) + ": " + std::to_string(defects.intersecting_vertices.size()) +
            " vertices on folds, " + std::to_string(defects.thin_wall_vertices.size()) + " on thin walls");
       // A fold spans the faces around its vertices: their one-ring neighbours are tightened too,
@@ -389,7 +370,7 @@ class OffsetSolve {
   int variables = 0, repair_rounds = 0, total_evaluations = 0;
   int last_round_met = -1;          // the last solve that met the goal's constraints
   bool constraints_met = false;
-  Json repairs = Json::array();
+  std::vector<RepairRound> repairs;
 
  private:
   AlParams params(int round) const {
@@ -451,13 +432,12 @@ class OffsetSolve {
 // difference the contour made, warm-started, until the written solid verifies.
 struct Cavity {
   Mesh written;                // the cavity's shells, normals out of the void
-  bool contoured = false;
   Verification verification;
-  Json json = Json::object();
+  CavitySummary summary;
 };
 
 Cavity make_cavity(const OptimizeOptions& settings, const Frame& f, const Band& b, OffsetSolve& solve,
-                   Json& timings, const Progress& say) {
+                   StageTimings& timings, const Progress& say) {
   auto stage_start = Clock::now();
   Cavity c;
   VerifyInput verify_input;
@@ -471,13 +451,11 @@ Cavity make_cavity(const OptimizeOptions& settings, const Frame& f, const Band& 
   verify_input.bound_violation = solve.bound_violation();
   verify_input.threads = settings.threads;
   c.verification = verify_offsets(verify_input);
-  timings["verify"] = seconds_since(stage_start);
-  c.json["mode"] = to_string(settings.cavity);
-  c.json["offset_goal_met"] = c.verification.goal_met;
-  c.json["offset_valid"] = c.verification.valid;
-  Json offset_failures = Json::array();
-  for (const auto& failure_text : c.verification.failures) offset_failures.push_back(failure_text);
-  c.json["offset_failures"] = offset_failures;
+  timings.verify = seconds_since(stage_start);
+  c.summary.mode = settings.cavity;
+  c.summary.offset_goal_met = c.verification.goal_met;
+  c.summary.offset_valid = c.verification.valid;
+  c.summary.offset_failures = c.verification.failures;
   c.written = solve.inner;
   const bool offset_verified = c.verification.goal_met && c.verification.valid;
   const bool want_contour = settings.cavity == CavityMode::contour ||
@@ -494,7 +472,7 @@ Cavity make_cavity(const OptimizeOptions& settings, const Frame& f, const Band& 
     cavity_options.cells_per_wall = settings.cavity_cells_per_wall;
     cavity_options.margin_cells = settings.cavity_margin_cells;
     cavity_options.threads = settings.threads;
-    Json rounds = Json::array();
+    std::vector<ContourRound>& rounds = c.summary.rounds.emplace();
     double contour_seconds = 0.0;
     for (int round = 0;; ++round) {
       const auto contour_start = Clock::now();
@@ -524,26 +502,22 @@ Cavity make_cavity(const OptimizeOptions& settings, const Frame& f, const Band& 
         c.verification = verify_offsets(contour_input);
       }
       const double cube = f.scale * f.scale * f.scale;
-      Json entry = Json::object();
-      Json delta_json = Json::array();
-      for (int r = 0; r < 10; ++r) delta_json.push_back(delta(r));
-      entry["delta_in_frame"] = delta_json;
-      entry["void_volume_offset"] = solve.eval.inner_integrals(kIntVolume) / cube;
-      entry["void_volume_contour"] = (solve.eval.inner_integrals(kIntVolume) + delta(kIntVolume)) / cube;
-      entry["grid"] = Json::array_of({static_cast<double>(contoured.grid.nx), static_cast<double>(contoured.grid.ny),
-                                      static_cast<double>(contoured.grid.nz)});
-      entry["spacing"] = contoured.grid.spacing;
-      entry["contoured_cells"] = static_cast<long long>(contoured.active_cells);
-      entry["distance_nodes"] = static_cast<long long>(contoured.distance_nodes);
-      entry["shells"] = contoured.shells;
-      entry["shells_filled"] = contoured.shells_dropped;
-      entry["filled_volume"] = contoured.dropped_volume;
-      entry["vertices_moved_for_wall"] = contoured.vertices_moved_for_wall;
-      entry["vertices"] = static_cast<long long>(contoured.cavity.V.rows());
-      entry["faces"] = static_cast<long long>(contoured.cavity.F.rows());
-      entry["goal_met"] = c.verification.goal_met;
-      entry["valid"] = will_correct ? Json() : Json(c.verification.valid);
-      rounds.push_back(entry);
+      ContourRound& entry = rounds.emplace_back();
+      entry.delta_in_frame = delta;
+      entry.void_volume_offset = solve.eval.inner_integrals(kIntVolume) / cube;
+      entry.void_volume_contour = (solve.eval.inner_integrals(kIntVolume) + delta(kIntVolume)) / cube;
+      entry.grid = Eigen::Vector3i(contoured.grid.nx, contoured.grid.ny, contoured.grid.nz);
+      entry.spacing = contoured.grid.spacing;
+      entry.contoured_cells = contoured.active_cells;
+      entry.distance_nodes = contoured.distance_nodes;
+      entry.shells = contoured.shells;
+      entry.shells_filled = contoured.shells_dropped;
+      entry.filled_volume = contoured.dropped_volume;
+      entry.vertices_moved_for_wall = contoured.vertices_moved_for_wall;
+      entry.vertices = static_cast<long long>(contoured.cavity.V.rows());
+      entry.faces = static_cast<long long>(contoured.cavity.F.rows());
+      entry.goal_met = c.verification.goal_met;
+      if (!will_correct) entry.valid = c.verification.valid;
       say("cavity round " + std::to_string(round) + ": " + std::to_string(contoured.active_cells) + " cells contoured, " +
           std::to_string(contoured.shells) + " shells, goal " + (c.verification.goal_met ? "met" : "not met") + ", " +
           (will_correct ? "corrected next" : c.verification.valid ? "valid" : "not valid"));
@@ -553,117 +527,56 @@ Cavity make_cavity(const OptimizeOptions& settings, const Frame& f, const Band& 
       if (!will_correct) break;
       solve.correct(delta, round + 1);
     }
-    c.json["rounds"] = rounds;
-    timings["contour"] = contour_seconds;
-    timings["correct"] = seconds_since(stage_start) - contour_seconds;
+    timings.contour = contour_seconds;
+    timings.correct = seconds_since(stage_start) - contour_seconds;
   }
-  c.contoured = want_contour && problem.empty();
-  c.json["written"] = c.contoured ? "contour" : "offset";
+  c.summary.contoured = want_contour && problem.empty();
   if (!problem.empty()) {
     c.verification.valid = false;
     c.verification.failures.insert(c.verification.failures.begin(), problem);
-    Json failures = Json::array();
-    for (const auto& failure_text : c.verification.failures) failures.push_back(failure_text);
-    c.verification.metrics["failures"] = failures;
-    c.verification.metrics["valid"] = false;
   }
   return c;
 }
 
-// Stage "report": every option with the value used, the frame, the field, the basis, the solver,
-// the input as it was, the cavity and the verified result.
-Json make_report(const OptimizeOptions& settings, const Frame& f, const Band& b, const Json& basis_json,
-                 const OffsetSolve& solve, const Cavity& cavity) {
-  const Eigen::Index n = f.normalized.V.rows();
-  Json report = Json::object();
-  Json params = Json::object();
-  params["goal"] = to_string(settings.goal);
-  params["k"] = settings.k == 0 ? Json("all") : Json(settings.k);
-  params["basis"] = to_string(settings.basis);
-  params["bounds"] = settings.bounds == BoundsMode::clamp ? "clamp" : "hard";
-  params["outer"] = settings.outer;
-  params["wall"] = f.wall;
-  params["outer_max"] = f.outer_max;
-  params["penalty"] = settings.penalty;
-  params["margin"] = f.margin;
-  params["ground_tol"] = f.ground_tol;
-  params["fill_density"] = settings.fill_density;
-  params["fluid_density"] = settings.goal == GoalKind::floating ? Json(settings.fluid_density) : Json();
-  params["target_volume"] = settings.goal == GoalKind::volume ? Json(settings.target_volume) : Json();
-  params["radius"] = settings.radius > 0 ? Json(settings.radius) : Json();
-  params["fix"] = settings.fix.kind == FixRegion::Kind::none ? Json() : Json(settings.fix.text);
-  params["gap"] = settings.gap;
-  params["ramp"] = settings.ramp;
-  params["start_fraction"] = settings.start_fraction;
-  params["repair_ring"] = settings.repair_ring;
-  params["cavity"] = to_string(settings.cavity);
-  report["parameters"] = params;
-  report["goal"] = f.goal_json;
-  Json frame = Json::object();
-  frame["origin"] = vec3(f.origin);
-  frame["scale"] = f.scale;
-  frame["diagonal"] = f.diag;
-  report["frame"] = frame;
-
-  Json field_json = Json::object();
-  field_json["contraction_steps"] = b.contraction.steps;
-  field_json["contraction_status"] = to_string(b.contraction.status);
-  field_json["volume_ratio"] = b.contraction.volume_ratio;
-  field_json["shortened"] = b.field.shortened_count;
-  field_json["fallback"] = b.field.fallback_count;
-  field_json["fixed"] = b.fixed_count;
-  field_json["parts_left_solid"] = b.thin_count_initial;
-  field_json["parts_left_solid_after_repairs"] = b.thin_count;
-  int at_lower = 0, at_upper = 0;
-  const ReducedProblem::Evaluation& e = solve.eval;
-  for (Eigen::Index i = 0; i < n; ++i) {
+// Stage "report": the frame, the field, the solver and the input as it was, as values.
+FieldSummary field_summary(const OptimizeOptions& settings, const Band& b, const ReducedProblem::Evaluation& e) {
+  FieldSummary field;
+  field.contraction_steps = b.contraction.steps;
+  field.contraction_status = b.contraction.status;
+  field.volume_ratio = b.contraction.volume_ratio;
+  field.shortened = b.field.shortened_count;
+  field.fallback = b.field.fallback_count;
+  field.fixed = b.fixed_count;
+  field.left_solid = b.thin_count_initial;
+  field.left_solid_after_repairs = b.thin_count;
+  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(b.band.fixed.size()); ++i) {
     if (b.band.fixed[static_cast<std::size_t>(i)] || b.thin[static_cast<std::size_t>(i)]) continue;
     const double span = settings.ramp;
-    if (e.inner_offset(i) >= b.band.upper(i) - span) ++at_upper;
-    else if (e.inner_offset(i) <= std::min(b.band.lower(i) - e.outer_offset(i), b.band.upper(i)) + span) ++at_lower;
+    if (e.inner_offset(i) >= b.band.upper(i) - span) ++field.clamped_at_skeleton;
+    else if (e.inner_offset(i) <= std::min(b.band.lower(i) - e.outer_offset(i), b.band.upper(i)) + span) ++field.clamped_at_wall;
   }
-  field_json["clamped_at_wall"] = at_lower;
-  field_json["clamped_at_skeleton"] = at_upper;
-  report["offset_field"] = field_json;
-  report["basis"] = basis_json;
+  return field;
+}
 
-  Json solver = Json::object();
-  solver["status"] = to_string(solve.solved.status);
-  solver["objective"] = e.objective;
-  solver["outer_iterations"] = solve.solved.outer_iterations;
-  solver["inner_iterations"] = solve.solved.inner_iterations;
-  solver["evaluations"] = solve.total_evaluations;
-  solver["repair_rounds"] = solve.repair_rounds;
-  solver["repairs"] = solve.repairs;
-  solver["max_violation"] = solve.solved.max_violation;
-  solver["variables"] = solve.variables;
-  Json constraints = Json::array();
-  auto add_rows = [&](const std::vector<std::string>& names, const Eigen::VectorXd& values, const char* type) {
-    for (std::size_t r = 0; r < names.size(); ++r) {
-      Json c = Json::object();
-      c["name"] = names[r];
-      c["type"] = type;
-      c["value"] = values(static_cast<Eigen::Index>(r));
-      constraints.push_back(c);
-    }
+SolverSummary solver_summary(const Frame& f, const OffsetSolve& solve) {
+  SolverSummary solver;
+  const ReducedProblem::Evaluation& e = solve.eval;
+  solver.status = solve.solved.status;
+  solver.objective = e.objective;
+  solver.outer_iterations = solve.solved.outer_iterations;
+  solver.inner_iterations = solve.solved.inner_iterations;
+  solver.evaluations = solve.total_evaluations;
+  solver.repair_rounds = solve.repair_rounds;
+  solver.repairs = solve.repairs;
+  solver.max_violation = solve.solved.max_violation;
+  solver.variables = solve.variables;
+  auto add_rows = [&](const std::vector<std::string>& names, const Eigen::VectorXd& values, bool equality) {
+    for (std::size_t r = 0; r < names.size(); ++r)
+      solver.constraints.push_back({names[r], equality, values(static_cast<Eigen::Index>(r))});
   };
-  add_rows(goal_equality_names(f.goal), e.goal.equality, "= 0");
-  add_rows(goal_inequality_names(f.goal), e.goal.inequality, "<= 0");
-  solver["constraints_in_frame"] = constraints;
-  report["solver"] = solver;
-  report["before"] = properties_json(f.before);
-  report["before"]["stability"] = Json::object();
-  report["before"]["stability"]["com_margin"] = f.stability_before.com_margin;
-  report["before"]["stability"]["stands"] = f.stability_before.stands;
-  // The input's own defects: the written solid keeps its outer surface, so they are the input's,
-  // not the cavity's (the cavity's own intersections are counted in "after").
-  report["before"]["self_intersecting_pairs"] = b.input_self.pairs;
-  report["before"]["self_intersections_truncated"] = b.input_self.truncated;
-  report["cavity"] = cavity.json;
-  report["after"] = cavity.verification.metrics;
-  report["goal_met"] = cavity.verification.goal_met;
-  report["valid"] = cavity.verification.valid;
-  return report;
+  add_rows(goal_equality_names(f.goal), e.goal.equality, true);
+  add_rows(goal_inequality_names(f.goal), e.goal.inequality, false);
+  return solver;
 }
 
 // Why the result failed, starting with what happened to the solve.
@@ -709,13 +622,13 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settin
   const int k = settings.k;
   if (k >= n) return failure(OptimizeStatus::bad_input, "--k " + std::to_string(k) + " is not below the vertex count " + std::to_string(n));
 
-  Json timings = Json::object();
+  StageTimings timings;
   auto stage_start = Clock::now();
   const auto total_start = stage_start;
   Frame f;
   if (const std::string problem = make_frame(input, settings, f); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
-  timings["frame"] = seconds_since(stage_start);
+  timings.frame = seconds_since(stage_start);
 
   // The basis needs the mesh alone, so it is computed alongside the skeleton. Both give the same
   // bits on any number of threads, so running them together changes no result. The future's
@@ -750,25 +663,26 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settin
   Band b;
   if (const std::string problem = make_band(input, settings, f, b); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
-  timings["skeleton"] = seconds_since(stage_start);
+  timings.skeleton = seconds_since(stage_start);
 
   // Basis: its own seconds, which overlap the skeleton's.
   Eigen::MatrixXd basis;
-  Json basis_json = Json::object();
-  basis_json["kind"] = k == 0 ? "identity" : to_string(settings.basis);
-  basis_json["k"] = k == 0 ? static_cast<int>(n) : k;
+  BasisSummary basis_summary;
+  basis_summary.identity = k == 0;
+  basis_summary.kind = settings.basis;
+  basis_summary.k = k == 0 ? static_cast<int>(n) : k;
   double basis_seconds = 0.0;
   if (k > 0) {
     BasisOutcome outcome = basis_future.get();
     basis_seconds = outcome.seconds;
     const LanczosResult& harmonics = outcome.harmonics;
-    basis_json["status"] = to_string(harmonics.status);
-    basis_json["largest_eigenvalue"] = harmonics.eigenvalues.size() ? harmonics.eigenvalues(harmonics.eigenvalues.size() - 1) : 0.0;
+    basis_summary.status = harmonics.status;
+    basis_summary.largest_eigenvalue = harmonics.eigenvalues.size() ? harmonics.eigenvalues(harmonics.eigenvalues.size() - 1) : 0.0;
     if (harmonics.eigenvectors.cols() != k)
       return failure(OptimizeStatus::bad_input, "the eigensolver returned no basis: " + harmonics.message);
     basis = harmonics.eigenvectors;
   }
-  timings["basis"] = basis_seconds;
+  timings.basis = basis_seconds;
 
   stage_start = Clock::now();
   ReducedOptions reduced_options;
@@ -782,24 +696,32 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settin
     return failure(OptimizeStatus::bad_input, problem_text);
   OffsetSolve solve(input, settings, f, b, basis, reduced_options, say);
   solve.run();
-  timings["solve"] = seconds_since(stage_start);
+  timings.solve = seconds_since(stage_start);
 
   const Cavity cavity = make_cavity(settings, f, b, solve, timings, say);
-  timings["total"] = seconds_since(total_start);
+  timings.total = seconds_since(total_start);
 
   OptimizeResult result;
   result.outer = solve.outer;
   result.inner = cavity.written;
-  result.printable = cavity.contoured ? hollow_solid(solve.outer, cavity.written)
+  result.printable = cavity.summary.contoured ? hollow_solid(solve.outer, cavity.written)
                                       : printable_solid(solve.outer, cavity.written, b.band.fixed);
   result.skeleton = Mesh{b.contraction.V, input.F};
-  result.report = make_report(settings, f, b, basis_json, solve, cavity);
+  result.goal = f.setup;
+  result.frame = {f.origin, f.scale, f.diag, f.wall, f.outer_max, f.margin, f.ground_tol};
+  result.field = field_summary(settings, b, solve.eval);
+  result.basis = basis_summary;
+  result.solver = solver_summary(f, solve);
+  result.before = {f.before, f.stability_before.com_margin, f.stability_before.stands, b.input_self.pairs,
+                   b.input_self.truncated};
+  result.cavity = cavity.summary;
+  result.after = cavity.verification;
   result.timings = timings;
   // The input's own crossings are named where it is loaded (cli/cli_support.h, load_input); the
   // report keeps their count, and the verification counts only the cavity's.
   if (b.thin_count > 0)
     result.warnings.push_back(std::to_string(b.thin_count) + " vertices lie in parts thinner than two walls" +
-                              (cavity.contoured ? "; those parts stay solid" : ", where the offset surface leaves less than the wall"));
+                              (cavity.summary.contoured ? "; those parts stay solid" : ", where the offset surface leaves less than the wall"));
   if (b.field.fallback_count > 0)
     result.warnings.push_back(std::to_string(b.field.fallback_count) + " vertices move along the inward normal (skeleton direction unusable or too shallow)");
   const Verification& verification = cavity.verification;
@@ -817,7 +739,6 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settin
   } else {
     result.status = OptimizeStatus::goal_not_met;
     result.message = failure_reason(settings, b, solve, verification);
-    result.report["why"] = result.message;
   }
   return result;
 }

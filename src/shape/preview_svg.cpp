@@ -180,28 +180,6 @@ Eigen::Vector2d pivot_point(const Stability& st, const Eigen::Vector2d& c) {
   return a + t * (b - a);
 }
 
-bool read_vec3(const Json& j, Eigen::Vector3d& out) {
-  if (j.type() != Json::Type::Array || j.size() != 3) return false;
-  for (std::size_t i = 0; i < 3; ++i) {
-    const Json& e = j.at(i);
-    if (e.type() != Json::Type::Number && e.type() != Json::Type::Integer) return false;
-    out(static_cast<Eigen::Index>(i)) = e.as_number();
-    if (!std::isfinite(out(static_cast<Eigen::Index>(i)))) return false;
-  }
-  return true;
-}
-
-bool is_number(const Json& j) { return j.type() == Json::Type::Number || j.type() == Json::Type::Integer; }
-
-// A number field of `object`: absent or null leaves `out` alone; anything else but a finite
-// number is an error.
-bool optional_number(const Json& object, const char* key, double& out) {
-  if (!object.contains(key) || object.at(key).is_null()) return true;
-  if (!is_number(object.at(key))) return false;
-  out = object.at(key).as_number();
-  return std::isfinite(out);
-}
-
 }  // namespace
 
 std::string PreviewOptions::check() const {
@@ -210,54 +188,6 @@ std::string PreviewOptions::check() const {
   if (!(s.views_width >= 150.0 && s.views_width <= 20000.0)) return "views_width must be in [150, 20000] px";
   if (!(s.marker_radius >= 1.0 && s.marker_radius <= 50.0)) return "marker_radius must be in [1, 50] px";
   if (s.bisection_cap < 1 || s.bisection_cap > 10000) return "bisection_cap must be in [1, 10000]";
-  return {};
-}
-
-std::string preview_input_from_report(const Json& report, PreviewInput& input) {
-  if (report.type() != Json::Type::Object) return "the report is not a JSON object";
-  if (!report.contains("parameters") || report.at("parameters").type() != Json::Type::Object)
-    return "the report has no 'parameters' object";
-  const Json& parameters = report.at("parameters");
-  if (!parameters.contains("goal") || parameters.at("goal").type() != Json::Type::String)
-    return "the report has no 'parameters.goal' string";
-  if (!parse_goal_kind(parameters.at("goal").as_string(), input.goal))
-    return "unknown goal '" + parameters.at("goal").as_string() + "' in 'parameters.goal'";
-  for (const auto& [key, target] : {std::pair<const char*, double*>{"margin", &input.margin},
-                                    {"ground_tol", &input.ground_tol},
-                                    {"fill_density", &input.fill_density},
-                                    {"fluid_density", &input.fluid_density},
-                                    {"target_volume", &input.target_volume}})
-    if (!optional_number(parameters, key, *target)) return std::string("'parameters.") + key + "' is not a finite number";
-  if (input.margin < 0.0) return "'parameters.margin' is negative";
-  if (!(input.fill_density > 0.0)) return "'parameters.fill_density' must be positive";
-  if (input.goal == GoalKind::floating && !(input.fluid_density > 0.0))
-    return "goal float needs a positive 'parameters.fluid_density'";
-  if (report.contains("before") && report.at("before").type() == Json::Type::Object &&
-      report.at("before").contains("center_of_mass")) {
-    if (!read_vec3(report.at("before").at("center_of_mass"), input.before_com))
-      return "'before.center_of_mass' is not three finite numbers";
-    input.has_before_com = true;
-  }
-  if (report.contains("goal") && report.at("goal").type() == Json::Type::Object) {
-    const Json& goal = report.at("goal");
-    if (goal.contains("sphere_center")) {
-      if (!read_vec3(goal.at("sphere_center"), input.sphere_center)) return "'goal.sphere_center' is not three finite numbers";
-      if (!goal.contains("sphere_radius") || !is_number(goal.at("sphere_radius")) ||
-          !(goal.at("sphere_radius").as_number() > 0.0) || !std::isfinite(goal.at("sphere_radius").as_number()))
-        return "'goal.sphere_radius' is not a positive number";
-      input.sphere_radius = goal.at("sphere_radius").as_number();
-      input.has_sphere = true;
-    }
-    if (goal.contains("tip")) {
-      if (!read_vec3(goal.at("tip"), input.tip)) return "'goal.tip' is not three finite numbers";
-      input.has_tip = true;
-    }
-  }
-  if (report.contains("after") && report.at("after").type() == Json::Type::Object) {
-    double v = -1.0;
-    if (!optional_number(report.at("after"), "void_volume", v)) return "'after.void_volume' is not a finite number";
-    input.void_volume = v;
-  }
   return {};
 }
 

@@ -16,7 +16,6 @@
 
 #include <Eigen/Core>
 
-#include "io/json.h"
 #include "mesh/mesh.h"
 #include "shape/goal.h"
 
@@ -39,7 +38,7 @@ struct PreviewOptions {
 };
 
 // What the picture needs besides the solid: the goal and its parameters as the optimize report
-// states them. Lengths in input units; a negative length means "not given".
+// states them (cli/write_preview.h reads them from a report). Lengths in input units; a negative length means "not given".
 struct PreviewInput {
   GoalKind goal = GoalKind::stand;
   double margin = 0.0;
@@ -56,10 +55,6 @@ struct PreviewInput {
   Eigen::Vector3d tip = Eigen::Vector3d::Zero();
   double void_volume = -1.0;     // the report's after.void_volume; negative: compute from the shells
 };
-
-// Reads a PreviewInput from an optimize report (parameters, goal, before, after). Returns an
-// empty string, or one line naming the missing or malformed field.
-std::string preview_input_from_report(const Json& report, PreviewInput& input);
 
 enum class PreviewStatus { ok, bad_input };
 

@@ -19,8 +19,9 @@ TEST_CASE("optimize: a solve cut off by its evaluation budget says so") {
   const OptimizeResult r = optimize_offsets(bottle, settings);
   MESSAGE(r.message);
   CHECK(r.status == OptimizeStatus::goal_not_met);
-  CHECK(r.report.at("solver").at("status").as_string() == "max-evaluations");
-  CHECK(r.report.at("solver").at("evaluations").as_number() <= 4);
+  CHECK(r.solver.status == AlStatus::MaxEvaluations);
+  CHECK(std::string(to_string(r.solver.status)) == "max-evaluations");
+  CHECK(r.solver.evaluations <= 4);
   CHECK(r.message.find("the solver used its 4 evaluations before meeting the constraints") == 0);
 }
 
@@ -33,6 +34,7 @@ TEST_CASE("optimize: repairs that make the goal unreachable say the first solve 
   const OptimizeResult r = optimize_offsets(bottle, settings);
   MESSAGE(r.message);
   CHECK(r.status == OptimizeStatus::goal_not_met);
-  CHECK(r.report.at("solver").at("repair_rounds").as_number() >= 1);
+  CHECK(r.solver.repair_rounds >= 1);
+  CHECK(r.solver.repairs.size() == static_cast<std::size_t>(r.solver.repair_rounds));
   CHECK(r.message.find("the constraints were met before repair round") == 0);
 }
