@@ -95,8 +95,8 @@ Json field_json(const FieldSummary& field) {
   j["fallback"] = field.fallback;
   j["fixed"] = field.fixed;
   // The report's name for vertices in parts left solid.
-  j["parts_left_solid"] = field.left_solid;
-  j["parts_left_solid_after_repairs"] = field.left_solid_after_repairs;
+  j["parts_left_solid"] = field.left_solid_vertices;
+  j["parts_left_solid_after_repairs"] = field.left_solid_vertices_after_repairs;
   j["clamped_at_wall"] = field.clamped_at_wall;
   j["clamped_at_skeleton"] = field.clamped_at_skeleton;
   return j;

@@ -238,16 +238,16 @@ struct Band {
   OffsetField field;
   OffsetBand band;
   int fixed_count = 0;
-  std::vector<char> thin;          // per vertex: a part left solid (the band collapsed)
-  int thin_count = 0, thin_count_initial = 0;
+  std::vector<char> left_solid;    // per vertex: in a part left solid (an empty band, lower >= upper)
+  int left_solid_count = 0, left_solid_count_initial = 0;
 
-  void mark_thin() {
-    thin_count = 0;
-    thin.assign(band.fixed.size(), 0);
-    for (std::size_t i = 0; i < thin.size(); ++i) {
+  void mark_left_solid() {
+    left_solid_count = 0;
+    left_solid.assign(band.fixed.size(), 0);
+    for (std::size_t i = 0; i < left_solid.size(); ++i) {
       const Eigen::Index v = static_cast<Eigen::Index>(i);
-      thin[i] = !band.fixed[i] && band.lower(v) >= band.upper(v);
-      thin_count += thin[i];
+      left_solid[i] = !band.fixed[i] && band.lower(v) >= band.upper(v);
+      left_solid_count += left_solid[i];
     }
   }
 };
@@ -280,8 +280,8 @@ std::string make_band(const Mesh& input, const OptimizeOptions& settings, const 
       band.outer_limit(i) =
           input.V(i, 2) <= f.zmin + 2.0 * f.outer_max + f.ground_tol ? 0.0 : f.outer_max * f.scale;
   }
-  b.mark_thin();
-  b.thin_count_initial = b.thin_count;
+  b.mark_left_solid();
+  b.left_solid_count_initial = b.left_solid_count;
   return "";
 }
 
@@ -309,7 +309,7 @@ class OffsetSolve {
       if (solve(round)) last_round_met = round;
       if (round == max_repair_rounds || !constraints_met) break;
       const SurfaceDefects defects =
-          find_surface_defects(outer, inner, b_.band.fixed, b_.thin, 0.5 * f_.wall, settings_.threads);
+          find_surface_defects(outer, inner, b_.band.fixed, b_.left_solid, 0.5 * f_.wall, settings_.threads);
       if (defects.empty()) break;
       ++repair_rounds;
       repairs.push_back({static_cast<long long>(defects.intersecting_vertices.size()),
@@ -335,7 +335,7 @@ class OffsetSolve {
         if (tighten[static_cast<std::size_t>(v)]) band.upper(v) *= settings_.repair_shrink;
       band.upper = lipschitz_envelope(f_.normalized, band.upper, settings_.bound_slope);
       for (int v : defects.thin_wall_vertices) band.lower(v) += 0.5 * f_.wall * f_.scale;
-      b_.mark_thin();
+      b_.mark_left_solid();
     }
   }
 
@@ -547,10 +547,10 @@ FieldSummary field_summary(const OptimizeOptions& settings, const Band& b, const
   field.shortened = b.field.shortened_count;
   field.fallback = b.field.fallback_count;
   field.fixed = b.fixed_count;
-  field.left_solid = b.thin_count_initial;
-  field.left_solid_after_repairs = b.thin_count;
+  field.left_solid_vertices = b.left_solid_count_initial;
+  field.left_solid_vertices_after_repairs = b.left_solid_count;
   for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(b.band.fixed.size()); ++i) {
-    if (b.band.fixed[static_cast<std::size_t>(i)] || b.thin[static_cast<std::size_t>(i)]) continue;
+    if (b.band.fixed[static_cast<std::size_t>(i)] || b.left_solid[static_cast<std::size_t>(i)]) continue;
     const double span = settings.ramp;
     if (e.inner_offset(i) >= b.band.upper(i) - span) ++field.clamped_at_skeleton;
     else if (e.inner_offset(i) <= std::min(b.band.lower(i) - e.outer_offset(i), b.band.upper(i)) + span) ++field.clamped_at_wall;
@@ -586,9 +586,9 @@ std::string failure_reason(const OptimizeOptions& settings, const Band& b, const
   const AlResult& solved = solve.solved;
   const bool constraints_unmet =
       solved.status == AlStatus::Infeasible || solved.max_violation > 100.0 * settings.solver.feasibility_tolerance;
-  if (settings.bounds == BoundsMode::hard && b.thin_count_initial > 0)
+  if (settings.bounds == BoundsMode::hard && b.left_solid_count_initial > 0)
     return std::string("the per-vertex bounds cannot be met") + (settings.k == 0 ? ": " : " in the basis: ") +
-           std::to_string(b.thin_count_initial) +
+           std::to_string(b.left_solid_count_initial) +
            " vertices lie in parts thinner than two walls, where no offset is both above the wall and below the "
            "skeleton (try --bounds clamp); " + why;
   if (solved.status == AlStatus::InvalidInput || solved.status == AlStatus::NumericalIssue)
@@ -719,8 +719,9 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settin
   result.timings = timings;
   // The input's own crossings are named where it is loaded (cli/cli_support.h, load_input); the
   // report keeps their count, and the verification counts only the cavity's.
-  if (b.thin_count > 0)
-    result.warnings.push_back(std::to_string(b.thin_count) + " vertices lie in parts thinner than two walls" +
+  // "Parts thinner than two walls" is the users' wording for parts left solid (kept as it was).
+  if (b.left_solid_count > 0)
+    result.warnings.push_back(std::to_string(b.left_solid_count) + " vertices lie in parts thinner than two walls" +
                               (cavity.summary.contoured ? "; those parts stay solid" : ", where the offset surface leaves less than the wall"));
   if (b.field.fallback_count > 0)
     result.warnings.push_back(std::to_string(b.field.fallback_count) + " vertices move along the inward normal (skeleton direction unusable or too shallow)");

@@ -129,7 +129,9 @@ struct FrameSummary {
   double wall = 0.0, outer_max = 0.0, margin = 0.0, ground_tol = 0.0;
 };
 
-// The meso-skeleton and the offset field (vertex counts).
+// The meso-skeleton and the offset field (vertex counts). A part left solid is one thinner than
+// two walls: its band is empty (the wall's lower bound at or above the skeleton's upper one), so it
+// keeps no cavity.
 struct FieldSummary {
   int contraction_steps = 0;
   ContractionStatus contraction_status = ContractionStatus::step_cap;
@@ -137,8 +139,8 @@ struct FieldSummary {
   int shortened = 0;                // upper bounds shortened where the segment leaves the solid
   int fallback = 0;                 // moving along the inward normal
   int fixed = 0;                    // in the --fix region
-  int left_solid = 0;               // in parts left solid (the band collapsed), before repairs
-  int left_solid_after_repairs = 0;
+  int left_solid_vertices = 0;      // in parts left solid, before repairs
+  int left_solid_vertices_after_repairs = 0;
   int clamped_at_wall = 0;          // final inner offsets within a ramp of the wall ...
   int clamped_at_skeleton = 0;      // ... or of the skeleton
 };

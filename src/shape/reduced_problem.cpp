@@ -37,8 +37,8 @@ ReducedProblem::ReducedProblem(const Mesh& mesh, const OffsetBand& band, const E
   fixed_outer_integrals_ = volume_integrals(mesh_, Eigen::Vector3d::Zero()).values;
   if (options_.outer) {
     // Inward, the outer surface may use at most half of the free band (hi − δl), so the wall
-    // coupling lo = δl − δout stays below hi and the inner surface cannot be crossed; where the
-    // band is collapsed (a part thinner than two walls) it cannot move inward at all.
+    // coupling lo = δl − δout stays below hi and the inner surface cannot be crossed; in a part
+    // left solid (δl >= hi) it cannot move inward at all.
     outer_inward_limit_.resize(mesh_.V.rows());
     for (Eigen::Index i = 0; i < mesh_.V.rows(); ++i) {
       const double free_band = band_.upper(i) - band_.lower(i);
@@ -360,8 +360,8 @@ ConstrainedProblem ReducedProblem::constrained_problem() {
   };
   if (options_.bounds == BoundsMode::hard && identity_basis_ && !options_.outer) {
     // Per vertex (paper eq. 1) the rows δl ≤ δ ≤ hi are bounds on the variables themselves:
-    // L-BFGS-B keeps them exactly, with no multipliers to find. Where a part is thinner than two
-    // walls (δl > hi) the box is empty and the solver reports the bounds as unsatisfiable.
+    // L-BFGS-B keeps them exactly, with no multipliers to find. In a part left solid (δl > hi)
+    // the box is empty and the solver reports the bounds as unsatisfiable.
     p.lower = hard_lower_;
     p.upper = hard_upper_;
   } else if (options_.bounds == BoundsMode::hard) {

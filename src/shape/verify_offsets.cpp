@@ -84,13 +84,13 @@ long long unmatched_edges(const Mesh& mesh) {
 }  // namespace
 
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
-                                    const std::vector<char>& thin, double thin_below, int threads) {
+                                    const std::vector<char>& left_solid, double thin_below, int threads) {
   // The two trees, then the two intersection searches, on two threads when there are: the same
   // result either way.
   WorkerPool pool(std::min(std::max(threads, 1), 2));
   const bool any_fixed = std::find(fixed.begin(), fixed.end(), char{1}) != fixed.end();
   auto is_fixed = [&](std::size_t u) { return !fixed.empty() && fixed[u]; };
-  auto is_thin = [&](std::size_t u) { return !thin.empty() && thin[u]; };
+  auto is_left_solid = [&](std::size_t u) { return !left_solid.empty() && left_solid[u]; };
   Mesh inner_kept, outer_kept;
   if (any_fixed) {
     inner_kept = without_fixed_faces(inner, fixed);
@@ -139,7 +139,7 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   const double rounding = 1e-12 * outer_full.diagonal();
   for (Eigen::Index i = 0; i < inner.V.rows(); ++i) {
     const std::size_t u = static_cast<std::size_t>(i);
-    if (is_fixed(u) || is_thin(u)) continue;
+    if (is_fixed(u) || is_left_solid(u)) continue;
     // Only distances below the thinnest so far or below thin_below matter.
     const double radius = std::max(thin_below, d.thinnest_wall);
     const Eigen::Vector3d p = inner.V.row(i).transpose();

@@ -17,7 +17,7 @@ namespace offsetopt {
 // Where the surfaces are not printable as they are: vertices of inner faces that intersect other
 // inner faces or cross the outer surface, and inner vertices closer to the outer surface than
 // `thin_below` (away from fixed vertices and parts left solid). With `--cavity offset` the
-// optimiser tightens the bounds of these vertices and solves again. `fixed` and `thin` are per
+// optimiser tightens the bounds of these vertices and solves again. `fixed` and `left_solid` are per
 // vertex of a shared connectivity (inner and outer offsets of one mesh), or empty when the inner
 // mesh is a cavity of its own.
 struct SurfaceDefects {
@@ -32,7 +32,7 @@ struct SurfaceDefects {
 // `threads` (>= 1) splits the tree builds and the intersection searches; the result is the same
 // for any count.
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
-                                    const std::vector<char>& thin, double thin_below, int threads = 2);
+                                    const std::vector<char>& left_solid, double thin_below, int threads = 2);
 
 struct VerifyInput {
   const Mesh* outer = nullptr;  // outer surface (the input itself without outer offsets)
