@@ -372,16 +372,4 @@ ConstrainedProblem ReducedProblem::constrained_problem() {
   return p;
 }
 
-Mesh ReducedProblem::inner_mesh(const Evaluation& e) const {
-  Mesh inner = mesh_;
-  for (Eigen::Index i = 0; i < inner.V.rows(); ++i) inner.V.row(i) += e.inner_offset(i) * band_.inner_direction.row(i);
-  return inner;
-}
-
-Mesh ReducedProblem::outer_mesh(const Evaluation& e) const {
-  Mesh outer = mesh_;
-  for (Eigen::Index i = 0; i < outer.V.rows(); ++i) outer.V.row(i) += e.outer_offset(i) * band_.outer_direction.row(i);
-  return outer;
-}
-
 }  // namespace offsetopt

@@ -72,7 +72,6 @@ class ReducedProblem {
                  const GoalSpec& goal, const ReducedOptions& options);
   ~ReducedProblem();
 
-  int basis_size() const { return k_; }
   int num_variables() const { return options_.outer ? 2 * k_ : k_; }
 
   struct Evaluation {
@@ -101,12 +100,6 @@ class ReducedProblem {
 
   // The problem for the augmented Lagrangian; it refers to *this, which must outlive the solve.
   ConstrainedProblem constrained_problem();
-
-  Mesh inner_mesh(const Evaluation& e) const;
-  Mesh outer_mesh(const Evaluation& e) const;
-
-  const Mesh& mesh() const { return mesh_; }
-  const OffsetBand& band() const { return band_; }
 
  private:
   // Γ c, its rows in the two vertex halves (every entry computed the same way either way).
