@@ -121,8 +121,15 @@ OffsetField offset_field(const Mesh& mesh, const Vertices& contracted, const Tri
       field.lower[i] = options.wall / (cosine > options.thickness_cosine_floor ? cosine : options.thickness_cosine_floor);
     }
   };
-  // Below a few thousand vertices a thread costs more than it saves.
-  WorkerPool pool(static_cast<int>(std::min<Eigen::Index>(options.threads, std::max<Eigen::Index>(1, n / 4096))));
+  // A thread costs more than it saves below a few thousand vertices: one thread per
+  // kVerticesPerThread, and serial below two of them. Every vertex is computed on its own, so the
+  // count changes no result.
+  constexpr Eigen::Index kVerticesPerThread = 4096;
+  const int threads =
+      execution_policy(options.threads, static_cast<double>(n), 2.0 * kVerticesPerThread) == ExecutionPolicy::parallel
+          ? static_cast<int>(std::min<Eigen::Index>(options.threads, n / kVerticesPerThread))
+          : 1;
+  WorkerPool pool(threads);
   pool.run([&](int part) { compute_range(split_point(n, pool.size(), part), split_point(n, pool.size(), part + 1)); });
 
   for (const OffsetSource source : field.source) {

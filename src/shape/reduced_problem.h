@@ -55,14 +55,12 @@ struct ReducedOptions {
   // Start: the least-squares fit of Γα to lo + start_fraction (hi − lo) (β = 0).
   double start_fraction = 0.5;
   // Each evaluation is cut into two fixed parts, run on two threads when this is > 1 and the mesh
-  // has at least kMinVerticesForThreads vertices (the results are the same either way).
+  // is large enough (util/parallel.h's execution_policy; the results are the same either way).
   int threads = 2;
 
   // Empty when the options are valid, else what is wrong.
   std::string check() const;
 };
-
-constexpr long kMinVerticesForThreads = 2000;  // see the constructor
 
 class ReducedProblem {
  public:
