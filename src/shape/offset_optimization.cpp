@@ -160,17 +160,17 @@ struct Frame {
 };
 
 // Empty when the frame and goal are set, else why the input does not allow the goal.
-std::string make_frame(const Mesh& input, const OptimizeOptions& settings, Frame& f) {
+std::string make_frame(const Mesh& input, const OptimizeOptions& options, Frame& f) {
   const Eigen::Index n = input.V.rows();
   f.lo = input.V.colwise().minCoeff().transpose();
   f.hi = input.V.colwise().maxCoeff().transpose();
   f.diag = (f.hi - f.lo).norm();
   f.scale = 1.0 / f.diag;
   auto length = [&](double value, double fraction) { return value >= 0.0 ? value : fraction * f.diag; };
-  f.wall = length(settings.wall, 0.01);
-  f.outer_max = length(settings.outer_max, 0.02);
-  f.margin = length(settings.margin, 0.002);
-  f.ground_tol = length(settings.ground_tol, 0.001);
+  f.wall = length(options.wall, 0.01);
+  f.outer_max = length(options.outer_max, 0.02);
+  f.margin = length(options.margin, 0.002);
+  f.ground_tol = length(options.ground_tol, 0.001);
   f.before = mass_properties(input);
   StabilityOptions stability_options;
   stability_options.ground_tol = f.ground_tol;
@@ -189,17 +189,17 @@ std::string make_frame(const Mesh& input, const OptimizeOptions& settings, Frame
   for (Eigen::Index i = 0; i < n; ++i) f.normalized.V.row(i) = f.to_frame(input.V.row(i).transpose()).transpose();
 
   GoalSpec& g = f.goal_input;
-  g.kind = settings.goal;
+  g.kind = options.goal;
   g.margin = f.margin;
   g.epsilon = f.margin;
-  g.fill_density = settings.fill_density;
-  g.fluid_density = settings.fluid_density;
-  g.target_volume = settings.target_volume;
+  g.fill_density = options.fill_density;
+  g.fluid_density = options.fluid_density;
+  g.target_volume = options.target_volume;
   g.support_polygon = f.stability_before.support_polygon;
-  f.setup.kind = settings.goal;
-  if (settings.goal == GoalKind::roly_poly) {
+  f.setup.kind = options.goal;
+  if (options.goal == GoalKind::roly_poly) {
     Eigen::Vector3d center;
-    double radius = settings.radius;
+    double radius = options.radius;
     if (radius > 0.0) {
       Eigen::Index lowest = 0;
       input.V.col(2).minCoeff(&lowest);
@@ -210,13 +210,13 @@ std::string make_frame(const Mesh& input, const OptimizeOptions& settings, Frame
     g.axis_point = center;
     f.setup.sphere_center = center;
     f.setup.sphere_radius = radius;
-  } else if (settings.goal == GoalKind::spin) {
+  } else if (options.goal == GoalKind::spin) {
     Eigen::Index lowest = 0;
     input.V.col(2).minCoeff(&lowest);
     g.axis_point = input.V.row(lowest).transpose();
     f.setup.tip = g.axis_point;
-  } else if (settings.goal == GoalKind::volume && settings.target_volume >= f.before(kMass)) {
-    return "--target-volume " + format_double(settings.target_volume) + " is not below the object's volume " +
+  } else if (options.goal == GoalKind::volume && options.target_volume >= f.before(kMass)) {
+    return "--target-volume " + format_double(options.target_volume) + " is not below the object's volume " +
            format_double(f.before(kMass));
   }
   if (const std::string problem = check_goal_spec(g); !problem.empty()) return problem;
@@ -226,7 +226,7 @@ std::string make_frame(const Mesh& input, const OptimizeOptions& settings, Frame
   f.goal.margin = f.margin * f.scale + 1e-7;
   f.goal.epsilon = f.margin * f.scale + 1e-7;
   f.goal.axis_point = f.to_frame(g.axis_point);
-  f.goal.target_volume = settings.target_volume * f.scale * f.scale * f.scale;
+  f.goal.target_volume = options.target_volume * f.scale * f.scale * f.scale;
   return "";
 }
 
@@ -252,27 +252,27 @@ struct Band {
   }
 };
 
-std::string make_band(const Mesh& input, const OptimizeOptions& settings, const Frame& f, Band& b) {
+std::string make_band(const Mesh& input, const OptimizeOptions& options, const Frame& f, Band& b) {
   const Eigen::Index n = input.V.rows();
   ContractionOptions contraction_options;
-  contraction_options.threads = settings.threads;
+  contraction_options.threads = options.threads;
   b.contraction = laplacian_contraction(input.V, input.F, contraction_options);
   b.bvh = TriangleBvh(input.V, input.F);
   b.input_self = find_self_intersections(input, 100000);
   OffsetFieldOptions field_options;
   field_options.wall = f.wall;
-  field_options.threads = settings.threads;
+  field_options.threads = options.threads;
   b.field = offset_field(input, b.contraction.V, b.bvh, field_options);
   OffsetBand& band = b.band;
   band.inner_direction = b.field.inner;
   band.outer_direction = b.field.outer;
   band.lower = b.field.lower * f.scale;
-  band.upper = lipschitz_envelope(f.normalized, b.field.upper * ((1.0 - settings.gap) * f.scale), settings.bound_slope);
-  band.fixed = fixed_vertices(input, settings.fix);
+  band.upper = lipschitz_envelope(f.normalized, b.field.upper * ((1.0 - options.gap) * f.scale), options.bound_slope);
+  band.fixed = fixed_vertices(input, options.fix);
   for (char fixed : band.fixed) b.fixed_count += fixed ? 1 : 0;
-  if (settings.fix.kind != FixRegion::Kind::none && b.fixed_count == 0)
-    return "--fix " + settings.fix.text + " selects no vertex";
-  if (settings.outer) {
+  if (options.fix.kind != FixRegion::Kind::none && b.fixed_count == 0)
+    return "--fix " + options.fix.text + " selects no vertex";
+  if (options.outer) {
     // The base stays where it is: no outer offset within reach of the ground, so the object keeps
     // its contact set and its pose.
     band.outer_limit.resize(n);
@@ -289,27 +289,27 @@ std::string make_band(const Mesh& input, const OptimizeOptions& settings, const 
 // or correction (the contoured cavity's moments) from where the last solve ended.
 class OffsetSolve {
  public:
-  OffsetSolve(const Mesh& input, const OptimizeOptions& settings, const Frame& f, Band& b,
-              const Eigen::MatrixXd& basis, const ReducedOptions& options, const Progress& say)
-      : input_(input), settings_(settings), f_(f), b_(b), basis_(basis), options_(options), say_(say) {}
+  OffsetSolve(const Mesh& input, const OptimizeOptions& options, const Frame& f, Band& b,
+              const Eigen::MatrixXd& basis, const ReducedOptions& reduced_options, const Progress& say)
+      : input_(input), options_(options), f_(f), b_(b), basis_(basis), reduced_options_(reduced_options), say_(say) {}
 
   // The first solve and, with `--cavity offset`, the repair rounds.
   void run() {
-    const int max_repair_rounds = settings_.cavity == CavityMode::offset ? settings_.max_repair_rounds : 0;
+    const int max_repair_rounds = options_.cavity == CavityMode::offset ? options_.max_repair_rounds : 0;
     const Eigen::Index n = input_.V.rows();
     for (int round = 0;; ++round) {
-      problem_ = std::make_unique<ReducedProblem>(f_.normalized, b_.band, basis_, settings_.k == 0, f_.goal, options_);
+      problem_ = std::make_unique<ReducedProblem>(f_.normalized, b_.band, basis_, options_.k == 0, f_.goal, reduced_options_);
       variables = problem_->num_variables();
       if (round == 0) {
         x_ = problem_->start_point();
-        say_("solve: " + std::to_string(variables) + " variables, goal " + to_string(settings_.goal));
+        say_("solve: " + std::to_string(variables) + " variables, goal " + to_string(options_.goal));
       }
       // Tightened bounds only shrink the feasible set: when the goal's constraints are not met,
       // repairs cannot help, and the report says why.
       if (solve(round)) last_round_met = round;
       if (round == max_repair_rounds || !constraints_met) break;
       const SurfaceDefects defects =
-          find_surface_defects(outer, inner, b_.band.fixed, b_.left_solid, 0.5 * f_.wall, settings_.threads);
+          find_surface_defects(outer, inner, b_.band.fixed, b_.left_solid, 0.5 * f_.wall, options_.threads);
       if (defects.empty()) break;
       ++repair_rounds;
       repairs.push_back({static_cast<long long>(defects.intersecting_vertices.size()),
@@ -320,7 +320,7 @@ class OffsetSolve {
       // or the fold moves next door and needs another round.
       std::vector<char> tighten(static_cast<std::size_t>(n), 0);
       for (int v : defects.intersecting_vertices) tighten[static_cast<std::size_t>(v)] = 1;
-      if (settings_.repair_ring)
+      if (options_.repair_ring)
         for (Eigen::Index face = 0; face < input_.F.rows(); ++face) {
           bool touched = false;
           for (int c = 0; c < 3; ++c) touched = touched || tighten[static_cast<std::size_t>(input_.F(face, c))] == 1;
@@ -332,8 +332,8 @@ class OffsetSolve {
         }
       OffsetBand& band = b_.band;
       for (Eigen::Index v = 0; v < n; ++v)
-        if (tighten[static_cast<std::size_t>(v)]) band.upper(v) *= settings_.repair_shrink;
-      band.upper = lipschitz_envelope(f_.normalized, band.upper, settings_.bound_slope);
+        if (tighten[static_cast<std::size_t>(v)]) band.upper(v) *= options_.repair_shrink;
+      band.upper = lipschitz_envelope(f_.normalized, band.upper, options_.bound_slope);
       for (int v : defects.thin_wall_vertices) band.lower(v) += 0.5 * f_.wall * f_.scale;
       b_.mark_left_solid();
     }
@@ -374,7 +374,7 @@ class OffsetSolve {
 
  private:
   AlParams params(int round) const {
-    AlParams p = settings_.solver;
+    AlParams p = options_.solver;
     if (round > 0) {
       // A later round solves a nearby problem: start from the last round's multipliers and
       // penalty (measured on the bottle with --outer: 3605 evaluations without, 1124 with), the
@@ -382,9 +382,9 @@ class OffsetSolve {
       // 523 evaluations uncapped, 270 capped at 1e3).
       p.initial_equality_multipliers = solved.equality_multipliers;
       p.initial_inequality_multipliers = solved.inequality_multipliers;
-      p.initial_penalty = std::min(solved.penalty, settings_.warm_penalty_cap);
+      p.initial_penalty = std::min(solved.penalty, options_.warm_penalty_cap);
     }
-    if (settings_.trace_solver)
+    if (options_.trace_solver)
       p.on_outer_iteration = [say = say_, round](const AlIterationInfo& info) {
         say("  round " + std::to_string(round) + " outer " + std::to_string(info.outer_iteration) + ": f " +
             format_double(info.f) + ", violation " + format_double(info.max_violation) + ", stationarity " +
@@ -405,22 +405,22 @@ class OffsetSolve {
     outer = input_;
     for (Eigen::Index i = 0; i < input_.V.rows(); ++i) {
       inner.V.row(i) += (eval.inner_offset(i) / f_.scale) * b_.band.inner_direction.row(i);
-      if (settings_.outer) outer.V.row(i) += (eval.outer_offset(i) / f_.scale) * b_.band.outer_direction.row(i);
+      if (options_.outer) outer.V.row(i) += (eval.outer_offset(i) / f_.scale) * b_.band.outer_direction.row(i);
     }
     // A problem the solver refuses (hard bounds with an empty box) or cannot evaluate at the start
     // is not changed by tighter bounds or a correction either.
     const bool refused = solved.status == AlStatus::InvalidInput || solved.status == AlStatus::NumericalIssue;
     constraints_met = !refused && solved.status != AlStatus::Infeasible &&
-                      solved.max_violation <= 100.0 * settings_.solver.feasibility_tolerance;
+                      solved.max_violation <= 100.0 * options_.solver.feasibility_tolerance;
     return constraints_met;
   }
 
   const Mesh& input_;
-  const OptimizeOptions& settings_;
+  const OptimizeOptions& options_;
   const Frame& f_;
   Band& b_;
   const Eigen::MatrixXd& basis_;
-  ReducedOptions options_;
+  ReducedOptions reduced_options_;
   Progress say_;
   std::unique_ptr<ReducedProblem> problem_;
   Eigen::VectorXd x_;
@@ -436,7 +436,7 @@ struct Cavity {
   CavitySummary summary;
 };
 
-Cavity make_cavity(const OptimizeOptions& settings, const Frame& f, const Band& b, OffsetSolve& solve,
+Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
                    StageTimings& timings, const Progress& say) {
   auto stage_start = Clock::now();
   Cavity c;
@@ -449,36 +449,36 @@ Cavity make_cavity(const OptimizeOptions& settings, const Frame& f, const Band& 
   verify_input.wall = f.wall;
   verify_input.fixed = b.band.fixed;
   verify_input.bound_violation = solve.bound_violation();
-  verify_input.threads = settings.threads;
+  verify_input.threads = options.threads;
   c.verification = verify_offsets(verify_input);
   timings.verify = seconds_since(stage_start);
-  c.summary.mode = settings.cavity;
+  c.summary.mode = options.cavity;
   c.summary.offset_goal_met = c.verification.goal_met;
   c.summary.offset_valid = c.verification.valid;
   c.summary.offset_failures = c.verification.failures;
   c.written = solve.inner;
   const bool offset_verified = c.verification.goal_met && c.verification.valid;
-  const bool want_contour = settings.cavity == CavityMode::contour ||
-                            (settings.cavity == CavityMode::automatic && !offset_verified);
+  const bool want_contour = options.cavity == CavityMode::contour ||
+                            (options.cavity == CavityMode::automatic && !offset_verified);
   std::string problem;
   if (want_contour && b.fixed_count > 0) {
-    problem = settings.cavity == CavityMode::contour
+    problem = options.cavity == CavityMode::contour
                   ? "a contoured cavity cannot have an opening (--fix) yet; the offset surfaces were written"
                   : "with an opening (--fix) only the offset surfaces can be written, and they do not verify";
   } else if (want_contour) {
     stage_start = Clock::now();
     ContourCavityOptions cavity_options;
     cavity_options.wall = f.wall;
-    cavity_options.cells_per_wall = settings.cavity_cells_per_wall;
-    cavity_options.margin_cells = settings.cavity_margin_cells;
-    cavity_options.threads = settings.threads;
+    cavity_options.cells_per_wall = options.cavity_cells_per_wall;
+    cavity_options.margin_cells = options.cavity_margin_cells;
+    cavity_options.threads = options.threads;
     std::vector<ContourRound>& rounds = c.summary.rounds.emplace();
     double contour_seconds = 0.0;
     for (int round = 0;; ++round) {
       const auto contour_start = Clock::now();
-      const TriangleBvh outer_offset_bvh = settings.outer ? TriangleBvh(solve.outer.V, solve.outer.F) : TriangleBvh();
+      const TriangleBvh outer_offset_bvh = options.outer ? TriangleBvh(solve.outer.V, solve.outer.F) : TriangleBvh();
       const ContourCavity contoured =
-          contour_cavity(solve.outer, settings.outer ? outer_offset_bvh : b.bvh, solve.inner, cavity_options);
+          contour_cavity(solve.outer, options.outer ? outer_offset_bvh : b.bvh, solve.inner, cavity_options);
       contour_seconds += seconds_since(contour_start);
       if (!contoured.ok) {
         problem = "the cavity could not be contoured: " + contoured.message;
@@ -496,7 +496,7 @@ Cavity make_cavity(const OptimizeOptions& settings, const Frame& f, const Band& 
       // no validity search (on a 10^5-face cavity the costliest part of a round).
       contour_input.goal_only = true;
       c.verification = verify_offsets(contour_input);
-      const bool will_correct = !c.verification.goal_met && solve.constraints_met && round < settings.max_correction_rounds;
+      const bool will_correct = !c.verification.goal_met && solve.constraints_met && round < options.max_correction_rounds;
       if (!will_correct) {
         contour_input.goal_only = false;
         c.verification = verify_offsets(contour_input);
@@ -539,7 +539,7 @@ Cavity make_cavity(const OptimizeOptions& settings, const Frame& f, const Band& 
 }
 
 // Stage "report": the frame, the field, the solver and the input as it was, as values.
-FieldSummary field_summary(const OptimizeOptions& settings, const Band& b, const ReducedProblem::Evaluation& e) {
+FieldSummary field_summary(const OptimizeOptions& options, const Band& b, const ReducedProblem::Evaluation& e) {
   FieldSummary field;
   field.contraction_steps = b.contraction.steps;
   field.contraction_status = b.contraction.status;
@@ -551,7 +551,7 @@ FieldSummary field_summary(const OptimizeOptions& settings, const Band& b, const
   field.left_solid_vertices_after_repairs = b.left_solid_count;
   for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(b.band.fixed.size()); ++i) {
     if (b.band.fixed[static_cast<std::size_t>(i)] || b.left_solid[static_cast<std::size_t>(i)]) continue;
-    const double span = settings.ramp;
+    const double span = options.ramp;
     if (e.inner_offset(i) >= b.band.upper(i) - span) ++field.clamped_at_skeleton;
     else if (e.inner_offset(i) <= std::min(b.band.lower(i) - e.outer_offset(i), b.band.upper(i)) + span) ++field.clamped_at_wall;
   }
@@ -580,29 +580,29 @@ SolverSummary solver_summary(const Frame& f, const OffsetSolve& solve) {
 }
 
 // Why the result failed, starting with what happened to the solve.
-std::string failure_reason(const OptimizeOptions& settings, const Band& b, const OffsetSolve& solve,
+std::string failure_reason(const OptimizeOptions& options, const Band& b, const OffsetSolve& solve,
                            const Verification& verification) {
   std::string why = verification.failures.empty() ? "unknown" : verification.failures.front();
   const AlResult& solved = solve.solved;
   const bool constraints_unmet =
-      solved.status == AlStatus::Infeasible || solved.max_violation > 100.0 * settings.solver.feasibility_tolerance;
-  if (settings.bounds == BoundsMode::hard && b.left_solid_count_initial > 0)
-    return std::string("the per-vertex bounds cannot be met") + (settings.k == 0 ? ": " : " in the basis: ") +
+      solved.status == AlStatus::Infeasible || solved.max_violation > 100.0 * options.solver.feasibility_tolerance;
+  if (options.bounds == BoundsMode::hard && b.left_solid_count_initial > 0)
+    return std::string("the per-vertex bounds cannot be met") + (options.k == 0 ? ": " : " in the basis: ") +
            std::to_string(b.left_solid_count_initial) +
            " vertices lie in parts thinner than two walls, where no offset is both above the wall and below the "
            "skeleton (try --bounds clamp); " + why;
   if (solved.status == AlStatus::InvalidInput || solved.status == AlStatus::NumericalIssue)
     return std::string("the solver could not start (") + to_string(solved.status) +
            (solved.message.empty() ? "" : ": " + solved.message) + "); " + why;
-  const char* later = settings.cavity == CavityMode::offset ? "repair" : "correction";
+  const char* later = options.cavity == CavityMode::offset ? "repair" : "correction";
   if (constraints_unmet && solve.last_round_met >= 0)
     return std::string("the constraints were met before ") + later + " round " +
            std::to_string(solve.last_round_met + 1) + ", but not once " +
-           (settings.cavity == CavityMode::offset ? "the bounds were tightened there to remove folds and thin walls"
+           (options.cavity == CavityMode::offset ? "the bounds were tightened there to remove folds and thin walls"
                                                   : "the contoured cavity's moments were taken into account") +
            "; " + why;
   if (constraints_unmet && solved.status == AlStatus::MaxEvaluations)
-    return "the solver used its " + std::to_string(settings.solver.max_evaluations) +
+    return "the solver used its " + std::to_string(options.solver.max_evaluations) +
            " evaluations before meeting the constraints (violation " + format_double(solved.max_violation) +
            ", normalised frame); " + why;
   if (constraints_unmet)
@@ -612,21 +612,21 @@ std::string failure_reason(const OptimizeOptions& settings, const Band& b, const
 
 }  // namespace
 
-OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settings, const Progress& progress) {
+OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& options, const Progress& progress) {
   auto say = [&](const std::string& line) {
     if (progress) progress(line);
   };
-  if (const std::string problem = settings.check(); !problem.empty())
+  if (const std::string problem = options.check(); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
   const Eigen::Index n = input.V.rows();
-  const int k = settings.k;
+  const int k = options.k;
   if (k >= n) return failure(OptimizeStatus::bad_input, "--k " + std::to_string(k) + " is not below the vertex count " + std::to_string(n));
 
   StageTimings timings;
   auto stage_start = Clock::now();
   const auto total_start = stage_start;
   Frame f;
-  if (const std::string problem = make_frame(input, settings, f); !problem.empty())
+  if (const std::string problem = make_frame(input, options, f); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
   timings.frame = seconds_since(stage_start);
 
@@ -640,11 +640,11 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settin
   std::future<BasisOutcome> basis_future;
   say("skeleton: contracting " + std::to_string(n) + " vertices");
   if (k > 0) {
-    const bool alongside = settings.threads > 1;
+    const bool alongside = options.threads > 1;
     say("basis: " + std::to_string(k) + " manifold harmonics" + (alongside ? ", alongside the skeleton" : ""));
     ManifoldHarmonicsOptions basis_options;
-    basis_options.kind = settings.basis;
-    basis_options.lanczos.threads = settings.threads;
+    basis_options.kind = options.basis;
+    basis_options.lanczos.threads = options.threads;
     const auto compute_basis = [&normalized = f.normalized, k, basis_options]() {
       const auto start = Clock::now();
       BasisOutcome outcome;
@@ -661,7 +661,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settin
 
   stage_start = Clock::now();
   Band b;
-  if (const std::string problem = make_band(input, settings, f, b); !problem.empty())
+  if (const std::string problem = make_band(input, options, f, b); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
   timings.skeleton = seconds_since(stage_start);
 
@@ -669,7 +669,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settin
   Eigen::MatrixXd basis;
   BasisSummary basis_summary;
   basis_summary.identity = k == 0;
-  basis_summary.kind = settings.basis;
+  basis_summary.kind = options.basis;
   basis_summary.k = k == 0 ? static_cast<int>(n) : k;
   double basis_seconds = 0.0;
   if (k > 0) {
@@ -686,19 +686,19 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settin
 
   stage_start = Clock::now();
   ReducedOptions reduced_options;
-  reduced_options.ramp_width = settings.ramp;
-  reduced_options.outer = settings.outer;
-  reduced_options.outer_penalty = settings.penalty;
-  reduced_options.bounds = settings.bounds;
-  reduced_options.start_fraction = settings.start_fraction;
-  reduced_options.threads = settings.threads;
+  reduced_options.ramp_width = options.ramp;
+  reduced_options.outer = options.outer;
+  reduced_options.outer_penalty = options.penalty;
+  reduced_options.bounds = options.bounds;
+  reduced_options.start_fraction = options.start_fraction;
+  reduced_options.threads = options.threads;
   if (const std::string problem_text = reduced_options.check(); !problem_text.empty())
     return failure(OptimizeStatus::bad_input, problem_text);
-  OffsetSolve solve(input, settings, f, b, basis, reduced_options, say);
+  OffsetSolve solve(input, options, f, b, basis, reduced_options, say);
   solve.run();
   timings.solve = seconds_since(stage_start);
 
-  const Cavity cavity = make_cavity(settings, f, b, solve, timings, say);
+  const Cavity cavity = make_cavity(options, f, b, solve, timings, say);
   timings.total = seconds_since(total_start);
 
   OptimizeResult result;
@@ -709,7 +709,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settin
   result.skeleton = Mesh{b.contraction.V, input.F};
   result.goal = f.setup;
   result.frame = {f.origin, f.scale, f.diag, f.wall, f.outer_max, f.margin, f.ground_tol};
-  result.field = field_summary(settings, b, solve.eval);
+  result.field = field_summary(options, b, solve.eval);
   result.basis = basis_summary;
   result.solver = solver_summary(f, solve);
   result.before = {f.before, f.stability_before.com_margin, f.stability_before.stands, b.input_self.pairs,
@@ -732,14 +732,14 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settin
     // axis goals), so a small basis can end above the first and still pass: say so, as the
     // report's solver status alone would read as a failure.
     const AlResult& solved = solve.solved;
-    if (solved.status == AlStatus::Infeasible || solved.max_violation > 100.0 * settings.solver.feasibility_tolerance)
+    if (solved.status == AlStatus::Infeasible || solved.max_violation > 100.0 * options.solver.feasibility_tolerance)
       result.warnings.push_back(std::string("the solver ended ") + to_string(solved.status) + " with constraint violation " +
                                 format_double(solved.max_violation) + " (tolerance " +
-                                format_double(settings.solver.feasibility_tolerance) +
+                                format_double(options.solver.feasibility_tolerance) +
                                 ", normalised frame); the written object still meets every tolerance the verification checks");
   } else {
     result.status = OptimizeStatus::goal_not_met;
-    result.message = failure_reason(settings, b, solve, verification);
+    result.message = failure_reason(options, b, solve, verification);
   }
   return result;
 }

@@ -106,7 +106,7 @@ struct OptimizeOptions {
 enum class OptimizeStatus {
   verified,       // goal met and the solid is valid
   goal_not_met,   // ran; the result misses the goal or is invalid (see the report)
-  bad_input,      // the mesh or settings do not allow the goal (message says why)
+  bad_input,      // the mesh or options do not allow the goal (message says why)
 };
 
 // What a run found, stage by stage, as plain values (cli/optimize_report.h writes them as the
@@ -237,7 +237,7 @@ struct OptimizeResult {
   std::vector<std::string> warnings;
 };
 
-OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& settings,
+OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& options,
                                 const std::function<void(const std::string&)>& progress = {});
 
 }  // namespace offsetopt

@@ -191,7 +191,7 @@ std::string PreviewOptions::check() const {
   return {};
 }
 
-PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const PreviewOptions& settings) {
+PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const PreviewOptions& options) {
   PreviewResult result;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     for (int k = 0; k < 3; ++k)
@@ -202,7 +202,7 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
   // Vertices no face uses are left out (the reader drops them too), so the picture drawn from a
   // result in memory and from its file read back are the same.
   const Mesh solid = without_unused_vertices(mesh);
-  if (const std::string problem = settings.check(); !problem.empty()) {
+  if (const std::string problem = options.check(); !problem.empty()) {
     result.message = problem;
     return result;
   }
@@ -240,8 +240,8 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
   lo -= Eigen::Vector3d::Constant(pad);
   hi += Eigen::Vector3d::Constant(pad);
   const Eigen::Vector3d range = hi - lo;
-  const double s = std::min(settings.view_height / std::max(range.z(), range.y()),
-                            settings.views_width / (2.0 * range.x() + range.y()));
+  const double s = std::min(options.view_height / std::max(range.z(), range.y()),
+                            options.views_width / (2.0 * range.x() + range.y()));
 
   const double margin = 20.0, gap = 24.0, top = 78.0, min_slot = 190.0;
   View views[3];
@@ -296,7 +296,7 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
   if (input.goal == GoalKind::floating && input.fluid_density > 0.0 && have_outer) {
     FloatingOptions fo;
     fo.fluid_density = input.fluid_density;
-    fo.max_iterations = settings.bisection_cap;
+    fo.max_iterations = options.bisection_cap;
     water = floating_equilibrium(shells.outer, P(kMass), fo);
     have_water = true;
     // The float goal (eq. 9) asks for weight = buoyancy fully submerged: within the tolerance
@@ -327,7 +327,7 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
   out += "<rect x=\"0\" y=\"0\" width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
   svg.text(margin, 28, std::string("offsetopt preview: goal ") + to_string(input.goal), 16);
 
-  const double r = settings.marker_radius;
+  const double r = options.marker_radius;
   for (int i = 0; i < 3; ++i) {
     const View& v = views[i];
     svg.text(v.x + 0.5 * v.w, v.y - 22, titles[i][0], 11, "middle");

@@ -66,6 +66,6 @@ struct PreviewResult {
 
 // Draws `solid` (outer shell(s) outward, cavity shells inward, as optimize writes it). The same
 // solid and input give the same bytes.
-PreviewResult preview_svg(const Mesh& solid, const PreviewInput& input, const PreviewOptions& settings = {});
+PreviewResult preview_svg(const Mesh& solid, const PreviewInput& input, const PreviewOptions& options = {});
 
 }  // namespace offsetopt
