@@ -2,7 +2,9 @@
 // golden files in tests/golden compare it byte for byte): add keys at the end of an object.
 #include "cli/optimize_report.h"
 
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mass/mass_properties.h"
@@ -265,15 +267,14 @@ Json verification_json(const Verification& verification) {
 }
 
 Json stage_timings_json(const StageTimings& timings) {
+  // In stage order; contour and correct only when a contour was attempted.
+  const std::pair<const char*, std::optional<double>> stages[] = {
+      {"frame", timings.frame},     {"skeleton", timings.skeleton}, {"basis", timings.basis},
+      {"solve", timings.solve},     {"verify", timings.verify},     {"contour", timings.contour},
+      {"correct", timings.correct}, {"total", timings.total}};
   Json j = Json::object();
-  j["frame"] = timings.frame;
-  j["skeleton"] = timings.skeleton;
-  j["basis"] = timings.basis;
-  j["solve"] = timings.solve;
-  j["verify"] = timings.verify;
-  if (timings.contour) j["contour"] = *timings.contour;
-  if (timings.correct) j["correct"] = *timings.correct;
-  j["total"] = timings.total;
+  for (const auto& [key, seconds] : stages)
+    if (seconds) j[key] = *seconds;
   return j;
 }
 

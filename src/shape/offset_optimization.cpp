@@ -705,7 +705,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   result.outer = solve.outer;
   result.inner = cavity.written;
   result.printable = cavity.summary.contoured ? hollow_solid(solve.outer, cavity.written)
-                                      : printable_solid(solve.outer, cavity.written, b.band.fixed);
+                                              : printable_solid(solve.outer, cavity.written, b.band.fixed);
   result.skeleton = Mesh{b.contraction.V, input.F};
   result.goal = f.setup;
   result.frame = {f.origin, f.scale, f.diag, f.wall, f.outer_max, f.margin, f.ground_tol};
