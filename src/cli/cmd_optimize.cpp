@@ -7,6 +7,7 @@
 
 #include "cli/cli_support.h"
 #include "cli/commands.h"
+#include "cli/optimize_report.h"
 #include "cli/pose_options.h"
 #include "cli/write_preview.h"
 #include "io/json.h"
@@ -103,7 +104,7 @@ int run_optimize(const Args& args) {
   ArgCursor cursor(args);
   std::string mesh_path, output, report_path, inner_path, outer_path, skeleton_path, preview_path, unit = "millimeter";
   bool quiet = false, timings_in_report = true, goal_given = false, unit_given = false;
-  OptimizeSettings settings = OptimizeSettings::defaults();
+  OptimizeOptions options = OptimizeOptions::defaults();
   const double big = 1e12;
   PoseOptions pose_options;
   while (!cursor.done()) {
@@ -131,58 +132,58 @@ int run_optimize(const Args& args) {
       timings_in_report = false;
     } else if (arg == "--goal") {
       const std::string& name = cursor.value_of(arg);
-      if (!parse_goal_kind(name, settings.goal))
+      if (!parse_goal_kind(name, options.goal))
         throw UsageError("unknown goal '" + name + "' (stand, stand-filled, roly-poly, spin, volume, float)");
       goal_given = true;
     } else if (arg == "--k") {
       const std::string& value = cursor.value_of(arg);
-      settings.k = value == "all" ? 0 : parse_int(value, arg, 1, 100000);
+      options.k = value == "all" ? 0 : parse_int(value, arg, 1, 100000);
     } else if (arg == "--basis") {
       const std::string& value = cursor.value_of(arg);
-      if (!parse_basis_kind(value, settings.basis)) throw UsageError("--basis must be mass or laplacian, got '" + value + "'");
+      if (!parse_basis_kind(value, options.basis)) throw UsageError("--basis must be mass or laplacian, got '" + value + "'");
     } else if (arg == "--bounds") {
       const std::string& value = cursor.value_of(arg);
-      if (value == "clamp") settings.bounds = BoundsMode::clamp;
-      else if (value == "hard") settings.bounds = BoundsMode::hard;
+      if (value == "clamp") options.bounds = BoundsMode::clamp;
+      else if (value == "hard") options.bounds = BoundsMode::hard;
       else throw UsageError("--bounds must be clamp or hard, got '" + value + "'");
     } else if (arg == "--outer") {
-      settings.outer = true;
+      options.outer = true;
     } else if (arg == "--wall") {
-      settings.wall = parse_double(cursor.value_of(arg), arg, 0.0, big);
+      options.wall = parse_double(cursor.value_of(arg), arg, 0.0, big);
     } else if (arg == "--outer-max") {
-      settings.outer_max = parse_double(cursor.value_of(arg), arg, 0.0, big);
+      options.outer_max = parse_double(cursor.value_of(arg), arg, 0.0, big);
     } else if (arg == "--penalty") {
-      settings.penalty = parse_double(cursor.value_of(arg), arg, 0.0, big);
+      options.penalty = parse_double(cursor.value_of(arg), arg, 0.0, big);
     } else if (arg == "--margin") {
-      settings.margin = parse_double(cursor.value_of(arg), arg, 0.0, big);
+      options.margin = parse_double(cursor.value_of(arg), arg, 0.0, big);
     } else if (arg == "--fill-density") {
-      settings.fill_density = parse_double(cursor.value_of(arg), arg, 1e-6, 1e6);
+      options.fill_density = parse_double(cursor.value_of(arg), arg, 1e-6, 1e6);
     } else if (arg == "--fluid-density") {
-      settings.fluid_density = parse_double(cursor.value_of(arg), arg, 1e-6, 0.999999);
+      options.fluid_density = parse_double(cursor.value_of(arg), arg, 1e-6, 0.999999);
     } else if (arg == "--target-volume") {
-      settings.target_volume = parse_double(cursor.value_of(arg), arg, 1e-300, 1e36);
+      options.target_volume = parse_double(cursor.value_of(arg), arg, 1e-300, 1e36);
     } else if (arg == "--radius") {
-      settings.radius = parse_double(cursor.value_of(arg), arg, 1e-300, big);
+      options.radius = parse_double(cursor.value_of(arg), arg, 1e-300, big);
     } else if (arg == "--fix") {
       const std::string& value = cursor.value_of(arg);
-      if (const std::string problem = parse_fix_region(value, settings.fix); !problem.empty())
+      if (const std::string problem = parse_fix_region(value, options.fix); !problem.empty())
         throw UsageError("--fix: " + problem);
     } else if (arg == "--cavity") {
       const std::string& value = cursor.value_of(arg);
-      if (!parse_cavity_mode(value, settings.cavity))
+      if (!parse_cavity_mode(value, options.cavity))
         throw UsageError("--cavity must be auto, offset or contour, got '" + value + "'");
     } else if (arg == "--cavity-cells") {
-      settings.cavity_cells_per_wall = parse_double(cursor.value_of(arg), arg, 1.25, 8.0);
+      options.cavity_cells_per_wall = parse_double(cursor.value_of(arg), arg, 1.25, 8.0);
     } else if (arg == "--ground-tol") {
-      settings.ground_tol = parse_double(cursor.value_of(arg), arg, 0.0, big);
+      options.ground_tol = parse_double(cursor.value_of(arg), arg, 0.0, big);
     } else if (arg == "--quiet") {
       quiet = true;
     } else if (arg == "--no-repair-ring") {
-      settings.repair_ring = false;
+      options.repair_ring = false;
     } else if (arg == "--threads") {
-      settings.threads = parse_int(cursor.value_of(arg), arg, 1, 64);
+      options.threads = parse_int(cursor.value_of(arg), arg, 1, 64);
     } else if (arg == "-v" || arg == "--verbose") {
-      settings.trace_solver = true;
+      options.trace_solver = true;
     } else if (parse_pose_option(arg, cursor, pose_options)) {
     } else if (arg.size() > 1 && arg[0] == '-') {
       throw UsageError("unknown option '" + arg + "' for optimize (try 'offsetopt optimize --help')");
@@ -195,9 +196,9 @@ int run_optimize(const Args& args) {
   if (mesh_path.empty()) throw UsageError("optimize needs a mesh file (try 'offsetopt optimize --help')");
   if (!goal_given) throw UsageError("optimize needs --goal (stand, stand-filled, roly-poly, spin, volume, float)");
   if (output.empty()) throw UsageError("optimize needs an output file: -o FILE");
-  if (settings.goal == GoalKind::floating && settings.fluid_density < 0)
+  if (options.goal == GoalKind::floating && options.fluid_density < 0)
     throw UsageError("--goal float needs --fluid-density R in (0, 1)");
-  if (settings.goal == GoalKind::volume && settings.target_volume < 0)
+  if (options.goal == GoalKind::volume && options.target_volume < 0)
     throw UsageError("--goal volume needs --target-volume V");
   for (const std::string* path : {&output, &report_path, &inner_path, &outer_path, &skeleton_path, &preview_path})
     if (!path->empty()) refuse_overwriting_input(*path, {mesh_path});
@@ -216,7 +217,7 @@ int run_optimize(const Args& args) {
   };
   const PosedInput posed = pose_input(loaded.mesh, pose_options, mesh_path, true);
   print_warnings(posed.warnings, quiet);
-  OptimizeResult result = optimize_offsets(posed.mesh, settings, progress);
+  OptimizeResult result = optimize_offsets(posed.mesh, options, progress);
   if (result.status == OptimizeStatus::bad_input) throw UsageError(mesh_path + ": " + result.message);
   print_warnings(result.warnings, quiet);
 
@@ -231,14 +232,15 @@ int run_optimize(const Args& args) {
   report["vertices"] = static_cast<long long>(loaded.mesh.V.rows());
   report["faces"] = static_cast<long long>(loaded.mesh.F.rows());
   if (pose_options.any()) report["pose"] = posed.report;
-  for (const auto& item : result.report.items()) report[item.first] = item.second;
+  const Json run_report = optimize_report(options, result);
+  for (const auto& item : run_report.items()) report[item.first] = item.second;
   Json outputs = Json::object();
   outputs["solid"] = output;
   outputs["inner"] = inner_path.empty() ? Json() : Json(inner_path);
   outputs["outer"] = outer_path.empty() ? Json() : Json(outer_path);
   outputs["skeleton"] = skeleton_path.empty() ? Json() : Json(skeleton_path);
   report["outputs"] = outputs;
-  Json timings = result.timings;
+  Json timings = stage_timings_json(result.timings);
   timings["load"] = load_seconds;
   timings["write"] = seconds_since(write_start);
   if (timings_in_report) report["timings"] = timings;
@@ -253,7 +255,7 @@ int run_optimize(const Args& args) {
     std::fprintf(stderr, "Error: goal not met: %s\n", result.message.c_str());
     return kExitGoalNotMet;
   }
-  if (!quiet) std::fprintf(stderr, "done: goal '%s' met and verified\n", to_string(settings.goal));
+  if (!quiet) std::fprintf(stderr, "done: goal '%s' met and verified\n", to_string(options.goal));
   return kExitOk;
 }
 

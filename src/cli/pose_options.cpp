@@ -39,7 +39,15 @@ bool parse_pose_option(const std::string& arg, ArgCursor& cursor, PoseOptions& o
   return false;
 }
 
+std::string PoseOptions::check() const {
+  AxisPermutation permutation;
+  if (!up_axis_permutation(up, permutation)) return "--up must be +x, -x, +y, -y, +z or -z, got '" + up + "'";
+  if (!(flatten >= 0.0 && flatten <= 1e12)) return "--flatten must be in (0, 1e12]";
+  return {};
+}
+
 PosedInput pose_input(const Mesh& mesh, const PoseOptions& options, const std::string& mesh_path, bool single_component) {
+  if (const std::string problem = options.check(); !problem.empty()) throw UsageError(problem);
   PosedInput posed;
   up_axis_permutation(options.up, posed.up);
   posed.mesh = permute_axes(mesh, posed.up);

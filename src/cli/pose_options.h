@@ -18,6 +18,9 @@ struct PoseOptions {
   bool stable = false;
   double flatten = 0.0;  // 0: no cut
   bool any() const { return up != "+z" || stable || flatten > 0.0; }
+  // Empty when the options are valid (an up axis up_axis_permutation knows, a flatten height that
+  // is 0 or positive and finite), else what is wrong.
+  std::string check() const;
 };
 
 // The three options' rows for the commands' option tables (help and parser, cli_support.h);

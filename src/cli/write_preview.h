@@ -7,8 +7,13 @@
 
 #include "io/json.h"
 #include "mesh/mesh.h"
+#include "shape/preview_svg.h"
 
 namespace offsetopt::cli {
+
+// Reads a PreviewInput from an optimize report (parameters, goal, before, after). Returns an
+// empty string, or one line naming the missing or malformed field.
+std::string preview_input_from_report(const Json& report, PreviewInput& input);
 
 // Draws `solid` with what `report` (an optimize report) says about the goal and writes the SVG to
 // `svg_path` ("-": stdout). `report_name` names the report in messages. UsageError when the report

@@ -28,7 +28,8 @@ Aabb mesh_box(const Mesh& mesh) {
 
 }  // namespace
 
-std::string check_contour_cavity_options(const ContourCavityOptions& o) {
+std::string ContourCavityOptions::check() const {
+  const ContourCavityOptions& o = *this;
   if (!(o.wall > 0.0) || !std::isfinite(o.wall)) return "the wall must be > 0";
   if (!(o.cells_per_wall >= 1.25 && o.cells_per_wall <= 8.0)) return "cells per wall must be in [1.25, 8]";
   if (!(o.margin_cells >= 0.25 && o.margin_cells <= 2.0)) return "the margin must be in [0.25, 2] cells";
@@ -41,7 +42,7 @@ std::string check_contour_cavity_options(const ContourCavityOptions& o) {
 ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Mesh& inner,
                              const ContourCavityOptions& options) {
   ContourCavity out;
-  if (const std::string problem = check_contour_cavity_options(options); !problem.empty()) {
+  if (const std::string problem = options.check(); !problem.empty()) {
     out.message = problem;
     return out;
   }

@@ -1,6 +1,6 @@
 // The written cavity, valid by construction (DESIGN.md "The written cavity"): the optimised inner
-// offset surface may fold, cross itself or cross the outer surface, and keeps no wall where parts
-// are thin, so the cavity that is written is the contour of
+// offset surface may fold, cross itself or cross the outer surface, and keeps no wall in parts
+// left solid, so the cavity that is written is the contour of
 //   φ(p) = min( d_out(p) − wall − c·h ,  s_in(p) ),
 // d_out the distance to the outer surface (positive inside it), s_in the distance to the inner
 // offset surface with the sign of its winding number (inside where w >= 1), h the grid spacing,
@@ -15,7 +15,7 @@
 //   surface; each vertex is then moved along its grid edge, towards the cavity node, until its
 //   exact distance to the outer surface is at least `wall` (bisection on the edge, whose cavity
 //   end has wall + margin), so the wall holds at every vertex exactly;
-// - parts thinner than two walls have no node with d_out >= wall + margin: they stay solid;
+// - parts left solid have no node with d_out >= wall + margin: no cavity reaches them;
 // - shells enclosing less than min_shell_fraction of the void, and shells that bound an island of
 //   material inside the void (negative volume), are dropped: the specks are filled, the islands
 //   join the void.
@@ -39,10 +39,10 @@ struct ContourCavityOptions {
   std::int64_t max_nodes = std::int64_t{1} << 25;  // h grows when the box needs more nodes
   double min_shell_fraction = 1e-3;  // shells below this fraction of the void are filled
   int threads = 2;                 // 1..64; the result is the same for any count
-};
 
-// Empty when the options are valid, else what is wrong.
-std::string check_contour_cavity_options(const ContourCavityOptions& options);
+  // Empty when the options are valid, else what is wrong.
+  std::string check() const;
+};
 
 struct ContourCavity {
   bool ok = false;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "geometry/inscribed_ball.h"
 #include "geometry/ray_cast.h"
@@ -14,22 +15,25 @@
 
 namespace offsetopt {
 
-void check_offset_field_options(const OffsetFieldOptions& o) {
-  auto require = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(std::string("OffsetFieldOptions::") + what);
+std::string OffsetFieldOptions::check() const {
+  const OffsetFieldOptions& o = *this;
+  const std::pair<bool, const char*> rules[] = {
+      {std::isfinite(o.wall) && o.wall >= 0.0, "wall must be finite and >= 0"},
+      {o.thickness_cosine_floor > 0.0 && o.thickness_cosine_floor <= 1.0, "thickness_cosine_floor must be in (0, 1]"},
+      {o.min_inward_cosine >= 0.0 && o.min_inward_cosine < 1.0, "min_inward_cosine must be in [0, 1)"},
+      {o.exit_fraction > 0.0 && o.exit_fraction <= 1.0, "exit_fraction must be in (0, 1]"},
+      {std::isfinite(o.min_length) && o.min_length >= 0.0, "min_length must be finite and >= 0"},
+      {o.shallow_fraction >= 0.0 && o.shallow_fraction <= 1.0, "shallow_fraction must be in [0, 1]"},
+      {o.threads >= 1 && o.threads <= 256, "threads must be in [1, 256]"},
   };
-  require(std::isfinite(o.wall) && o.wall >= 0.0, "wall must be finite and >= 0");
-  require(o.thickness_cosine_floor > 0.0 && o.thickness_cosine_floor <= 1.0, "thickness_cosine_floor must be in (0, 1]");
-  require(o.min_inward_cosine >= 0.0 && o.min_inward_cosine < 1.0, "min_inward_cosine must be in [0, 1)");
-  require(o.exit_fraction > 0.0 && o.exit_fraction <= 1.0, "exit_fraction must be in (0, 1]");
-  require(std::isfinite(o.min_length) && o.min_length >= 0.0, "min_length must be finite and >= 0");
-  require(o.shallow_fraction >= 0.0 && o.shallow_fraction <= 1.0, "shallow_fraction must be in [0, 1]");
-  require(o.threads >= 1 && o.threads <= 256, "threads must be in [1, 256]");
+  for (const auto& [ok, what] : rules)
+    if (!ok) return std::string("OffsetFieldOptions::") + what;
+  return {};
 }
 
 OffsetField offset_field(const Mesh& mesh, const Vertices& contracted, const TriangleBvh& bvh,
                          const OffsetFieldOptions& options) {
-  check_offset_field_options(options);
+  if (const std::string problem = options.check(); !problem.empty()) throw std::invalid_argument(problem);
   const Vertices& V = mesh.V;
   const Faces& F = mesh.F;
   const Eigen::Index n = V.rows();
@@ -117,8 +121,15 @@ OffsetField offset_field(const Mesh& mesh, const Vertices& contracted, const Tri
       field.lower[i] = options.wall / (cosine > options.thickness_cosine_floor ? cosine : options.thickness_cosine_floor);
     }
   };
-  // Below a few thousand vertices a thread costs more than it saves.
-  WorkerPool pool(static_cast<int>(std::min<Eigen::Index>(options.threads, std::max<Eigen::Index>(1, n / 4096))));
+  // A thread costs more than it saves below a few thousand vertices: one thread per
+  // kVerticesPerThread, and serial below two of them. Every vertex is computed on its own, so the
+  // count changes no result.
+  constexpr Eigen::Index kVerticesPerThread = 4096;
+  const int threads =
+      execution_policy(options.threads, static_cast<double>(n), 2.0 * kVerticesPerThread) == ExecutionPolicy::parallel
+          ? static_cast<int>(std::min<Eigen::Index>(options.threads, n / kVerticesPerThread))
+          : 1;
+  WorkerPool pool(threads);
   pool.run([&](int part) { compute_range(split_point(n, pool.size(), part), split_point(n, pool.size(), part + 1)); });
 
   for (const OffsetSource source : field.source) {

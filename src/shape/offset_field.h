@@ -55,10 +55,11 @@ struct OffsetFieldOptions {
   double shallow_fraction = 0.5;        // in [0, 1]; 0 turns the shallow test off
   OuterDirections outer = OuterDirections::reversed_inner;
   int threads = 2;                      // >= 1; vertices split in fixed ranges, every result identical for any count
-};
 
-// Throws std::invalid_argument naming the first out-of-range field.
-void check_offset_field_options(const OffsetFieldOptions& options);
+  // Empty when the options are valid, else the first out-of-range field (offset_field throws
+  // std::invalid_argument with it).
+  std::string check() const;
+};
 
 enum class OffsetSource : std::uint8_t { contraction = 0, shortened = 1, shallow = 2, fallback = 3, immobile = 4 };
 

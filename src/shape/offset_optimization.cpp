@@ -29,23 +29,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-Json vec3(const Eigen::Vector3d& v) { return Json::array_of({v.x(), v.y(), v.z()}); }
-
-Json properties_json(const Vector10d& P) {
-  Json j = Json::object();
-  j["mass"] = P(kMass);
-  j["center_of_mass"] = Json::array_of({P(kCx), P(kCy), P(kCz)});
-  Json inertia = Json::object();
-  inertia["xx"] = P(kIxx);
-  inertia["yy"] = P(kIyy);
-  inertia["zz"] = P(kIzz);
-  inertia["xy"] = P(kIxy);
-  inertia["yz"] = P(kIyz);
-  inertia["zx"] = P(kIzx);
-  j["inertia"] = inertia;
-  return j;
-}
-
 // Algebraic least-squares sphere |x|² = 2 c·x + d through the vertices of the bottom part.
 bool fit_bottom_sphere(const Mesh& mesh, double zmin, double height, Eigen::Vector3d& center, double& radius) {
   for (double fraction : {0.25, 0.4, 0.6}) {
@@ -129,7 +112,8 @@ bool parse_cavity_mode(const std::string& text, CavityMode& mode) {
   return false;
 }
 
-std::string check_optimize_settings(const OptimizeSettings& s) {
+std::string OptimizeOptions::check() const {
+  const OptimizeOptions& s = *this;
   if (s.k < 0) return "--k must be >= 1 or 'all'";
   auto finite_or_default = [](double v) { return std::isfinite(v); };
   for (double v : {s.wall, s.outer_max, s.margin, s.ground_tol, s.radius, s.penalty, s.fill_density, s.fluid_density,
@@ -145,11 +129,11 @@ std::string check_optimize_settings(const OptimizeSettings& s) {
   if (s.outer && s.bounds == BoundsMode::hard && s.k == 0) return "--k all with --bounds hard and --outer is not supported";
   if (s.threads < 1 || s.threads > 64) return "--threads must be in [1, 64]";
   if (s.max_correction_rounds < 0 || s.max_correction_rounds > 20) return "correction rounds must be in [0, 20]";
-  ContourCavityOptions cavity;
-  cavity.wall = 1.0;
-  cavity.cells_per_wall = s.cavity_cells_per_wall;
-  cavity.margin_cells = s.cavity_margin_cells;
-  if (const std::string problem = check_contour_cavity_options(cavity); !problem.empty()) return "cavity: " + problem;
+  ContourCavityOptions contour;
+  contour.wall = 1.0;
+  contour.cells_per_wall = s.cavity_cells_per_wall;
+  contour.margin_cells = s.cavity_margin_cells;
+  if (const std::string problem = contour.check(); !problem.empty()) return "cavity: " + problem;
   return check_al_params(s.solver);
 }
 
@@ -171,22 +155,22 @@ struct Frame {
   Stability stability_before;
   Mesh normalized;
   GoalSpec goal_input, goal;
-  Json goal_json = Json::object();
+  GoalSetup setup;
   Eigen::Vector3d to_frame(const Eigen::Vector3d& p) const { return (p - origin) * scale; }
 };
 
 // Empty when the frame and goal are set, else why the input does not allow the goal.
-std::string make_frame(const Mesh& input, const OptimizeSettings& settings, Frame& f) {
+std::string make_frame(const Mesh& input, const OptimizeOptions& options, Frame& f) {
   const Eigen::Index n = input.V.rows();
   f.lo = input.V.colwise().minCoeff().transpose();
   f.hi = input.V.colwise().maxCoeff().transpose();
   f.diag = (f.hi - f.lo).norm();
   f.scale = 1.0 / f.diag;
   auto length = [&](double value, double fraction) { return value >= 0.0 ? value : fraction * f.diag; };
-  f.wall = length(settings.wall, 0.01);
-  f.outer_max = length(settings.outer_max, 0.02);
-  f.margin = length(settings.margin, 0.002);
-  f.ground_tol = length(settings.ground_tol, 0.001);
+  f.wall = length(options.wall, 0.01);
+  f.outer_max = length(options.outer_max, 0.02);
+  f.margin = length(options.margin, 0.002);
+  f.ground_tol = length(options.ground_tol, 0.001);
   f.before = mass_properties(input);
   StabilityOptions stability_options;
   stability_options.ground_tol = f.ground_tol;
@@ -205,17 +189,17 @@ std::string make_frame(const Mesh& input, const OptimizeSettings& settings, Fram
   for (Eigen::Index i = 0; i < n; ++i) f.normalized.V.row(i) = f.to_frame(input.V.row(i).transpose()).transpose();
 
   GoalSpec& g = f.goal_input;
-  g.kind = settings.goal;
+  g.kind = options.goal;
   g.margin = f.margin;
   g.epsilon = f.margin;
-  g.fill_density = settings.fill_density;
-  g.fluid_density = settings.fluid_density;
-  g.target_volume = settings.target_volume;
+  g.fill_density = options.fill_density;
+  g.fluid_density = options.fluid_density;
+  g.target_volume = options.target_volume;
   g.support_polygon = f.stability_before.support_polygon;
-  f.goal_json["name"] = to_string(settings.goal);
-  if (settings.goal == GoalKind::roly_poly) {
+  f.setup.kind = options.goal;
+  if (options.goal == GoalKind::roly_poly) {
     Eigen::Vector3d center;
-    double radius = settings.radius;
+    double radius = options.radius;
     if (radius > 0.0) {
       Eigen::Index lowest = 0;
       input.V.col(2).minCoeff(&lowest);
@@ -224,15 +208,15 @@ std::string make_frame(const Mesh& input, const OptimizeSettings& settings, Fram
       return "no sphere could be fitted to the bottom; give --radius";
     }
     g.axis_point = center;
-    f.goal_json["sphere_center"] = vec3(center);
-    f.goal_json["sphere_radius"] = radius;
-  } else if (settings.goal == GoalKind::spin) {
+    f.setup.sphere_center = center;
+    f.setup.sphere_radius = radius;
+  } else if (options.goal == GoalKind::spin) {
     Eigen::Index lowest = 0;
     input.V.col(2).minCoeff(&lowest);
     g.axis_point = input.V.row(lowest).transpose();
-    f.goal_json["tip"] = vec3(g.axis_point);
-  } else if (settings.goal == GoalKind::volume && settings.target_volume >= f.before(kMass)) {
-    return "--target-volume " + format_double(settings.target_volume) + " is not below the object's volume " +
+    f.setup.tip = g.axis_point;
+  } else if (options.goal == GoalKind::volume && options.target_volume >= f.before(kMass)) {
+    return "--target-volume " + format_double(options.target_volume) + " is not below the object's volume " +
            format_double(f.before(kMass));
   }
   if (const std::string problem = check_goal_spec(g); !problem.empty()) return problem;
@@ -242,7 +226,7 @@ std::string make_frame(const Mesh& input, const OptimizeSettings& settings, Fram
   f.goal.margin = f.margin * f.scale + 1e-7;
   f.goal.epsilon = f.margin * f.scale + 1e-7;
   f.goal.axis_point = f.to_frame(g.axis_point);
-  f.goal.target_volume = settings.target_volume * f.scale * f.scale * f.scale;
+  f.goal.target_volume = options.target_volume * f.scale * f.scale * f.scale;
   return "";
 }
 
@@ -254,41 +238,41 @@ struct Band {
   OffsetField field;
   OffsetBand band;
   int fixed_count = 0;
-  std::vector<char> thin;          // per vertex: a part left solid (the band collapsed)
-  int thin_count = 0, thin_count_initial = 0;
+  std::vector<char> left_solid;    // per vertex: in a part left solid (an empty band, lower >= upper)
+  int left_solid_count = 0, left_solid_count_initial = 0;
 
-  void mark_thin() {
-    thin_count = 0;
-    thin.assign(band.fixed.size(), 0);
-    for (std::size_t i = 0; i < thin.size(); ++i) {
+  void mark_left_solid() {
+    left_solid_count = 0;
+    left_solid.assign(band.fixed.size(), 0);
+    for (std::size_t i = 0; i < left_solid.size(); ++i) {
       const Eigen::Index v = static_cast<Eigen::Index>(i);
-      thin[i] = !band.fixed[i] && band.lower(v) >= band.upper(v);
-      thin_count += thin[i];
+      left_solid[i] = !band.fixed[i] && band.lower(v) >= band.upper(v);
+      left_solid_count += left_solid[i];
     }
   }
 };
 
-std::string make_band(const Mesh& input, const OptimizeSettings& settings, const Frame& f, Band& b) {
+std::string make_band(const Mesh& input, const OptimizeOptions& options, const Frame& f, Band& b) {
   const Eigen::Index n = input.V.rows();
   ContractionOptions contraction_options;
-  contraction_options.threads = settings.threads;
+  contraction_options.threads = options.threads;
   b.contraction = laplacian_contraction(input.V, input.F, contraction_options);
   b.bvh = TriangleBvh(input.V, input.F);
   b.input_self = find_self_intersections(input, 100000);
   OffsetFieldOptions field_options;
   field_options.wall = f.wall;
-  field_options.threads = settings.threads;
+  field_options.threads = options.threads;
   b.field = offset_field(input, b.contraction.V, b.bvh, field_options);
   OffsetBand& band = b.band;
   band.inner_direction = b.field.inner;
   band.outer_direction = b.field.outer;
   band.lower = b.field.lower * f.scale;
-  band.upper = lipschitz_envelope(f.normalized, b.field.upper * ((1.0 - settings.gap) * f.scale), settings.bound_slope);
-  band.fixed = fixed_vertices(input, settings.fix);
+  band.upper = lipschitz_envelope(f.normalized, b.field.upper * ((1.0 - options.gap) * f.scale), options.bound_slope);
+  band.fixed = fixed_vertices(input, options.fix);
   for (char fixed : band.fixed) b.fixed_count += fixed ? 1 : 0;
-  if (settings.fix.kind != FixRegion::Kind::none && b.fixed_count == 0)
-    return "--fix " + settings.fix.text + " selects no vertex";
-  if (settings.outer) {
+  if (options.fix.kind != FixRegion::Kind::none && b.fixed_count == 0)
+    return "--fix " + options.fix.text + " selects no vertex";
+  if (options.outer) {
     // The base stays where it is: no outer offset within reach of the ground, so the object keeps
     // its contact set and its pose.
     band.outer_limit.resize(n);
@@ -296,8 +280,8 @@ std::string make_band(const Mesh& input, const OptimizeSettings& settings, const
       band.outer_limit(i) =
           input.V(i, 2) <= f.zmin + 2.0 * f.outer_max + f.ground_tol ? 0.0 : f.outer_max * f.scale;
   }
-  b.mark_thin();
-  b.thin_count_initial = b.thin_count;
+  b.mark_left_solid();
+  b.left_solid_count_initial = b.left_solid_count;
   return "";
 }
 
@@ -305,40 +289,38 @@ std::string make_band(const Mesh& input, const OptimizeSettings& settings, const
 // or correction (the contoured cavity's moments) from where the last solve ended.
 class OffsetSolve {
  public:
-  OffsetSolve(const Mesh& input, const OptimizeSettings& settings, const Frame& f, Band& b,
-              const Eigen::MatrixXd& basis, const ReducedOptions& options, const Progress& say)
-      : input_(input), settings_(settings), f_(f), b_(b), basis_(basis), options_(options), say_(say) {}
+  OffsetSolve(const Mesh& input, const OptimizeOptions& options, const Frame& f, Band& b,
+              const Eigen::MatrixXd& basis, const ReducedOptions& reduced_options, const Progress& say)
+      : input_(input), options_(options), f_(f), b_(b), basis_(basis), reduced_options_(reduced_options), say_(say) {}
 
   // The first solve and, with `--cavity offset`, the repair rounds.
   void run() {
-    const int max_repair_rounds = settings_.cavity == CavityMode::offset ? settings_.max_repair_rounds : 0;
+    const int max_repair_rounds = options_.cavity == CavityMode::offset ? options_.max_repair_rounds : 0;
     const Eigen::Index n = input_.V.rows();
     for (int round = 0;; ++round) {
-      problem_ = std::make_unique<ReducedProblem>(f_.normalized, b_.band, basis_, settings_.k == 0, f_.goal, options_);
+      problem_ = std::make_unique<ReducedProblem>(f_.normalized, b_.band, basis_, options_.k == 0, f_.goal, reduced_options_);
       variables = problem_->num_variables();
       if (round == 0) {
         x_ = problem_->start_point();
-        say_("solve: " + std::to_string(variables) + " variables, goal " + to_string(settings_.goal));
+        say_("solve: " + std::to_string(variables) + " variables, goal " + to_string(options_.goal));
       }
       // Tightened bounds only shrink the feasible set: when the goal's constraints are not met,
       // repairs cannot help, and the report says why.
       if (solve(round)) last_round_met = round;
       if (round == max_repair_rounds || !constraints_met) break;
       const SurfaceDefects defects =
-          find_surface_defects(outer, inner, b_.band.fixed, b_.thin, 0.5 * f_.wall, settings_.threads);
+          find_surface_defects(outer, inner, b_.band.fixed, b_.left_solid, 0.5 * f_.wall, options_.threads);
       if (defects.empty()) break;
       ++repair_rounds;
-      Json entry = Json::object();
-      entry["intersecting_vertices"] = static_cast<long long>(defects.intersecting_vertices.size());
-      entry["thin_wall_vertices"] = static_cast<long long>(defects.thin_wall_vertices.size());
-      repairs.push_back(entry);
+      repairs.push_back({static_cast<long long>(defects.intersecting_vertices.size()),
+                         static_cast<long long>(defects.thin_wall_vertices.size())});
       say_("repair " + std::to_string(repair_rounds) + ": " + std::to_string(defects.intersecting_vertices.size()) +
            " vertices on folds, " + std::to_string(defects.thin_wall_vertices.size()) + " on thin walls");
       // A fold spans the faces around its vertices: their one-ring neighbours are tightened too,
       // or the fold moves next door and needs another round.
       std::vector<char> tighten(static_cast<std::size_t>(n), 0);
       for (int v : defects.intersecting_vertices) tighten[static_cast<std::size_t>(v)] = 1;
-      if (settings_.repair_ring)
+      if (options_.repair_ring)
         for (Eigen::Index face = 0; face < input_.F.rows(); ++face) {
           bool touched = false;
           for (int c = 0; c < 3; ++c) touched = touched || tighten[static_cast<std::size_t>(input_.F(face, c))] == 1;
@@ -350,10 +332,10 @@ class OffsetSolve {
         }
       OffsetBand& band = b_.band;
       for (Eigen::Index v = 0; v < n; ++v)
-        if (tighten[static_cast<std::size_t>(v)]) band.upper(v) *= settings_.repair_shrink;
-      band.upper = lipschitz_envelope(f_.normalized, band.upper, settings_.bound_slope);
+        if (tighten[static_cast<std::size_t>(v)]) band.upper(v) *= options_.repair_shrink;
+      band.upper = lipschitz_envelope(f_.normalized, band.upper, options_.bound_slope);
       for (int v : defects.thin_wall_vertices) band.lower(v) += 0.5 * f_.wall * f_.scale;
-      b_.mark_thin();
+      b_.mark_left_solid();
     }
   }
 
@@ -388,11 +370,11 @@ class OffsetSolve {
   int variables = 0, repair_rounds = 0, total_evaluations = 0;
   int last_round_met = -1;          // the last solve that met the goal's constraints
   bool constraints_met = false;
-  Json repairs = Json::array();
+  std::vector<RepairRound> repairs;
 
  private:
   AlParams params(int round) const {
-    AlParams p = settings_.solver;
+    AlParams p = options_.solver;
     if (round > 0) {
       // A later round solves a nearby problem: start from the last round's multipliers and
       // penalty (measured on the bottle with --outer: 3605 evaluations without, 1124 with), the
@@ -400,9 +382,9 @@ class OffsetSolve {
       // 523 evaluations uncapped, 270 capped at 1e3).
       p.initial_equality_multipliers = solved.equality_multipliers;
       p.initial_inequality_multipliers = solved.inequality_multipliers;
-      p.initial_penalty = std::min(solved.penalty, settings_.warm_penalty_cap);
+      p.initial_penalty = std::min(solved.penalty, options_.warm_penalty_cap);
     }
-    if (settings_.trace_solver)
+    if (options_.trace_solver)
       p.on_outer_iteration = [say = say_, round](const AlIterationInfo& info) {
         say("  round " + std::to_string(round) + " outer " + std::to_string(info.outer_iteration) + ": f " +
             format_double(info.f) + ", violation " + format_double(info.max_violation) + ", stationarity " +
@@ -423,22 +405,22 @@ class OffsetSolve {
     outer = input_;
     for (Eigen::Index i = 0; i < input_.V.rows(); ++i) {
       inner.V.row(i) += (eval.inner_offset(i) / f_.scale) * b_.band.inner_direction.row(i);
-      if (settings_.outer) outer.V.row(i) += (eval.outer_offset(i) / f_.scale) * b_.band.outer_direction.row(i);
+      if (options_.outer) outer.V.row(i) += (eval.outer_offset(i) / f_.scale) * b_.band.outer_direction.row(i);
     }
     // A problem the solver refuses (hard bounds with an empty box) or cannot evaluate at the start
     // is not changed by tighter bounds or a correction either.
     const bool refused = solved.status == AlStatus::InvalidInput || solved.status == AlStatus::NumericalIssue;
     constraints_met = !refused && solved.status != AlStatus::Infeasible &&
-                      solved.max_violation <= 100.0 * settings_.solver.feasibility_tolerance;
+                      solved.max_violation <= 100.0 * options_.solver.feasibility_tolerance;
     return constraints_met;
   }
 
   const Mesh& input_;
-  const OptimizeSettings& settings_;
+  const OptimizeOptions& options_;
   const Frame& f_;
   Band& b_;
   const Eigen::MatrixXd& basis_;
-  ReducedOptions options_;
+  ReducedOptions reduced_options_;
   Progress say_;
   std::unique_ptr<ReducedProblem> problem_;
   Eigen::VectorXd x_;
@@ -450,13 +432,12 @@ class OffsetSolve {
 // difference the contour made, warm-started, until the written solid verifies.
 struct Cavity {
   Mesh written;                // the cavity's shells, normals out of the void
-  bool contoured = false;
   Verification verification;
-  Json json = Json::object();
+  CavitySummary summary;
 };
 
-Cavity make_cavity(const OptimizeSettings& settings, const Frame& f, const Band& b, OffsetSolve& solve,
-                   Json& timings, const Progress& say) {
+Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
+                   StageTimings& timings, const Progress& say) {
   auto stage_start = Clock::now();
   Cavity c;
   VerifyInput verify_input;
@@ -468,38 +449,36 @@ Cavity make_cavity(const OptimizeSettings& settings, const Frame& f, const Band&
   verify_input.wall = f.wall;
   verify_input.fixed = b.band.fixed;
   verify_input.bound_violation = solve.bound_violation();
-  verify_input.threads = settings.threads;
+  verify_input.threads = options.threads;
   c.verification = verify_offsets(verify_input);
-  timings["verify"] = seconds_since(stage_start);
-  c.json["mode"] = to_string(settings.cavity);
-  c.json["offset_goal_met"] = c.verification.goal_met;
-  c.json["offset_valid"] = c.verification.valid;
-  Json offset_failures = Json::array();
-  for (const auto& failure_text : c.verification.failures) offset_failures.push_back(failure_text);
-  c.json["offset_failures"] = offset_failures;
+  timings.verify = seconds_since(stage_start);
+  c.summary.mode = options.cavity;
+  c.summary.offset_goal_met = c.verification.goal_met;
+  c.summary.offset_valid = c.verification.valid;
+  c.summary.offset_failures = c.verification.failures;
   c.written = solve.inner;
   const bool offset_verified = c.verification.goal_met && c.verification.valid;
-  const bool want_contour = settings.cavity == CavityMode::contour ||
-                            (settings.cavity == CavityMode::automatic && !offset_verified);
+  const bool want_contour = options.cavity == CavityMode::contour ||
+                            (options.cavity == CavityMode::automatic && !offset_verified);
   std::string problem;
   if (want_contour && b.fixed_count > 0) {
-    problem = settings.cavity == CavityMode::contour
+    problem = options.cavity == CavityMode::contour
                   ? "a contoured cavity cannot have an opening (--fix) yet; the offset surfaces were written"
                   : "with an opening (--fix) only the offset surfaces can be written, and they do not verify";
   } else if (want_contour) {
     stage_start = Clock::now();
     ContourCavityOptions cavity_options;
     cavity_options.wall = f.wall;
-    cavity_options.cells_per_wall = settings.cavity_cells_per_wall;
-    cavity_options.margin_cells = settings.cavity_margin_cells;
-    cavity_options.threads = settings.threads;
-    Json rounds = Json::array();
+    cavity_options.cells_per_wall = options.cavity_cells_per_wall;
+    cavity_options.margin_cells = options.cavity_margin_cells;
+    cavity_options.threads = options.threads;
+    std::vector<ContourRound>& rounds = c.summary.rounds.emplace();
     double contour_seconds = 0.0;
     for (int round = 0;; ++round) {
       const auto contour_start = Clock::now();
-      const TriangleBvh outer_offset_bvh = settings.outer ? TriangleBvh(solve.outer.V, solve.outer.F) : TriangleBvh();
+      const TriangleBvh outer_offset_bvh = options.outer ? TriangleBvh(solve.outer.V, solve.outer.F) : TriangleBvh();
       const ContourCavity contoured =
-          contour_cavity(solve.outer, settings.outer ? outer_offset_bvh : b.bvh, solve.inner, cavity_options);
+          contour_cavity(solve.outer, options.outer ? outer_offset_bvh : b.bvh, solve.inner, cavity_options);
       contour_seconds += seconds_since(contour_start);
       if (!contoured.ok) {
         problem = "the cavity could not be contoured: " + contoured.message;
@@ -517,32 +496,28 @@ Cavity make_cavity(const OptimizeSettings& settings, const Frame& f, const Band&
       // no validity search (on a 10^5-face cavity the costliest part of a round).
       contour_input.goal_only = true;
       c.verification = verify_offsets(contour_input);
-      const bool will_correct = !c.verification.goal_met && solve.constraints_met && round < settings.max_correction_rounds;
+      const bool will_correct = !c.verification.goal_met && solve.constraints_met && round < options.max_correction_rounds;
       if (!will_correct) {
         contour_input.goal_only = false;
         c.verification = verify_offsets(contour_input);
       }
       const double cube = f.scale * f.scale * f.scale;
-      Json entry = Json::object();
-      Json delta_json = Json::array();
-      for (int r = 0; r < 10; ++r) delta_json.push_back(delta(r));
-      entry["delta_in_frame"] = delta_json;
-      entry["void_volume_offset"] = solve.eval.inner_integrals(kIntVolume) / cube;
-      entry["void_volume_contour"] = (solve.eval.inner_integrals(kIntVolume) + delta(kIntVolume)) / cube;
-      entry["grid"] = Json::array_of({static_cast<double>(contoured.grid.nx), static_cast<double>(contoured.grid.ny),
-                                      static_cast<double>(contoured.grid.nz)});
-      entry["spacing"] = contoured.grid.spacing;
-      entry["contoured_cells"] = static_cast<long long>(contoured.active_cells);
-      entry["distance_nodes"] = static_cast<long long>(contoured.distance_nodes);
-      entry["shells"] = contoured.shells;
-      entry["shells_filled"] = contoured.shells_dropped;
-      entry["filled_volume"] = contoured.dropped_volume;
-      entry["vertices_moved_for_wall"] = contoured.vertices_moved_for_wall;
-      entry["vertices"] = static_cast<long long>(contoured.cavity.V.rows());
-      entry["faces"] = static_cast<long long>(contoured.cavity.F.rows());
-      entry["goal_met"] = c.verification.goal_met;
-      entry["valid"] = will_correct ? Json() : Json(c.verification.valid);
-      rounds.push_back(entry);
+      ContourRound& entry = rounds.emplace_back();
+      entry.delta_in_frame = delta;
+      entry.void_volume_offset = solve.eval.inner_integrals(kIntVolume) / cube;
+      entry.void_volume_contour = (solve.eval.inner_integrals(kIntVolume) + delta(kIntVolume)) / cube;
+      entry.grid = Eigen::Vector3i(contoured.grid.nx, contoured.grid.ny, contoured.grid.nz);
+      entry.spacing = contoured.grid.spacing;
+      entry.contoured_cells = contoured.active_cells;
+      entry.distance_nodes = contoured.distance_nodes;
+      entry.shells = contoured.shells;
+      entry.shells_filled = contoured.shells_dropped;
+      entry.filled_volume = contoured.dropped_volume;
+      entry.vertices_moved_for_wall = contoured.vertices_moved_for_wall;
+      entry.vertices = static_cast<long long>(contoured.cavity.V.rows());
+      entry.faces = static_cast<long long>(contoured.cavity.F.rows());
+      entry.goal_met = c.verification.goal_met;
+      if (!will_correct) entry.valid = c.verification.valid;
       say("cavity round " + std::to_string(round) + ": " + std::to_string(contoured.active_cells) + " cells contoured, " +
           std::to_string(contoured.shells) + " shells, goal " + (c.verification.goal_met ? "met" : "not met") + ", " +
           (will_correct ? "corrected next" : c.verification.valid ? "valid" : "not valid"));
@@ -552,143 +527,82 @@ Cavity make_cavity(const OptimizeSettings& settings, const Frame& f, const Band&
       if (!will_correct) break;
       solve.correct(delta, round + 1);
     }
-    c.json["rounds"] = rounds;
-    timings["contour"] = contour_seconds;
-    timings["correct"] = seconds_since(stage_start) - contour_seconds;
+    timings.contour = contour_seconds;
+    timings.correct = seconds_since(stage_start) - contour_seconds;
   }
-  c.contoured = want_contour && problem.empty();
-  c.json["written"] = c.contoured ? "contour" : "offset";
+  c.summary.contoured = want_contour && problem.empty();
   if (!problem.empty()) {
     c.verification.valid = false;
     c.verification.failures.insert(c.verification.failures.begin(), problem);
-    Json failures = Json::array();
-    for (const auto& failure_text : c.verification.failures) failures.push_back(failure_text);
-    c.verification.metrics["failures"] = failures;
-    c.verification.metrics["valid"] = false;
   }
   return c;
 }
 
-// Stage "report": every option with the value used, the frame, the field, the basis, the solver,
-// the input as it was, the cavity and the verified result.
-Json make_report(const OptimizeSettings& settings, const Frame& f, const Band& b, const Json& basis_json,
-                 const OffsetSolve& solve, const Cavity& cavity) {
-  const Eigen::Index n = f.normalized.V.rows();
-  Json report = Json::object();
-  Json params = Json::object();
-  params["goal"] = to_string(settings.goal);
-  params["k"] = settings.k == 0 ? Json("all") : Json(settings.k);
-  params["basis"] = to_string(settings.basis);
-  params["bounds"] = settings.bounds == BoundsMode::clamp ? "clamp" : "hard";
-  params["outer"] = settings.outer;
-  params["wall"] = f.wall;
-  params["outer_max"] = f.outer_max;
-  params["penalty"] = settings.penalty;
-  params["margin"] = f.margin;
-  params["ground_tol"] = f.ground_tol;
-  params["fill_density"] = settings.fill_density;
-  params["fluid_density"] = settings.goal == GoalKind::floating ? Json(settings.fluid_density) : Json();
-  params["target_volume"] = settings.goal == GoalKind::volume ? Json(settings.target_volume) : Json();
-  params["radius"] = settings.radius > 0 ? Json(settings.radius) : Json();
-  params["fix"] = settings.fix.kind == FixRegion::Kind::none ? Json() : Json(settings.fix.text);
-  params["gap"] = settings.gap;
-  params["ramp"] = settings.ramp;
-  params["start_fraction"] = settings.start_fraction;
-  params["repair_ring"] = settings.repair_ring;
-  params["cavity"] = to_string(settings.cavity);
-  report["parameters"] = params;
-  report["goal"] = f.goal_json;
-  Json frame = Json::object();
-  frame["origin"] = vec3(f.origin);
-  frame["scale"] = f.scale;
-  frame["diagonal"] = f.diag;
-  report["frame"] = frame;
-
-  Json field_json = Json::object();
-  field_json["contraction_steps"] = b.contraction.steps;
-  field_json["contraction_status"] = to_string(b.contraction.status);
-  field_json["volume_ratio"] = b.contraction.volume_ratio;
-  field_json["shortened"] = b.field.shortened_count;
-  field_json["fallback"] = b.field.fallback_count;
-  field_json["fixed"] = b.fixed_count;
-  field_json["parts_left_solid"] = b.thin_count_initial;
-  field_json["parts_left_solid_after_repairs"] = b.thin_count;
-  int at_lower = 0, at_upper = 0;
-  const ReducedProblem::Evaluation& e = solve.eval;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (b.band.fixed[static_cast<std::size_t>(i)] || b.thin[static_cast<std::size_t>(i)]) continue;
-    const double span = settings.ramp;
-    if (e.inner_offset(i) >= b.band.upper(i) - span) ++at_upper;
-    else if (e.inner_offset(i) <= std::min(b.band.lower(i) - e.outer_offset(i), b.band.upper(i)) + span) ++at_lower;
+// Stage "report": the frame, the field, the solver and the input as it was, as values.
+FieldSummary field_summary(const OptimizeOptions& options, const Band& b, const ReducedProblem::Evaluation& e) {
+  FieldSummary field;
+  field.contraction_steps = b.contraction.steps;
+  field.contraction_status = b.contraction.status;
+  field.volume_ratio = b.contraction.volume_ratio;
+  field.shortened = b.field.shortened_count;
+  field.fallback = b.field.fallback_count;
+  field.fixed = b.fixed_count;
+  field.left_solid_vertices = b.left_solid_count_initial;
+  field.left_solid_vertices_after_repairs = b.left_solid_count;
+  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(b.band.fixed.size()); ++i) {
+    if (b.band.fixed[static_cast<std::size_t>(i)] || b.left_solid[static_cast<std::size_t>(i)]) continue;
+    const double span = options.ramp;
+    if (e.inner_offset(i) >= b.band.upper(i) - span) ++field.clamped_at_skeleton;
+    else if (e.inner_offset(i) <= std::min(b.band.lower(i) - e.outer_offset(i), b.band.upper(i)) + span) ++field.clamped_at_wall;
   }
-  field_json["clamped_at_wall"] = at_lower;
-  field_json["clamped_at_skeleton"] = at_upper;
-  report["offset_field"] = field_json;
-  report["basis"] = basis_json;
+  return field;
+}
 
-  Json solver = Json::object();
-  solver["status"] = to_string(solve.solved.status);
-  solver["objective"] = e.objective;
-  solver["outer_iterations"] = solve.solved.outer_iterations;
-  solver["inner_iterations"] = solve.solved.inner_iterations;
-  solver["evaluations"] = solve.total_evaluations;
-  solver["repair_rounds"] = solve.repair_rounds;
-  solver["repairs"] = solve.repairs;
-  solver["max_violation"] = solve.solved.max_violation;
-  solver["variables"] = solve.variables;
-  Json constraints = Json::array();
-  auto add_rows = [&](const std::vector<std::string>& names, const Eigen::VectorXd& values, const char* type) {
-    for (std::size_t r = 0; r < names.size(); ++r) {
-      Json c = Json::object();
-      c["name"] = names[r];
-      c["type"] = type;
-      c["value"] = values(static_cast<Eigen::Index>(r));
-      constraints.push_back(c);
-    }
+SolverSummary solver_summary(const Frame& f, const OffsetSolve& solve) {
+  SolverSummary solver;
+  const ReducedProblem::Evaluation& e = solve.eval;
+  solver.status = solve.solved.status;
+  solver.objective = e.objective;
+  solver.outer_iterations = solve.solved.outer_iterations;
+  solver.inner_iterations = solve.solved.inner_iterations;
+  solver.evaluations = solve.total_evaluations;
+  solver.repair_rounds = solve.repair_rounds;
+  solver.repairs = solve.repairs;
+  solver.max_violation = solve.solved.max_violation;
+  solver.variables = solve.variables;
+  auto add_rows = [&](const std::vector<std::string>& names, const Eigen::VectorXd& values, bool equality) {
+    for (std::size_t r = 0; r < names.size(); ++r)
+      solver.constraints.push_back({names[r], equality, values(static_cast<Eigen::Index>(r))});
   };
-  add_rows(goal_equality_names(f.goal), e.goal.equality, "= 0");
-  add_rows(goal_inequality_names(f.goal), e.goal.inequality, "<= 0");
-  solver["constraints_in_frame"] = constraints;
-  report["solver"] = solver;
-  report["before"] = properties_json(f.before);
-  report["before"]["stability"] = Json::object();
-  report["before"]["stability"]["com_margin"] = f.stability_before.com_margin;
-  report["before"]["stability"]["stands"] = f.stability_before.stands;
-  // The input's own defects: the written solid keeps its outer surface, so they are the input's,
-  // not the cavity's (the cavity's own intersections are counted in "after").
-  report["before"]["self_intersecting_pairs"] = b.input_self.pairs;
-  report["before"]["self_intersections_truncated"] = b.input_self.truncated;
-  report["cavity"] = cavity.json;
-  report["after"] = cavity.verification.metrics;
-  report["goal_met"] = cavity.verification.goal_met;
-  report["valid"] = cavity.verification.valid;
-  return report;
+  add_rows(goal_equality_names(f.goal), e.goal.equality, true);
+  add_rows(goal_inequality_names(f.goal), e.goal.inequality, false);
+  return solver;
 }
 
 // Why the result failed, starting with what happened to the solve.
-std::string failure_reason(const OptimizeSettings& settings, const Band& b, const OffsetSolve& solve,
+std::string failure_reason(const OptimizeOptions& options, const Band& b, const OffsetSolve& solve,
                            const Verification& verification) {
   std::string why = verification.failures.empty() ? "unknown" : verification.failures.front();
   const AlResult& solved = solve.solved;
   const bool constraints_unmet =
-      solved.status == AlStatus::Infeasible || solved.max_violation > 100.0 * settings.solver.feasibility_tolerance;
-  if (settings.bounds == BoundsMode::hard && b.thin_count_initial > 0)
-    return std::string("the per-vertex bounds cannot be met") + (settings.k == 0 ? ": " : " in the basis: ") +
-           std::to_string(b.thin_count_initial) +
+      solved.status == AlStatus::Infeasible || solved.max_violation > 100.0 * options.solver.feasibility_tolerance;
+  if (options.bounds == BoundsMode::hard && b.left_solid_count_initial > 0)
+    return std::string("the per-vertex bounds cannot be met") + (options.k == 0 ? ": " : " in the basis: ") +
+           std::to_string(b.left_solid_count_initial) +
            " vertices lie in parts thinner than two walls, where no offset is both above the wall and below the "
            "skeleton (try --bounds clamp); " + why;
   if (solved.status == AlStatus::InvalidInput || solved.status == AlStatus::NumericalIssue)
     return std::string("the solver could not start (") + to_string(solved.status) +
            (solved.message.empty() ? "" : ": " + solved.message) + "); " + why;
-  const char* later = settings.cavity == CavityMode::offset ? "repair" : "correction";
+  const char* later = options.cavity == CavityMode::offset ? "repair" : "correction";
   if (constraints_unmet && solve.last_round_met >= 0)
     return std::string("the constraints were met before ") + later + " round " +
            std::to_string(solve.last_round_met + 1) + ", but not once " +
-           (settings.cavity == CavityMode::offset ? "the bounds were tightened there to remove folds and thin walls"
+           (options.cavity == CavityMode::offset ? "the bounds were tightened there to remove folds and thin walls"
                                                   : "the contoured cavity's moments were taken into account") +
            "; " + why;
   if (constraints_unmet && solved.status == AlStatus::MaxEvaluations)
-    return "the solver used its " + std::to_string(settings.solver.max_evaluations) +
+    return "the solver used its " + std::to_string(options.solver.max_evaluations) +
            " evaluations before meeting the constraints (violation " + format_double(solved.max_violation) +
            ", normalised frame); " + why;
   if (constraints_unmet)
@@ -698,23 +612,23 @@ std::string failure_reason(const OptimizeSettings& settings, const Band& b, cons
 
 }  // namespace
 
-OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& settings, const Progress& progress) {
+OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& options, const Progress& progress) {
   auto say = [&](const std::string& line) {
     if (progress) progress(line);
   };
-  if (const std::string problem = check_optimize_settings(settings); !problem.empty())
+  if (const std::string problem = options.check(); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
   const Eigen::Index n = input.V.rows();
-  const int k = settings.k;
+  const int k = options.k;
   if (k >= n) return failure(OptimizeStatus::bad_input, "--k " + std::to_string(k) + " is not below the vertex count " + std::to_string(n));
 
-  Json timings = Json::object();
+  StageTimings timings;
   auto stage_start = Clock::now();
   const auto total_start = stage_start;
   Frame f;
-  if (const std::string problem = make_frame(input, settings, f); !problem.empty())
+  if (const std::string problem = make_frame(input, options, f); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
-  timings["frame"] = seconds_since(stage_start);
+  timings.frame = seconds_since(stage_start);
 
   // The basis needs the mesh alone, so it is computed alongside the skeleton. Both give the same
   // bits on any number of threads, so running them together changes no result. The future's
@@ -726,11 +640,11 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
   std::future<BasisOutcome> basis_future;
   say("skeleton: contracting " + std::to_string(n) + " vertices");
   if (k > 0) {
-    const bool alongside = settings.threads > 1;
+    const bool alongside = options.threads > 1;
     say("basis: " + std::to_string(k) + " manifold harmonics" + (alongside ? ", alongside the skeleton" : ""));
     ManifoldHarmonicsOptions basis_options;
-    basis_options.kind = settings.basis;
-    basis_options.lanczos.threads = settings.threads;
+    basis_options.kind = options.basis;
+    basis_options.lanczos.threads = options.threads;
     const auto compute_basis = [&normalized = f.normalized, k, basis_options]() {
       const auto start = Clock::now();
       BasisOutcome outcome;
@@ -747,58 +661,68 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
 
   stage_start = Clock::now();
   Band b;
-  if (const std::string problem = make_band(input, settings, f, b); !problem.empty())
+  if (const std::string problem = make_band(input, options, f, b); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
-  timings["skeleton"] = seconds_since(stage_start);
+  timings.skeleton = seconds_since(stage_start);
 
   // Basis: its own seconds, which overlap the skeleton's.
   Eigen::MatrixXd basis;
-  Json basis_json = Json::object();
-  basis_json["kind"] = k == 0 ? "identity" : to_string(settings.basis);
-  basis_json["k"] = k == 0 ? static_cast<int>(n) : k;
+  BasisSummary basis_summary;
+  basis_summary.identity = k == 0;
+  basis_summary.kind = options.basis;
+  basis_summary.k = k == 0 ? static_cast<int>(n) : k;
   double basis_seconds = 0.0;
   if (k > 0) {
     BasisOutcome outcome = basis_future.get();
     basis_seconds = outcome.seconds;
     const LanczosResult& harmonics = outcome.harmonics;
-    basis_json["status"] = to_string(harmonics.status);
-    basis_json["largest_eigenvalue"] = harmonics.eigenvalues.size() ? harmonics.eigenvalues(harmonics.eigenvalues.size() - 1) : 0.0;
+    basis_summary.status = harmonics.status;
+    basis_summary.largest_eigenvalue = harmonics.eigenvalues.size() ? harmonics.eigenvalues(harmonics.eigenvalues.size() - 1) : 0.0;
     if (harmonics.eigenvectors.cols() != k)
       return failure(OptimizeStatus::bad_input, "the eigensolver returned no basis: " + harmonics.message);
     basis = harmonics.eigenvectors;
   }
-  timings["basis"] = basis_seconds;
+  timings.basis = basis_seconds;
 
   stage_start = Clock::now();
   ReducedOptions reduced_options;
-  reduced_options.ramp_width = settings.ramp;
-  reduced_options.outer = settings.outer;
-  reduced_options.outer_penalty = settings.penalty;
-  reduced_options.bounds = settings.bounds;
-  reduced_options.start_fraction = settings.start_fraction;
-  reduced_options.threads = settings.threads;
-  if (const std::string problem_text = check_reduced_options(reduced_options); !problem_text.empty())
+  reduced_options.ramp_width = options.ramp;
+  reduced_options.outer = options.outer;
+  reduced_options.outer_penalty = options.penalty;
+  reduced_options.bounds = options.bounds;
+  reduced_options.start_fraction = options.start_fraction;
+  reduced_options.threads = options.threads;
+  if (const std::string problem_text = reduced_options.check(); !problem_text.empty())
     return failure(OptimizeStatus::bad_input, problem_text);
-  OffsetSolve solve(input, settings, f, b, basis, reduced_options, say);
+  OffsetSolve solve(input, options, f, b, basis, reduced_options, say);
   solve.run();
-  timings["solve"] = seconds_since(stage_start);
+  timings.solve = seconds_since(stage_start);
 
-  const Cavity cavity = make_cavity(settings, f, b, solve, timings, say);
-  timings["total"] = seconds_since(total_start);
+  const Cavity cavity = make_cavity(options, f, b, solve, timings, say);
+  timings.total = seconds_since(total_start);
 
   OptimizeResult result;
   result.outer = solve.outer;
   result.inner = cavity.written;
-  result.printable = cavity.contoured ? hollow_solid(solve.outer, cavity.written)
-                                      : printable_solid(solve.outer, cavity.written, b.band.fixed);
+  result.printable = cavity.summary.contoured ? hollow_solid(solve.outer, cavity.written)
+                                              : printable_solid(solve.outer, cavity.written, b.band.fixed);
   result.skeleton = Mesh{b.contraction.V, input.F};
-  result.report = make_report(settings, f, b, basis_json, solve, cavity);
+  result.goal = f.setup;
+  result.frame = {f.origin, f.scale, f.diag, f.wall, f.outer_max, f.margin, f.ground_tol};
+  result.field = field_summary(options, b, solve.eval);
+  result.basis = basis_summary;
+  result.solver = solver_summary(f, solve);
+  result.before = {f.before, f.stability_before.com_margin, f.stability_before.stands, b.input_self.pairs,
+                   b.input_self.truncated};
+  result.cavity = cavity.summary;
+  result.after = cavity.verification;
   result.timings = timings;
   // The input's own crossings are named where it is loaded (cli/cli_support.h, load_input); the
   // report keeps their count, and the verification counts only the cavity's.
-  if (b.thin_count > 0)
-    result.warnings.push_back(std::to_string(b.thin_count) + " vertices lie in parts thinner than two walls" +
-                              (cavity.contoured ? "; those parts stay solid" : ", where the offset surface leaves less than the wall"));
+  // "Parts thinner than two walls" is the users' wording for parts left solid (kept as it was).
+  if (b.left_solid_count > 0)
+    result.warnings.push_back(std::to_string(b.left_solid_count) + " vertices lie in parts thinner than two walls" +
+                              (cavity.summary.contoured ? "; those parts stay solid" : ", where the offset surface leaves less than the wall"));
   if (b.field.fallback_count > 0)
     result.warnings.push_back(std::to_string(b.field.fallback_count) + " vertices move along the inward normal (skeleton direction unusable or too shallow)");
   const Verification& verification = cavity.verification;
@@ -808,15 +732,14 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
     // axis goals), so a small basis can end above the first and still pass: say so, as the
     // report's solver status alone would read as a failure.
     const AlResult& solved = solve.solved;
-    if (solved.status == AlStatus::Infeasible || solved.max_violation > 100.0 * settings.solver.feasibility_tolerance)
+    if (solved.status == AlStatus::Infeasible || solved.max_violation > 100.0 * options.solver.feasibility_tolerance)
       result.warnings.push_back(std::string("the solver ended ") + to_string(solved.status) + " with constraint violation " +
                                 format_double(solved.max_violation) + " (tolerance " +
-                                format_double(settings.solver.feasibility_tolerance) +
+                                format_double(options.solver.feasibility_tolerance) +
                                 ", normalised frame); the written object still meets every tolerance the verification checks");
   } else {
     result.status = OptimizeStatus::goal_not_met;
-    result.message = failure_reason(settings, b, solve, verification);
-    result.report["why"] = result.message;
+    result.message = failure_reason(options, b, solve, verification);
   }
   return result;
 }

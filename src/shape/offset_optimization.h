@@ -5,15 +5,19 @@
 // Everything is computed in a normalised frame (ground contact centroid at the origin, z from the
 // ground, bounding-box diagonal 1) and reported back in input units. The input is never moved.
 #pragma once
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "io/json.h"
 #include "mesh/mesh.h"
 #include "optim/augmented_lagrangian.h"
 #include "shape/fix_region.h"
 #include "shape/goal.h"
 #include "shape/reduced_problem.h"
+#include "shape/verify_offsets.h"
+#include "skeleton/laplacian_contraction.h"
+#include "spectral/lanczos_eigensolver.h"
 #include "spectral/manifold_harmonics.h"
 
 namespace offsetopt {
@@ -26,7 +30,7 @@ enum class CavityMode { automatic, offset, contour };
 const char* to_string(CavityMode mode);
 bool parse_cavity_mode(const std::string& text, CavityMode& mode);
 
-struct OptimizeSettings {
+struct OptimizeOptions {
   GoalKind goal = GoalKind::stand;
   int k = 36;                    // basis size; 0 means every vertex (`--k all`, paper eq. 1)
   BasisKind basis = BasisKind::Mass;
@@ -93,28 +97,147 @@ struct OptimizeSettings {
     p.clear_violation_factor = 1e4;
     return p;
   }
-  static OptimizeSettings defaults() { return OptimizeSettings(); }
-};
+  static OptimizeOptions defaults() { return OptimizeOptions(); }
 
-// Empty when the settings are valid, else a message naming the option.
-std::string check_optimize_settings(const OptimizeSettings& settings);
+  // Empty when the options are valid, else a message naming the option.
+  std::string check() const;
+};
 
 enum class OptimizeStatus {
   verified,       // goal met and the solid is valid
   goal_not_met,   // ran; the result misses the goal or is invalid (see the report)
-  bad_input,      // the mesh or settings do not allow the goal (message says why)
+  bad_input,      // the mesh or options do not allow the goal (message says why)
+};
+
+// What a run found, stage by stage, as plain values (cli/optimize_report.h writes them as the
+// JSON report). Input units unless a name says otherwise.
+
+// The goal as set up on the input (roly-poly: the sphere; spin: the tip).
+struct GoalSetup {
+  GoalKind kind = GoalKind::stand;
+  std::optional<Eigen::Vector3d> sphere_center;  // roly-poly
+  double sphere_radius = 0.0;                    // roly-poly
+  std::optional<Eigen::Vector3d> tip;            // spin
+};
+
+// The normalised frame and the lengths the options resolved to (a default is a fraction of the
+// diagonal).
+struct FrameSummary {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // the ground contact centroid, on the ground
+  double scale = 1.0;                                 // 1 / diagonal
+  double diagonal = 1.0;
+  double wall = 0.0, outer_max = 0.0, margin = 0.0, ground_tol = 0.0;
+};
+
+// The meso-skeleton and the offset field (vertex counts). A part left solid is one thinner than
+// two walls: its band is empty (the wall's lower bound at or above the skeleton's upper one), so it
+// keeps no cavity.
+struct FieldSummary {
+  int contraction_steps = 0;
+  ContractionStatus contraction_status = ContractionStatus::step_cap;
+  double volume_ratio = 1.0;
+  int shortened = 0;                // upper bounds shortened where the segment leaves the solid
+  int fallback = 0;                 // moving along the inward normal
+  int fixed = 0;                    // in the --fix region
+  int left_solid_vertices = 0;      // in parts left solid, before repairs
+  int left_solid_vertices_after_repairs = 0;
+  int clamped_at_wall = 0;          // final inner offsets within a ramp of the wall ...
+  int clamped_at_skeleton = 0;      // ... or of the skeleton
+};
+
+struct BasisSummary {
+  bool identity = false;            // --k all: one variable per vertex, no eigensolver
+  BasisKind kind = BasisKind::Mass;
+  int k = 0;                        // columns (the vertex count with identity)
+  // The eigensolver's status and largest eigenvalue; absent with identity.
+  std::optional<LanczosStatus> status;
+  double largest_eigenvalue = 0.0;
+};
+
+// One `--cavity offset` repair round: the vertices whose bounds were tightened.
+struct RepairRound {
+  long long intersecting_vertices = 0;
+  long long thin_wall_vertices = 0;
+};
+
+// One of the goal's constraints at the end of the solve, normalised frame.
+struct ConstraintValue {
+  std::string name;
+  bool equality = true;             // "= 0", else "<= 0"
+  double value = 0.0;
+};
+
+struct SolverSummary {
+  AlStatus status = AlStatus::InvalidInput;
+  double objective = 0.0;
+  int outer_iterations = 0, inner_iterations = 0;  // of the last solve
+  int evaluations = 0;              // over every solve
+  int repair_rounds = 0;
+  std::vector<RepairRound> repairs;
+  double max_violation = 0.0;       // of the last solve, normalised frame
+  int variables = 0;
+  std::vector<ConstraintValue> constraints;  // equalities, then inequalities
+};
+
+// The input as it came.
+struct InputSummary {
+  Vector10d properties = Vector10d::Zero();  // [m, cx, cy, cz, Ixx, Iyy, Izz, Ixy, Iyz, Izx]
+  double com_margin = 0.0;
+  bool stands = false;
+  long long self_intersecting_pairs = 0;  // the input's own (geometry/mesh_defects.h)
+  bool self_intersections_truncated = false;
+};
+
+// One round of the contoured cavity (shape/contour_cavity.h) and its verification.
+struct ContourRound {
+  Vector10d delta_in_frame = Vector10d::Zero();  // contour minus offset model, inner integrals
+  double void_volume_offset = 0.0, void_volume_contour = 0.0;
+  Eigen::Vector3i grid = Eigen::Vector3i::Zero();  // nodes along x, y, z
+  double spacing = 0.0;
+  long long contoured_cells = 0, distance_nodes = 0;
+  int shells = 0, shells_filled = 0;
+  double filled_volume = 0.0;
+  int vertices_moved_for_wall = 0;
+  long long vertices = 0, faces = 0;
+  bool goal_met = false;
+  std::optional<bool> valid;        // absent when a correction follows (validity not measured)
+};
+
+// Which cavity was written and why: the offset surface's own verification, then the contour rounds.
+struct CavitySummary {
+  CavityMode mode = CavityMode::automatic;
+  bool offset_goal_met = false, offset_valid = false;
+  std::vector<std::string> offset_failures;
+  std::optional<std::vector<ContourRound>> rounds;  // present when a contour was attempted
+  bool contoured = false;           // the written cavity is the contour (else the offset surface)
+};
+
+// Seconds per stage: not reproducible, so kept apart from the rest. contour and correct are
+// present when a contour was attempted.
+struct StageTimings {
+  double frame = 0.0, skeleton = 0.0, basis = 0.0, solve = 0.0, verify = 0.0;
+  std::optional<double> contour, correct;
+  double total = 0.0;
 };
 
 struct OptimizeResult {
   OptimizeStatus status = OptimizeStatus::bad_input;
   std::string message;          // one line: why it failed (empty when verified)
   Mesh inner, outer, printable, skeleton;  // input units
-  Json report;                  // the full report (see README), without timings
-  Json timings;                 // per-stage seconds (not reproducible; kept apart)
+  // What the report states (set unless status is bad_input):
+  GoalSetup goal;
+  FrameSummary frame;
+  FieldSummary field;
+  BasisSummary basis;
+  SolverSummary solver;
+  InputSummary before;
+  CavitySummary cavity;
+  Verification after;           // of the written solid
+  StageTimings timings;
   std::vector<std::string> warnings;
 };
 
-OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& settings,
+OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& options,
                                 const std::function<void(const std::string&)>& progress = {});
 
 }  // namespace offsetopt

@@ -180,31 +180,10 @@ Eigen::Vector2d pivot_point(const Stability& st, const Eigen::Vector2d& c) {
   return a + t * (b - a);
 }
 
-bool read_vec3(const Json& j, Eigen::Vector3d& out) {
-  if (j.type() != Json::Type::Array || j.size() != 3) return false;
-  for (std::size_t i = 0; i < 3; ++i) {
-    const Json& e = j.at(i);
-    if (e.type() != Json::Type::Number && e.type() != Json::Type::Integer) return false;
-    out(static_cast<Eigen::Index>(i)) = e.as_number();
-    if (!std::isfinite(out(static_cast<Eigen::Index>(i)))) return false;
-  }
-  return true;
-}
-
-bool is_number(const Json& j) { return j.type() == Json::Type::Number || j.type() == Json::Type::Integer; }
-
-// A number field of `object`: absent or null leaves `out` alone; anything else but a finite
-// number is an error.
-bool optional_number(const Json& object, const char* key, double& out) {
-  if (!object.contains(key) || object.at(key).is_null()) return true;
-  if (!is_number(object.at(key))) return false;
-  out = object.at(key).as_number();
-  return std::isfinite(out);
-}
-
 }  // namespace
 
-std::string check_preview_settings(const PreviewSettings& s) {
+std::string PreviewOptions::check() const {
+  const PreviewOptions& s = *this;
   if (!(s.view_height >= 50.0 && s.view_height <= 5000.0)) return "view_height must be in [50, 5000] px";
   if (!(s.views_width >= 150.0 && s.views_width <= 20000.0)) return "views_width must be in [150, 20000] px";
   if (!(s.marker_radius >= 1.0 && s.marker_radius <= 50.0)) return "marker_radius must be in [1, 50] px";
@@ -212,55 +191,7 @@ std::string check_preview_settings(const PreviewSettings& s) {
   return {};
 }
 
-std::string preview_input_from_report(const Json& report, PreviewInput& input) {
-  if (report.type() != Json::Type::Object) return "the report is not a JSON object";
-  if (!report.contains("parameters") || report.at("parameters").type() != Json::Type::Object)
-    return "the report has no 'parameters' object";
-  const Json& parameters = report.at("parameters");
-  if (!parameters.contains("goal") || parameters.at("goal").type() != Json::Type::String)
-    return "the report has no 'parameters.goal' string";
-  if (!parse_goal_kind(parameters.at("goal").as_string(), input.goal))
-    return "unknown goal '" + parameters.at("goal").as_string() + "' in 'parameters.goal'";
-  for (const auto& [key, target] : {std::pair<const char*, double*>{"margin", &input.margin},
-                                    {"ground_tol", &input.ground_tol},
-                                    {"fill_density", &input.fill_density},
-                                    {"fluid_density", &input.fluid_density},
-                                    {"target_volume", &input.target_volume}})
-    if (!optional_number(parameters, key, *target)) return std::string("'parameters.") + key + "' is not a finite number";
-  if (input.margin < 0.0) return "'parameters.margin' is negative";
-  if (!(input.fill_density > 0.0)) return "'parameters.fill_density' must be positive";
-  if (input.goal == GoalKind::floating && !(input.fluid_density > 0.0))
-    return "goal float needs a positive 'parameters.fluid_density'";
-  if (report.contains("before") && report.at("before").type() == Json::Type::Object &&
-      report.at("before").contains("center_of_mass")) {
-    if (!read_vec3(report.at("before").at("center_of_mass"), input.before_com))
-      return "'before.center_of_mass' is not three finite numbers";
-    input.has_before_com = true;
-  }
-  if (report.contains("goal") && report.at("goal").type() == Json::Type::Object) {
-    const Json& goal = report.at("goal");
-    if (goal.contains("sphere_center")) {
-      if (!read_vec3(goal.at("sphere_center"), input.sphere_center)) return "'goal.sphere_center' is not three finite numbers";
-      if (!goal.contains("sphere_radius") || !is_number(goal.at("sphere_radius")) ||
-          !(goal.at("sphere_radius").as_number() > 0.0) || !std::isfinite(goal.at("sphere_radius").as_number()))
-        return "'goal.sphere_radius' is not a positive number";
-      input.sphere_radius = goal.at("sphere_radius").as_number();
-      input.has_sphere = true;
-    }
-    if (goal.contains("tip")) {
-      if (!read_vec3(goal.at("tip"), input.tip)) return "'goal.tip' is not three finite numbers";
-      input.has_tip = true;
-    }
-  }
-  if (report.contains("after") && report.at("after").type() == Json::Type::Object) {
-    double v = -1.0;
-    if (!optional_number(report.at("after"), "void_volume", v)) return "'after.void_volume' is not a finite number";
-    input.void_volume = v;
-  }
-  return {};
-}
-
-PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const PreviewSettings& settings) {
+PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const PreviewOptions& options) {
   PreviewResult result;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     for (int k = 0; k < 3; ++k)
@@ -271,7 +202,7 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
   // Vertices no face uses are left out (the reader drops them too), so the picture drawn from a
   // result in memory and from its file read back are the same.
   const Mesh solid = without_unused_vertices(mesh);
-  if (const std::string problem = check_preview_settings(settings); !problem.empty()) {
+  if (const std::string problem = options.check(); !problem.empty()) {
     result.message = problem;
     return result;
   }
@@ -309,8 +240,8 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
   lo -= Eigen::Vector3d::Constant(pad);
   hi += Eigen::Vector3d::Constant(pad);
   const Eigen::Vector3d range = hi - lo;
-  const double s = std::min(settings.view_height / std::max(range.z(), range.y()),
-                            settings.views_width / (2.0 * range.x() + range.y()));
+  const double s = std::min(options.view_height / std::max(range.z(), range.y()),
+                            options.views_width / (2.0 * range.x() + range.y()));
 
   const double margin = 20.0, gap = 24.0, top = 78.0, min_slot = 190.0;
   View views[3];
@@ -365,7 +296,7 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
   if (input.goal == GoalKind::floating && input.fluid_density > 0.0 && have_outer) {
     FloatingOptions fo;
     fo.fluid_density = input.fluid_density;
-    fo.max_iterations = settings.bisection_cap;
+    fo.max_iterations = options.bisection_cap;
     water = floating_equilibrium(shells.outer, P(kMass), fo);
     have_water = true;
     // The float goal (eq. 9) asks for weight = buoyancy fully submerged: within the tolerance
@@ -396,7 +327,7 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
   out += "<rect x=\"0\" y=\"0\" width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
   svg.text(margin, 28, std::string("offsetopt preview: goal ") + to_string(input.goal), 16);
 
-  const double r = settings.marker_radius;
+  const double r = options.marker_radius;
   for (int i = 0; i < 3; ++i) {
     const View& v = views[i];
     svg.text(v.x + 0.5 * v.w, v.y - 22, titles[i][0], 11, "middle");

@@ -16,7 +16,6 @@
 
 #include <Eigen/Core>
 
-#include "io/json.h"
 #include "mesh/mesh.h"
 #include "shape/goal.h"
 
@@ -28,18 +27,18 @@ inline constexpr const char* kPreviewCavityColour = "#ffd34d";
 inline constexpr const char* kPreviewComAfterColour = "#ff00ff";
 inline constexpr const char* kPreviewComBeforeColour = "#00b050";
 
-struct PreviewSettings {
+struct PreviewOptions {
   double view_height = 320.0;   // px: the tallest view
   double views_width = 900.0;   // px: the three views side by side, at most
   double marker_radius = 4.5;   // px
   int bisection_cap = 200;      // waterline search (float)
+
+  // Empty when the options are usable, else what is wrong.
+  std::string check() const;
 };
 
-// Empty when the settings are usable, else what is wrong.
-std::string check_preview_settings(const PreviewSettings& settings);
-
 // What the picture needs besides the solid: the goal and its parameters as the optimize report
-// states them. Lengths in input units; a negative length means "not given".
+// states them (cli/write_preview.h reads them from a report). Lengths in input units; a negative length means "not given".
 struct PreviewInput {
   GoalKind goal = GoalKind::stand;
   double margin = 0.0;
@@ -57,10 +56,6 @@ struct PreviewInput {
   double void_volume = -1.0;     // the report's after.void_volume; negative: compute from the shells
 };
 
-// Reads a PreviewInput from an optimize report (parameters, goal, before, after). Returns an
-// empty string, or one line naming the missing or malformed field.
-std::string preview_input_from_report(const Json& report, PreviewInput& input);
-
 enum class PreviewStatus { ok, bad_input };
 
 struct PreviewResult {
@@ -71,6 +66,6 @@ struct PreviewResult {
 
 // Draws `solid` (outer shell(s) outward, cavity shells inward, as optimize writes it). The same
 // solid and input give the same bytes.
-PreviewResult preview_svg(const Mesh& solid, const PreviewInput& input, const PreviewSettings& settings = {});
+PreviewResult preview_svg(const Mesh& solid, const PreviewInput& input, const PreviewOptions& options = {});
 
 }  // namespace offsetopt

@@ -11,7 +11,17 @@
 
 namespace offsetopt {
 
-std::string check_reduced_options(const ReducedOptions& options) {
+namespace {
+
+// Below this size a second thread costs more to wake than it saves: the 770-vertex top's spin
+// solve takes 0.048 s on two threads and 0.038 s on one; the 3,010-vertex top's 0.117 s on two
+// and 0.132 s on one. The parts are the same either way.
+constexpr double kMinParallelVertices = 2000;
+
+}  // namespace
+
+std::string ReducedOptions::check() const {
+  const ReducedOptions& options = *this;
   if (!(options.ramp_width > 0.0) || !std::isfinite(options.ramp_width)) return "ramp width must be > 0";
   if (!(options.outer_penalty >= 0.0) || !std::isfinite(options.outer_penalty)) return "penalty must be >= 0";
   if (!(options.overshoot_weight >= 0.0) || !std::isfinite(options.overshoot_weight)) return "overshoot weight must be >= 0";
@@ -36,8 +46,8 @@ ReducedProblem::ReducedProblem(const Mesh& mesh, const OffsetBand& band, const E
   fixed_outer_integrals_ = volume_integrals(mesh_, Eigen::Vector3d::Zero()).values;
   if (options_.outer) {
     // Inward, the outer surface may use at most half of the free band (hi − δl), so the wall
-    // coupling lo = δl − δout stays below hi and the inner surface cannot be crossed; where the
-    // band is collapsed (a part thinner than two walls) it cannot move inward at all.
+    // coupling lo = δl − δout stays below hi and the inner surface cannot be crossed; in a part
+    // left solid (δl >= hi) it cannot move inward at all.
     outer_inward_limit_.resize(mesh_.V.rows());
     for (Eigen::Index i = 0; i < mesh_.V.rows(); ++i) {
       const double free_band = band_.upper(i) - band_.lower(i);
@@ -52,10 +62,9 @@ ReducedProblem::ReducedProblem(const Mesh& mesh, const OffsetBand& band, const E
   vertex_split_[0] = 0;
   vertex_split_[1] = mesh_.V.rows() / 2;
   vertex_split_[2] = mesh_.V.rows();
-  // Below this size a second thread costs more to wake than it saves: the 770-vertex top's spin
-  // solve takes 0.048 s on two threads and 0.038 s on one; the 3,010-vertex top's 0.117 s on
-  // two and 0.132 s on one. The parts are the same either way.
-  if (options_.threads > 1 && mesh_.V.rows() >= kMinVerticesForThreads) pool_ = std::make_unique<WorkerPool>(2);
+  if (execution_policy(options_.threads, static_cast<double>(mesh_.V.rows()), kMinParallelVertices) ==
+      ExecutionPolicy::parallel)
+    pool_ = std::make_unique<WorkerPool>(2);
 }
 
 void ReducedProblem::run_parts(const std::function<void(int)>& part) const {
@@ -359,8 +368,8 @@ ConstrainedProblem ReducedProblem::constrained_problem() {
   };
   if (options_.bounds == BoundsMode::hard && identity_basis_ && !options_.outer) {
     // Per vertex (paper eq. 1) the rows δl ≤ δ ≤ hi are bounds on the variables themselves:
-    // L-BFGS-B keeps them exactly, with no multipliers to find. Where a part is thinner than two
-    // walls (δl > hi) the box is empty and the solver reports the bounds as unsatisfiable.
+    // L-BFGS-B keeps them exactly, with no multipliers to find. In a part left solid (δl > hi)
+    // the box is empty and the solver reports the bounds as unsatisfiable.
     p.lower = hard_lower_;
     p.upper = hard_upper_;
   } else if (options_.bounds == BoundsMode::hard) {
@@ -369,18 +378,6 @@ ConstrainedProblem ReducedProblem::constrained_problem() {
     p.linear_upper = hard_upper_;
   }
   return p;
-}
-
-Mesh ReducedProblem::inner_mesh(const Evaluation& e) const {
-  Mesh inner = mesh_;
-  for (Eigen::Index i = 0; i < inner.V.rows(); ++i) inner.V.row(i) += e.inner_offset(i) * band_.inner_direction.row(i);
-  return inner;
-}
-
-Mesh ReducedProblem::outer_mesh(const Evaluation& e) const {
-  Mesh outer = mesh_;
-  for (Eigen::Index i = 0; i < outer.V.rows(); ++i) outer.V.row(i) += e.outer_offset(i) * band_.outer_direction.row(i);
-  return outer;
 }
 
 }  // namespace offsetopt

@@ -55,13 +55,12 @@ struct ReducedOptions {
   // Start: the least-squares fit of Γα to lo + start_fraction (hi − lo) (β = 0).
   double start_fraction = 0.5;
   // Each evaluation is cut into two fixed parts, run on two threads when this is > 1 and the mesh
-  // has at least kMinVerticesForThreads vertices (the results are the same either way).
+  // is large enough (util/parallel.h's execution_policy; the results are the same either way).
   int threads = 2;
+
+  // Empty when the options are valid, else what is wrong.
+  std::string check() const;
 };
-
-std::string check_reduced_options(const ReducedOptions& options);
-
-constexpr long kMinVerticesForThreads = 2000;  // see the constructor
 
 class ReducedProblem {
  public:
@@ -71,7 +70,6 @@ class ReducedProblem {
                  const GoalSpec& goal, const ReducedOptions& options);
   ~ReducedProblem();
 
-  int basis_size() const { return k_; }
   int num_variables() const { return options_.outer ? 2 * k_ : k_; }
 
   struct Evaluation {
@@ -100,12 +98,6 @@ class ReducedProblem {
 
   // The problem for the augmented Lagrangian; it refers to *this, which must outlive the solve.
   ConstrainedProblem constrained_problem();
-
-  Mesh inner_mesh(const Evaluation& e) const;
-  Mesh outer_mesh(const Evaluation& e) const;
-
-  const Mesh& mesh() const { return mesh_; }
-  const OffsetBand& band() const { return band_; }
 
  private:
   // Γ c, its rows in the two vertex halves (every entry computed the same way either way).

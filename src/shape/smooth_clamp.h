@@ -1,12 +1,12 @@
 // The C1 clamp that holds the per-vertex offset bounds by construction (DESIGN.md "Reduced
 // problem"): instead of the paper's linear constraints δl <= Γk α <= δu (eq. 3), which have no
-// feasible point on ordinary models with thin parts, the offset actually applied is
+// feasible point on ordinary models with parts left solid, the offset actually applied is
 //   δeff = smoothclamp(Γk α) into [lo, hi],
 //   smoothclamp(x) = lo + sp(x - lo) - sp(x - hi),
 //   sp(y) = 0 for y <= -τ,  (y + τ)^2 / (4τ) for |y| < τ,  y for y >= τ.
 // sp is a C1 ramp (polynomial: no libm), so smoothclamp is C1, non-decreasing, equals x well
 // inside the band and tends to lo / hi outside; its slope is in [0, 1]. With lo = hi the result
-// is the constant lo (a collapsed band: the part is left solid).
+// is the constant lo (the part is left solid).
 #pragma once
 #include <Eigen/Core>
 

@@ -19,8 +19,6 @@ namespace offsetopt {
 
 namespace {
 
-Json vec3(const Eigen::Vector3d& v) { return Json::array_of({v.x(), v.y(), v.z()}); }
-
 struct Check {
   Verification& out;
   void require(bool ok, const std::string& failure) {
@@ -28,12 +26,12 @@ struct Check {
   }
 };
 
-Json stability_json(const Stability& s) {
-  Json j = Json::object();
-  j["com_margin"] = s.com_margin;
-  j["tipping_angle_deg"] = s.tipping_angle_deg;
-  j["stands"] = s.stands;
-  return j;
+StabilityFigures stability_figures(const Stability& s) {
+  StabilityFigures figures;
+  figures.com_margin = s.com_margin;
+  figures.tipping_angle_deg = s.tipping_angle_deg;
+  figures.stands = s.stands;
+  return figures;
 }
 
 // Faces with no fixed corner: contacts at the opening (where the surfaces coincide) are by design.
@@ -86,13 +84,13 @@ long long unmatched_edges(const Mesh& mesh) {
 }  // namespace
 
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
-                                    const std::vector<char>& thin, double thin_below, int threads) {
+                                    const std::vector<char>& left_solid, double thin_below, int threads) {
   // The two trees, then the two intersection searches, on two threads when there are: the same
   // result either way.
   WorkerPool pool(std::min(std::max(threads, 1), 2));
   const bool any_fixed = std::find(fixed.begin(), fixed.end(), char{1}) != fixed.end();
   auto is_fixed = [&](std::size_t u) { return !fixed.empty() && fixed[u]; };
-  auto is_thin = [&](std::size_t u) { return !thin.empty() && thin[u]; };
+  auto is_left_solid = [&](std::size_t u) { return !left_solid.empty() && left_solid[u]; };
   Mesh inner_kept, outer_kept;
   if (any_fixed) {
     inner_kept = without_fixed_faces(inner, fixed);
@@ -142,7 +140,7 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   const double rounding = 1e-12 * outer_full.diagonal();
   for (Eigen::Index i = 0; i < inner.V.rows(); ++i) {
     const std::size_t u = static_cast<std::size_t>(i);
-    if (is_fixed(u) || is_thin(u)) continue;
+    if (is_fixed(u) || is_left_solid(u)) continue;
     // Only distances below the thinnest so far or below thin_below matter.
     const double radius = std::max(thin_below, d.thinnest_wall);
     const Eigen::Vector3d p = inner.V.row(i).transpose();
@@ -162,7 +160,6 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
 
 Verification verify_offsets(const VerifyInput& in) {
   Verification out;
-  out.metrics = Json::object();
   Check check{out};
   const Mesh& outer = *in.outer;
   const Mesh& inner = *in.inner;
@@ -175,11 +172,12 @@ Verification verify_offsets(const VerifyInput& in) {
   const VolumeIntegrals shell = subtract(outer_int, inner_int);
   const Vector10d P = mass_properties(shell);
   const Eigen::Vector3d com(P(kCx), P(kCy), P(kCz));
-  Json& m = out.metrics;
-  m["mass"] = P(kMass);
-  m["void_volume"] = inner_int.values(kIntVolume);
-  m["outer_volume"] = outer_int.values(kIntVolume);
-  m["center_of_mass"] = vec3(com);
+  GoalFigures& m = out.goal;
+  m.goal = in.goal.kind;
+  m.mass = P(kMass);
+  m.void_volume = inner_int.values(kIntVolume);
+  m.outer_volume = outer_int.values(kIntVolume);
+  m.center_of_mass = com;
 
   StabilityOptions stability_options;
   stability_options.ground_tol = in.ground_tol;
@@ -188,7 +186,7 @@ Verification verify_offsets(const VerifyInput& in) {
     case GoalKind::stand:
     case GoalKind::stand_filled: {
       const Stability empty = compute_stability(outer, com, stability_options);
-      m["empty"] = stability_json(empty);
+      m.empty = stability_figures(empty);
       check.require(empty.com_margin >= g.margin,
                     "the centre of mass is " + format_double(empty.com_margin) + " inside the support polygon, less than the margin " +
                         format_double(g.margin));
@@ -197,8 +195,8 @@ Verification verify_offsets(const VerifyInput& in) {
         filled.values += g.fill_density * inner_int.values;
         const Vector10d Pf = mass_properties(filled);
         const Stability full = compute_stability(outer, Eigen::Vector3d(Pf(kCx), Pf(kCy), Pf(kCz)), stability_options);
-        m["filled"] = stability_json(full);
-        m["filled"]["center_of_mass"] = vec3(Eigen::Vector3d(Pf(kCx), Pf(kCy), Pf(kCz)));
+        m.filled = stability_figures(full);
+        m.filled_center_of_mass = Eigen::Vector3d(Pf(kCx), Pf(kCy), Pf(kCz));
         check.require(full.com_margin >= g.margin, "filled, the centre of mass is " + format_double(full.com_margin) +
                                                        " inside the support polygon, less than the margin " + format_double(g.margin));
       }
@@ -207,9 +205,9 @@ Verification verify_offsets(const VerifyInput& in) {
     case GoalKind::roly_poly: {
       const double off_axis = std::hypot(P(kCx) - g.axis_point.x(), P(kCy) - g.axis_point.y());
       const double below = g.axis_point.z() - P(kCz);
-      m["sphere_center"] = vec3(g.axis_point);
-      m["com_off_axis"] = off_axis;
-      m["com_below_center"] = below;
+      m.axis_point = g.axis_point;
+      m.com_off_axis = off_axis;
+      m.com_below_center = below;
       check.require(off_axis <= position_tol, "the centre of mass is " + format_double(off_axis) + " off the sphere's vertical axis");
       check.require(below > g.epsilon * (1.0 - 1e-9), "the centre of mass is not below the sphere centre by the margin (" +
                                                           format_double(below) + " < " + format_double(g.epsilon) + ")");
@@ -224,13 +222,13 @@ Verification verify_offsets(const VerifyInput& in) {
         if (std::fabs(principal.axes(2, a)) > std::fabs(principal.axes(2, axis))) axis = a;
       const double tilt = det_acos(std::min(1.0, std::fabs(principal.axes(2, axis)))) * 180.0 / kPi;
       const bool largest = axis == 2;
-      m["tip"] = vec3(g.axis_point);
-      m["com_off_axis"] = off_axis;
-      m["Izx_over_Izz"] = P(kIzx) / P(kIzz);
-      m["Iyz_over_Izz"] = P(kIyz) / P(kIzz);
-      m["principal_moments"] = vec3(principal.moments);
-      m["spin_axis_tilt_deg"] = tilt;
-      m["spin_axis_is_largest_moment"] = largest;
+      m.axis_point = g.axis_point;
+      m.com_off_axis = off_axis;
+      m.izx_over_izz = P(kIzx) / P(kIzz);
+      m.iyz_over_izz = P(kIyz) / P(kIzz);
+      m.principal_moments = principal.moments;
+      m.spin_axis_tilt_deg = tilt;
+      m.spin_axis_is_largest_moment = largest;
       check.require(off_axis <= position_tol, "the centre of mass is " + format_double(off_axis) + " off the spin axis");
       check.require(std::fabs(P(kIzx)) <= 1e-4 * P(kIzz) && std::fabs(P(kIyz)) <= 1e-4 * P(kIzz),
                     "the inertia products Izx, Iyz are not below 1e-4 Izz");
@@ -240,8 +238,8 @@ Verification verify_offsets(const VerifyInput& in) {
     }
     case GoalKind::volume: {
       const double relative = (inner_int.values(kIntVolume) - g.target_volume) / g.target_volume;
-      m["target_volume"] = g.target_volume;
-      m["volume_relative_error"] = relative;
+      m.target_volume = g.target_volume;
+      m.volume_relative_error = relative;
       check.require(std::fabs(relative) <= 1e-4, "the void holds " + format_double(inner_int.values(kIntVolume)) +
                                                      " instead of " + format_double(g.target_volume));
       break;
@@ -252,10 +250,10 @@ Verification verify_offsets(const VerifyInput& in) {
                                                                 outer_int.values(kIntZ)) / v_out;
       const double imbalance = g.fluid_density * v_out - P(kMass);
       const double off_axis = std::hypot(P(kCx) - buoyancy.x(), P(kCy) - buoyancy.y());
-      m["center_of_buoyancy"] = vec3(buoyancy);
-      m["buoyancy_minus_weight"] = imbalance;
-      m["com_off_buoyancy_axis"] = off_axis;
-      m["com_below_buoyancy"] = buoyancy.z() - P(kCz);
+      m.center_of_buoyancy = buoyancy;
+      m.buoyancy_minus_weight = imbalance;
+      m.com_off_buoyancy_axis = off_axis;
+      m.com_below_buoyancy = buoyancy.z() - P(kCz);
       check.require(std::fabs(imbalance) <= 1e-3 * P(kMass), "buoyancy and weight differ by " + format_double(imbalance));
       check.require(off_axis <= position_tol, "the centre of mass is " + format_double(off_axis) + " off the buoyancy axis");
       check.require(P(kCz) < buoyancy.z(), "the centre of mass is above the centre of buoyancy: it would flip");
@@ -263,21 +261,16 @@ Verification verify_offsets(const VerifyInput& in) {
     }
   }
   out.goal_met = out.failures.empty();
-  if (in.goal_only) {
-    m["goal_met"] = out.goal_met;
-    Json failures = Json::array();
-    for (const auto& f : out.failures) failures.push_back(f);
-    m["failures"] = failures;
-    return out;
-  }
+  if (in.goal_only) return out;
 
   // Validity of the solid.
   const std::size_t goal_failures = out.failures.size();
   // The wall is met up to rounding: 1e-9 of it.
   const double thin_below = in.wall * (1.0 - 1e-9);
   const SurfaceDefects defects = find_surface_defects(outer, inner, in.fixed, {}, thin_below, in.threads);
-  m["inner_self_intersections"] = static_cast<long long>(defects.self_intersection_pairs);
-  m["inner_outer_crossings"] = static_cast<long long>(defects.crossing_pairs);
+  ValidityFigures& v = out.validity.emplace();
+  v.inner_self_intersections = static_cast<long long>(defects.self_intersection_pairs);
+  v.inner_outer_crossings = static_cast<long long>(defects.crossing_pairs);
   const std::string more = defects.truncated ? "+" : "";
   check.require(defects.self_intersection_pairs == 0,
                 "the inner surface intersects itself (" + std::to_string(defects.self_intersection_pairs) + more + " face pairs)");
@@ -285,24 +278,19 @@ Verification verify_offsets(const VerifyInput& in) {
                 "the inner surface crosses the outer surface (" + std::to_string(defects.crossing_pairs) + more + " face pairs)");
   const bool measured = std::isfinite(defects.thinnest_wall);
   const long long open_edges = unmatched_edges(inner);
-  m["cavity_unmatched_edges"] = open_edges;
+  v.cavity_unmatched_edges = open_edges;
   check.require(open_edges == 0, "the cavity is not closed: " + std::to_string(open_edges) +
                                      " of its edges are not shared by exactly two faces in opposite directions");
-  m["requested_wall"] = in.wall;
-  m["min_wall_measured"] = measured ? Json(defects.thinnest_wall) : Json();
-  m["min_wall_vertex"] = defects.thinnest_vertex;
-  m["largest_bound_violation"] = in.bound_violation;
+  v.requested_wall = in.wall;
+  if (measured) v.min_wall_measured = defects.thinnest_wall;
+  v.min_wall_vertex = defects.thinnest_vertex;
+  v.largest_bound_violation = in.bound_violation;
   if (measured)
     check.require(defects.thin_wall_vertices.empty(), "the wall is " + format_double(defects.thinnest_wall) +
                                                           " thin at inner vertex " + std::to_string(defects.thinnest_vertex) +
                                                           ", less than the requested " + format_double(in.wall));
   check.require(in.bound_violation <= 1e-6 * diag, "the offsets leave their bounds by " + format_double(in.bound_violation));
   out.valid = out.failures.size() == goal_failures;
-  m["goal_met"] = out.goal_met;
-  m["valid"] = out.valid;
-  Json failures = Json::array();
-  for (const auto& f : out.failures) failures.push_back(f);
-  m["failures"] = failures;
   return out;
 }
 

@@ -3,10 +3,12 @@
 // thickness measured as a distance, and intersections found through the BVH
 // (geometry/intersecting_faces.h). The optimiser's exit status is decided here.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "io/json.h"
+#include <Eigen/Core>
+
 #include "mesh/mesh.h"
 #include "shape/goal.h"
 
@@ -15,7 +17,7 @@ namespace offsetopt {
 // Where the surfaces are not printable as they are: vertices of inner faces that intersect other
 // inner faces or cross the outer surface, and inner vertices closer to the outer surface than
 // `thin_below` (away from fixed vertices and parts left solid). With `--cavity offset` the
-// optimiser tightens the bounds of these vertices and solves again. `fixed` and `thin` are per
+// optimiser tightens the bounds of these vertices and solves again. `fixed` and `left_solid` are per
 // vertex of a shared connectivity (inner and outer offsets of one mesh), or empty when the inner
 // mesh is a cavity of its own.
 struct SurfaceDefects {
@@ -30,7 +32,7 @@ struct SurfaceDefects {
 // `threads` (>= 1) splits the tree builds and the intersection searches; the result is the same
 // for any count.
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
-                                    const std::vector<char>& thin, double thin_below, int threads = 2);
+                                    const std::vector<char>& left_solid, double thin_below, int threads = 2);
 
 struct VerifyInput {
   const Mesh* outer = nullptr;  // outer surface (the input itself without outer offsets)
@@ -47,11 +49,57 @@ struct VerifyInput {
                                 // figure is measured (a contour that will be corrected anyway)
 };
 
+// Whether the solid stands on its support polygon (mass/stability.h), input units.
+struct StabilityFigures {
+  double com_margin = 0.0;         // distance of the centre of mass inside the polygon (< 0: outside)
+  double tipping_angle_deg = 0.0;
+  bool stands = false;
+};
+
+// The goal's figures measured on the solid as written, input units. Which of the goal-specific
+// ones are measured depends on `goal` (the others keep their zero values).
+struct GoalFigures {
+  GoalKind goal = GoalKind::stand;
+  double mass = 0.0;               // of the material (density 1)
+  double void_volume = 0.0;
+  double outer_volume = 0.0;
+  Eigen::Vector3d center_of_mass = Eigen::Vector3d::Zero();
+  // stand, stand-filled: empty; stand-filled: filled, with the filled centre of mass.
+  StabilityFigures empty, filled;
+  Eigen::Vector3d filled_center_of_mass = Eigen::Vector3d::Zero();
+  // roly-poly: the sphere centre; spin: the tip.
+  Eigen::Vector3d axis_point = Eigen::Vector3d::Zero();
+  double com_off_axis = 0.0;       // roly-poly, spin: off the vertical axis through axis_point
+  double com_below_center = 0.0;   // roly-poly
+  // spin
+  double izx_over_izz = 0.0, iyz_over_izz = 0.0;
+  Eigen::Vector3d principal_moments = Eigen::Vector3d::Zero();
+  double spin_axis_tilt_deg = 0.0;
+  bool spin_axis_is_largest_moment = false;
+  // volume
+  double target_volume = 0.0, volume_relative_error = 0.0;
+  // float
+  Eigen::Vector3d center_of_buoyancy = Eigen::Vector3d::Zero();
+  double buoyancy_minus_weight = 0.0, com_off_buoyancy_axis = 0.0, com_below_buoyancy = 0.0;
+};
+
+// What makes the solid printable or not, input units.
+struct ValidityFigures {
+  long long inner_self_intersections = 0;  // face pairs (at most the search's cap)
+  long long inner_outer_crossings = 0;
+  long long cavity_unmatched_edges = 0;
+  double requested_wall = 0.0;
+  std::optional<double> min_wall_measured;  // absent when no cavity vertex was measured
+  int min_wall_vertex = -1;
+  double largest_bound_violation = 0.0;
+};
+
 struct Verification {
   bool goal_met = false;
   bool valid = false;
   std::vector<std::string> failures;  // one line each, empty when goal_met && valid
-  Json metrics;                       // goal metrics and validity figures
+  GoalFigures goal;
+  std::optional<ValidityFigures> validity;  // absent when VerifyInput::goal_only
 };
 
 // Tolerances (relative to the diagonal unless stated): centre-of-mass positions 1e-4,

@@ -136,7 +136,7 @@ TEST_CASE("an opening with --fix welds inner and outer into one closed surface, 
   CHECK(out.report.at("after").at("inner_self_intersections").as_integer() > 0);
 }
 
-TEST_CASE("unreachable cases exit 3 with a reason: hard bounds on thin parts, a two-function basis") {
+TEST_CASE("unreachable cases exit 3 with a reason: hard bounds on parts left solid, a two-function basis") {
   const Outcome hard = optimize("bottle_hard", "bottle.obj", "--goal stand --bounds hard");
   CHECK(hard.exit_code == 3);
   CHECK(hard.report.at("why").as_string().find("bounds cannot be met") != std::string::npos);
@@ -145,7 +145,7 @@ TEST_CASE("unreachable cases exit 3 with a reason: hard bounds on thin parts, a 
   CHECK(tiny.report.at("why").as_string().find("basis") != std::string::npos);
 }
 
-TEST_CASE("--bounds hard reaches the goal on a mesh without thin parts") {
+TEST_CASE("--bounds hard reaches the goal on a mesh without parts left solid") {
   const Outcome out = optimize("sphere_hard", "sphere.obj", "--goal volume --target-volume 20000 --bounds hard");
   CHECK(out.exit_code == 0);
   CHECK(out.report.at("offset_field").at("parts_left_solid").as_integer() == 0);

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "../temp_dir.h"
+#include "cli/write_preview.h"
 #include "geometry/plane_section.h"
 #include "io/json.h"
 #include "mass/mass_properties.h"
@@ -29,6 +30,7 @@
 #include "util/format_double.h"
 
 using namespace offsetopt;
+using offsetopt::cli::preview_input_from_report;
 
 namespace {
 

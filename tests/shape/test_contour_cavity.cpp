@@ -2,7 +2,7 @@
 // sphere gives one closed cavity whose volume lies between the balls shrunk and grown by the grid's
 // error bound, and whose smallest wall (measured exactly, vertex by vertex) is at least the one
 // requested; an inner offset surface that folds through itself and crosses the outer surface
-// still gives a closed, embedded cavity that keeps the wall; a part thinner than two walls gets
+// still gives a closed, embedded cavity that keeps the wall; a part left solid (thinner than two walls) gets
 // no cavity at all.
 #include <doctest/doctest.h>
 
@@ -101,7 +101,7 @@ TEST_CASE("an inner offset surface that folds and crosses the outer one gives a 
   CHECK(c.cavity.V.col(2).maxCoeff() <= R - wall + 1e-9);
 }
 
-TEST_CASE("a part thinner than two walls gets no cavity") {
+TEST_CASE("a part left solid (thinner than two walls) gets no cavity") {
   const double wall = 1.0;
   const Mesh outer = make_box({0, 0, 0}, {20, 20, 1.8});
   const Mesh inner = make_box({0.2, 0.2, 0.2}, {19.8, 19.8, 1.6});  // an offset surface, 0.2 inside

@@ -1,6 +1,6 @@
 // Why `optimize` says a goal was not met: the reason must name what happened (the solver's
 // evaluation budget ran out, or the repairs of folds took away a goal the first solve had met)
-// rather than blame the basis. Run through the library on the bottle demo with settings the
+// rather than blame the basis. Run through the library on the bottle demo with options the
 // command line does not expose.
 #include <doctest/doctest.h>
 
@@ -13,26 +13,28 @@ using namespace offsetopt;
 
 TEST_CASE("optimize: a solve cut off by its evaluation budget says so") {
   const Mesh bottle = make_demo_mesh("bottle");
-  OptimizeSettings settings = OptimizeSettings::defaults();
-  settings.goal = GoalKind::stand;
-  settings.solver.max_evaluations = 4;
-  const OptimizeResult r = optimize_offsets(bottle, settings);
+  OptimizeOptions options = OptimizeOptions::defaults();
+  options.goal = GoalKind::stand;
+  options.solver.max_evaluations = 4;
+  const OptimizeResult r = optimize_offsets(bottle, options);
   MESSAGE(r.message);
   CHECK(r.status == OptimizeStatus::goal_not_met);
-  CHECK(r.report.at("solver").at("status").as_string() == "max-evaluations");
-  CHECK(r.report.at("solver").at("evaluations").as_number() <= 4);
+  CHECK(r.solver.status == AlStatus::MaxEvaluations);
+  CHECK(std::string(to_string(r.solver.status)) == "max-evaluations");
+  CHECK(r.solver.evaluations <= 4);
   CHECK(r.message.find("the solver used its 4 evaluations before meeting the constraints") == 0);
 }
 
 TEST_CASE("optimize: repairs that make the goal unreachable say the first solve had met it") {
   const Mesh bottle = make_demo_mesh("bottle");
-  OptimizeSettings settings = OptimizeSettings::defaults();
-  settings.goal = GoalKind::stand;
-  settings.repair_shrink = 0.01;
-  settings.cavity = CavityMode::offset;  // repairs run only when the offset surface is written
-  const OptimizeResult r = optimize_offsets(bottle, settings);
+  OptimizeOptions options = OptimizeOptions::defaults();
+  options.goal = GoalKind::stand;
+  options.repair_shrink = 0.01;
+  options.cavity = CavityMode::offset;  // repairs run only when the offset surface is written
+  const OptimizeResult r = optimize_offsets(bottle, options);
   MESSAGE(r.message);
   CHECK(r.status == OptimizeStatus::goal_not_met);
-  CHECK(r.report.at("solver").at("repair_rounds").as_number() >= 1);
+  CHECK(r.solver.repair_rounds >= 1);
+  CHECK(r.solver.repairs.size() == static_cast<std::size_t>(r.solver.repair_rounds));
   CHECK(r.message.find("the constraints were met before repair round") == 0);
 }

@@ -40,7 +40,7 @@ Setup sphere_setup(int k) {
     s.band.upper(i) = 0.3 + 0.1 * rng.uniform();
     if (s.mesh.V(i, 2) > 0.97) s.band.fixed[static_cast<std::size_t>(i)] = 1;
   }
-  s.band.lower(3) = s.band.upper(3) + 0.05;  // one collapsed band (a "thin part")
+  s.band.lower(3) = s.band.upper(3) + 0.05;  // one band empty: a part left solid
   s.band.outer_direction = -s.band.inner_direction;
   s.band.outer_limit = Eigen::VectorXd::Constant(n, 0.05);
   Eigen::MatrixXd raw(n, k);
@@ -142,7 +142,7 @@ TEST_CASE("clamped offsets stay in their band and fixed vertices do not move") {
       CHECK(e.outer_offset(i) >= -std::min(0.05, std::max(0.0, 0.5 * (s.band.upper(i) - s.band.lower(i)))));
       CHECK(e.outer_offset(i) <= 0.05);
       CHECK(e.inner_offset(i) <= s.band.upper(i));
-      // The wall: inner + outer >= δl wherever the band is not collapsed.
+      // The wall: inner + outer >= δl wherever the part is not left solid.
       if (s.band.lower(i) - e.outer_offset(i) < s.band.upper(i))
         CHECK(e.inner_offset(i) + e.outer_offset(i) >= s.band.lower(i) - 1e-15);
     }

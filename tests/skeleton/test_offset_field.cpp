@@ -230,7 +230,7 @@ TEST_CASE("offset field option checks and mismatched inputs") {
   auto rejects = [](auto&& change) {
     OffsetFieldOptions o;
     change(o);
-    CHECK_THROWS_AS(check_offset_field_options(o), std::invalid_argument);
+    CHECK(o.check().rfind("OffsetFieldOptions::", 0) == 0);  // offset_field throws std::invalid_argument with it
   };
   rejects([](OffsetFieldOptions& o) { o.wall = -1.0; });
   rejects([](OffsetFieldOptions& o) { o.thickness_cosine_floor = 0.0; });
