@@ -2,6 +2,7 @@
 
 #include "geometry/flatten_base.h"
 #include "mass/mass_properties.h"
+#include "mass/stable_pose.h"
 #include "meshio/validate_mesh.h"
 #include "util/format_double.h"
 

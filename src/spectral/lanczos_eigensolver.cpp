@@ -12,6 +12,7 @@
 #include "spectral/shift_invert_operator.h"
 #include "util/parallel.h"
 #include "util/rng.h"
+#include "util/seconds_since.h"
 
 namespace offsetopt {
 
@@ -45,10 +46,6 @@ using Clock = std::chrono::steady_clock;
 constexpr double kCorrectionThreshold = 1e-12;
 // The exact residual estimate is computed once every wanted ‖Op y - θ y‖ / θ is below this.
 constexpr double kEstimateGate = 1e-2;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // ‖L‖∞ = largest absolute row sum (= column sum, L symmetric); bounds ‖L‖₂ from above.
 double infinity_norm(const Eigen::SparseMatrix<double>& L) {

@@ -18,6 +18,7 @@
 
 #include "geometry/flatten_base.h"
 #include "geometry/pose.h"
+#include "mass/stable_pose.h"
 #include "geometry/triangulate_polygons.h"
 #include "mass/mass_properties.h"
 #include "mass/volume_integrals.h"
