@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   }
   const auto tp1 = clock::now();
 
-  AlParams params;
+  AlOptions params;
   if (argc > 4) params.inner.memory = std::atoi(argv[4]);
   if (trace) {
     params.on_outer_iteration = [](const AlIterationInfo& it) {

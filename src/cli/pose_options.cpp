@@ -71,7 +71,7 @@ PosedInput pose_input(const Mesh& mesh, const PoseOptions& options, const std::s
   }
   report["flatten"] = Json();
   if (options.flatten > 0.0) {
-    const FlattenResult cut = flatten_base(posed.mesh, FlattenSettings{options.flatten});
+    const FlattenResult cut = flatten_base(posed.mesh, FlattenOptions{options.flatten});
     if (cut.status != FlattenStatus::ok) throw UsageError(mesh_path + ": --flatten " + format_double(options.flatten) + ": " + cut.message);
     const MeshValidation validation = validate_mesh(cut.mesh);
     for (const Defect& defect : validation.defects) {

@@ -13,13 +13,13 @@
 
 namespace offsetopt {
 
-std::string FlattenSettings::check() const {
+std::string FlattenOptions::check() const {
   if (!(height > 0.0) || !std::isfinite(height)) return "the base height must be a finite number > 0";
   if (!(snap >= 0.0 && snap < 1e-3)) return "snap must be in [0, 1e-3)";
   return {};
 }
 
-FlattenResult flatten_base(const Mesh& mesh, const FlattenSettings& settings) {
+FlattenResult flatten_base(const Mesh& mesh, const FlattenOptions& settings) {
   FlattenResult result;
   if (const std::string problem = settings.check(); !problem.empty()) {
     result.status = FlattenStatus::bad_settings;

@@ -8,12 +8,12 @@
 
 namespace offsetopt {
 
-std::string StablePoseSettings::check() const {
+std::string StablePoseOptions::check() const {
   if (!(coplanar_tolerance >= 0.0 && coplanar_tolerance < 1.0)) return "coplanar_tolerance must be in [0, 1)";
   return {};
 }
 
-StablePose stable_pose(const Mesh& mesh, const Eigen::Vector3d& center_of_mass, const StablePoseSettings& settings) {
+StablePose stable_pose(const Mesh& mesh, const Eigen::Vector3d& center_of_mass, const StablePoseOptions& settings) {
   StablePose pose;
   if (const std::string problem = settings.check(); !problem.empty()) {
     pose.status = StablePoseStatus::bad_settings;

@@ -26,7 +26,7 @@ struct StablePose {
 };
 
 // Settings of stable_pose; check() returns an empty string or what is wrong.
-struct StablePoseSettings {
+struct StablePoseOptions {
   // Two hull triangles are one facet when coplanar within this fraction of the bounding-box
   // diagonal (CAD faces are flat to rounding, scanned "flat" faces are not).
   double coplanar_tolerance = 1e-9;
@@ -37,6 +37,6 @@ struct StablePoseSettings {
 // facet polygon (first facet on ties), and the motion putting the solid on it. When every facet
 // has margin <= 0 (impossible for a solid's own centre of mass, which lies inside its hull) the
 // best is still returned with status falls_on_every_facet.
-StablePose stable_pose(const Mesh& mesh, const Eigen::Vector3d& center_of_mass, const StablePoseSettings& settings = {});
+StablePose stable_pose(const Mesh& mesh, const Eigen::Vector3d& center_of_mass, const StablePoseOptions& settings = {});
 
 }  // namespace offsetopt

@@ -119,30 +119,30 @@ struct Measures {
 
 }  // namespace
 
-std::string check_al_params(const AlParams& p) {
+std::string AlOptions::check() const {
   auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
-  if (!positive(p.feasibility_tolerance)) return "feasibility_tolerance must be > 0";
-  if (!positive(p.stationarity_tolerance)) return "stationarity_tolerance must be > 0";
-  if (!positive(p.complementarity_tolerance)) return "complementarity_tolerance must be > 0";
-  if (p.max_outer_iterations < 1) return "max_outer_iterations must be >= 1";
-  if (p.max_evaluations < 1) return "max_evaluations must be >= 1";
-  if (!(p.initial_penalty >= 0.0) || !std::isfinite(p.initial_penalty))
+  if (!positive(feasibility_tolerance)) return "feasibility_tolerance must be > 0";
+  if (!positive(stationarity_tolerance)) return "stationarity_tolerance must be > 0";
+  if (!positive(complementarity_tolerance)) return "complementarity_tolerance must be > 0";
+  if (max_outer_iterations < 1) return "max_outer_iterations must be >= 1";
+  if (max_evaluations < 1) return "max_evaluations must be >= 1";
+  if (!(initial_penalty >= 0.0) || !std::isfinite(initial_penalty))
     return "initial_penalty must be >= 0 (0: automatic)";
-  if (!(p.penalty_increase > 1.0) || !std::isfinite(p.penalty_increase))
+  if (!(penalty_increase > 1.0) || !std::isfinite(penalty_increase))
     return "penalty_increase must be > 1";
-  if (!(p.required_decrease > 0.0) || !(p.required_decrease < 1.0))
+  if (!(required_decrease > 0.0) || !(required_decrease < 1.0))
     return "required_decrease must be in (0, 1)";
-  if (!positive(p.max_penalty)) return "max_penalty must be > 0";
-  if (!positive(p.max_multiplier)) return "max_multiplier must be > 0";
-  if (!(p.scale_floor >= 0.0) || !std::isfinite(p.scale_floor)) return "scale_floor must be >= 0";
-  if (!positive(p.initial_inner_tolerance)) return "initial_inner_tolerance must be > 0";
-  if (!(p.inner_tolerance_decrease > 0.0) || !(p.inner_tolerance_decrease <= 1.0))
+  if (!positive(max_penalty)) return "max_penalty must be > 0";
+  if (!positive(max_multiplier)) return "max_multiplier must be > 0";
+  if (!(scale_floor >= 0.0) || !std::isfinite(scale_floor)) return "scale_floor must be >= 0";
+  if (!positive(initial_inner_tolerance)) return "initial_inner_tolerance must be > 0";
+  if (!(inner_tolerance_decrease > 0.0) || !(inner_tolerance_decrease <= 1.0))
     return "inner_tolerance_decrease must be in (0, 1]";
-  if (p.infeasibility_patience < 1) return "infeasibility_patience must be >= 1";
-  if (p.stall_patience < 1) return "stall_patience must be >= 1";
-  if (!(p.clear_violation_factor >= 0.0)) return "clear_violation_factor must be >= 0";
-  const std::string inner = check_lbfgsb_params(p.inner);
-  if (!inner.empty()) return "inner: " + inner;
+  if (infeasibility_patience < 1) return "infeasibility_patience must be >= 1";
+  if (stall_patience < 1) return "stall_patience must be >= 1";
+  if (!(clear_violation_factor >= 0.0)) return "clear_violation_factor must be >= 0";
+  const std::string inner_problem = inner.check();
+  if (!inner_problem.empty()) return "inner: " + inner_problem;
   return std::string();
 }
 
@@ -160,7 +160,7 @@ const char* to_string(AlStatus status) {
 }
 
 AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
-                                       const Eigen::VectorXd& x0, const AlParams& params) {
+                                       const Eigen::VectorXd& x0, const AlOptions& params) {
   AlResult res;
   res.x = x0;
   const int n = problem.num_variables;
@@ -172,7 +172,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
 
   // ---- Validation (once) ----
   std::string& msg = res.message;
-  msg = check_al_params(params);
+  msg = params.check();
   if (msg.empty() && n < 1) msg = "num_variables must be >= 1";
   if (msg.empty() && x0.size() != n) msg = "start point has the wrong length";
   if (msg.empty() && !x0.allFinite()) msg = "start point not finite";
@@ -419,7 +419,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
   int stagnant = 0;
   int stalled = 0;
   Measures meas;
-  LbfgsbParams inner = params.inner;
+  LbfgsbOptions inner = params.inner;
 
   for (int outer = 1; outer <= params.max_outer_iterations; ++outer) {
     res.outer_iterations = outer;
@@ -501,7 +501,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
       Measures at_least = meas;
       double least_stationarity = sub.projected_gradient_norm;
       for (int restart = 0; restart < kMaxLeastViolationRestarts; ++restart) {
-        LbfgsbParams lv = params.inner;
+        LbfgsbOptions lv = params.inner;
         lv.gradient_tolerance = params.stationarity_tolerance * least_feas;
         lv.relative_gradient_tolerance = 0.0;
         lv.max_evaluations = std::max(1, std::min(lv.max_evaluations, params.max_evaluations - ev.count));

@@ -71,7 +71,7 @@ struct AlIterationInfo {
   int evaluations = 0;            // total so far
 };
 
-struct AlParams {
+struct AlOptions {
   double feasibility_tolerance = 1e-8;      // ∞-norm of the violation (unscaled and scaled)
   double stationarity_tolerance = 1e-8;     // ∞-norm of the scaled Lagrangian's projected gradient
   double complementarity_tolerance = 1e-8;  // scaled, see the header comment
@@ -97,20 +97,21 @@ struct AlParams {
   // rarely recovers, and every later subproblem is worse conditioned than the last).
   double clear_violation_factor = 0.0;
   int stall_patience = 3;  // feasible outer iterations whose subproblem cannot progress → Stalled
-  LbfgsbParams inner;  // memory, caps and line search of the subproblem solver; its gradient
+  LbfgsbOptions inner;  // memory, caps and line search of the subproblem solver; its gradient
                        // tolerance is set by the outer loop
   std::function<void(const AlIterationInfo&)> on_outer_iteration;  // optional observer
   // Inner defaults: no relative-reduction stop (the projected-gradient and noise tests decide),
   // and 20 pairs instead of 10 because the subproblems are ill-conditioned (ρ‖∇c‖² against the
   // objective's curvature): on the 100,000-row benchmark 20 pairs need 40% fewer evaluations.
-  AlParams() {
+  AlOptions() {
     inner.function_tolerance = 0.0;
     inner.max_iterations = 2000;
     inner.memory = 20;
   }
-};
 
-std::string check_al_params(const AlParams& params);
+  // Empty when valid, else what is wrong (one line; the inner options' prefixed "inner: ").
+  std::string check() const;
+};
 
 enum class AlStatus {
   Converged,           // feasibility, stationarity and complementarity tolerances met
@@ -146,6 +147,6 @@ struct AlResult {
 };
 
 AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem, const Eigen::VectorXd& x0,
-                                       const AlParams& params = AlParams());
+                                       const AlOptions& params = AlOptions());
 
 }  // namespace offsetopt

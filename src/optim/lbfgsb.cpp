@@ -51,27 +51,27 @@ double max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorXd& d,
 
 }  // namespace
 
-std::string check_lbfgsb_params(const LbfgsbParams& p) {
-  if (p.memory < 1 || p.memory > 100) return "memory must be in [1, 100]";
-  if (!(p.gradient_tolerance >= 0.0) || !std::isfinite(p.gradient_tolerance))
+std::string LbfgsbOptions::check() const {
+  if (memory < 1 || memory > 100) return "memory must be in [1, 100]";
+  if (!(gradient_tolerance >= 0.0) || !std::isfinite(gradient_tolerance))
     return "gradient_tolerance must be finite and >= 0";
-  if (!(p.relative_gradient_tolerance >= 0.0) || !std::isfinite(p.relative_gradient_tolerance))
+  if (!(relative_gradient_tolerance >= 0.0) || !std::isfinite(relative_gradient_tolerance))
     return "relative_gradient_tolerance must be finite and >= 0";
-  if (p.gradient_tolerance == 0.0 && p.relative_gradient_tolerance == 0.0)
+  if (gradient_tolerance == 0.0 && relative_gradient_tolerance == 0.0)
     return "gradient_tolerance and relative_gradient_tolerance cannot both be 0";
-  if (!(p.function_tolerance >= 0.0) || !std::isfinite(p.function_tolerance))
+  if (!(function_tolerance >= 0.0) || !std::isfinite(function_tolerance))
     return "function_tolerance must be finite and >= 0";
-  if (p.max_iterations < 1) return "max_iterations must be >= 1";
-  if (p.max_evaluations < 1) return "max_evaluations must be >= 1";
-  if (!(p.wolfe_decrease > 0.0) || !(p.wolfe_decrease < p.wolfe_curvature) ||
-      !(p.wolfe_curvature < 1.0))
+  if (max_iterations < 1) return "max_iterations must be >= 1";
+  if (max_evaluations < 1) return "max_evaluations must be >= 1";
+  if (!(wolfe_decrease > 0.0) || !(wolfe_decrease < wolfe_curvature) ||
+      !(wolfe_curvature < 1.0))
     return "need 0 < wolfe_decrease < wolfe_curvature < 1";
-  if (!(p.line_search_xtol >= 0.0) || !(p.line_search_xtol < 1.0))
+  if (!(line_search_xtol >= 0.0) || !(line_search_xtol < 1.0))
     return "line_search_xtol must be in [0, 1)";
-  if (p.max_line_search_evaluations < 1) return "max_line_search_evaluations must be >= 1";
-  if (!(p.function_noise >= 0.0) || !(p.function_noise < 1.0))
+  if (max_line_search_evaluations < 1) return "max_line_search_evaluations must be >= 1";
+  if (!(function_noise >= 0.0) || !(function_noise < 1.0))
     return "function_noise must be in [0, 1)";
-  if (p.max_noise_steps < 1) return "max_noise_steps must be >= 1";
+  if (max_noise_steps < 1) return "max_noise_steps must be >= 1";
   return std::string();
 }
 
@@ -105,11 +105,11 @@ double projected_gradient_norm(const Eigen::VectorXd& x, const Eigen::VectorXd& 
 
 LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& x0,
                              const Eigen::VectorXd& lower_in, const Eigen::VectorXd& upper_in,
-                             const LbfgsbParams& params) {
+                             const LbfgsbOptions& params) {
   LbfgsbResult res;
   res.x = x0;
   const Eigen::Index n = x0.size();
-  res.message = check_lbfgsb_params(params);
+  res.message = params.check();
   if (res.message.empty() && n == 0) res.message = "no variables";
   if (res.message.empty() && !f) res.message = "no objective function";
   if (res.message.empty() && ((lower_in.size() != 0 && lower_in.size() != n) ||
@@ -177,7 +177,7 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
   if (pg <= tolerance) return finish(LbfgsbStatus::Converged);
 
   LbfgsMemory memory(static_cast<int>(n), params.memory);
-  MoreThuenteSettings ls;
+  MoreThuenteOptions ls;
   ls.ftol = params.wolfe_decrease;
   ls.gtol = params.wolfe_curvature;
   ls.xtol = params.line_search_xtol;

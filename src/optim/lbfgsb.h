@@ -33,7 +33,7 @@ namespace offsetopt {
 // gradient is allowed and treated as "step too long" inside the line search.
 using ObjectiveFunction = std::function<double(const Eigen::VectorXd& x, Eigen::VectorXd& grad)>;
 
-struct LbfgsbParams {
+struct LbfgsbOptions {
   // Number of correction pairs kept (the "m" of the paper). 3..20 is the usual range.
   int memory = 10;
   // Converged when ‖P(x − ∇f) − x‖_∞ ≤ max(gradient_tolerance,
@@ -62,10 +62,10 @@ struct LbfgsbParams {
   double wolfe_curvature = 0.9;   // gtol, in (wolfe_decrease, 1)
   double line_search_xtol = 0.1;  // relative bracket width at which the line search gives up
   int max_line_search_evaluations = 20;
-};
 
-// Empty when valid, else what is wrong (one line).
-std::string check_lbfgsb_params(const LbfgsbParams& params);
+  // Empty when valid, else what is wrong (one line).
+  std::string check() const;
+};
 
 enum class LbfgsbStatus {
   Converged,         // projected-gradient test met
@@ -95,7 +95,7 @@ struct LbfgsbResult {
 // lower/upper: length n, or empty for "no bounds"; entries may be ±infinity.
 LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& x0,
                              const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                             const LbfgsbParams& params = LbfgsbParams());
+                             const LbfgsbOptions& params = LbfgsbOptions());
 
 // ‖P(x − g) − x‖_∞ for x inside the box.
 double projected_gradient_norm(const Eigen::VectorXd& x, const Eigen::VectorXd& g,

@@ -132,13 +132,20 @@ void more_thuente_step(double& stx, double& fx, double& dx, double& sty, double&
   stp = stpf;
 }
 
+std::string MoreThuenteOptions::check() const {
+  if (!(ftol >= 0.0)) return "ftol must be >= 0";
+  if (!(gtol >= 0.0)) return "gtol must be >= 0";
+  if (!(xtol >= 0.0)) return "xtol must be >= 0";
+  if (!(stpmin >= 0.0)) return "stpmin must be >= 0";
+  if (!(stpmax >= stpmin)) return "stpmax must be >= stpmin";
+  return std::string();
+}
+
 MoreThuenteState MoreThuenteSearch::start(double f0, double g0, double stp,
-                                          const MoreThuenteSettings& settings) {
+                                          const MoreThuenteOptions& settings) {
   s_ = settings;
   stp_ = stp;
-  if (!(stp >= s_.stpmin) || !(stp <= s_.stpmax) || !(g0 < 0.0) || !(s_.ftol >= 0.0) ||
-      !(s_.gtol >= 0.0) || !(s_.xtol >= 0.0) || !(s_.stpmin >= 0.0) ||
-      !(s_.stpmax >= s_.stpmin) || !std::isfinite(f0)) {
+  if (!(stp >= s_.stpmin) || !(stp <= s_.stpmax) || !(g0 < 0.0) || !s_.check().empty() || !std::isfinite(f0)) {
     return MoreThuenteState::Error;
   }
   brackt_ = false;

@@ -10,15 +10,20 @@
 // Deviation from MINPACK-2: square roots of cubic-interpolation discriminants are taken of
 // max(0, ·), so rounding can never produce a NaN step.
 #pragma once
+#include <string>
 
 namespace offsetopt {
 
-struct MoreThuenteSettings {
+struct MoreThuenteOptions {
   double ftol = 1e-3;  // sufficient-decrease constant μ, in (0, gtol) for the strong Wolfe pair
   double gtol = 0.9;   // curvature constant η, in (ftol, 1)
   double xtol = 0.1;   // relative width of the bracketing interval below which the search stops
   double stpmin = 0.0;
   double stpmax = 1e10;
+
+  // Empty when valid, else what is wrong (one line). start() returns Error for these and for a
+  // bad first step or slope.
+  std::string check() const;
 };
 
 enum class MoreThuenteState {
@@ -34,13 +39,13 @@ enum class MoreThuenteState {
 class MoreThuenteSearch {
  public:
   // φ(0) = f0, φ'(0) = g0 (must be < 0), first trial step stp.
-  MoreThuenteState start(double f0, double g0, double stp, const MoreThuenteSettings& settings);
+  MoreThuenteState start(double f0, double g0, double stp, const MoreThuenteOptions& settings);
   // φ and φ' at the step last returned by step().
   MoreThuenteState advance(double f, double g);
   double step() const { return stp_; }
 
  private:
-  MoreThuenteSettings s_;
+  MoreThuenteOptions s_;
   double stp_ = 0.0;
   bool brackt_ = false;
   int stage_ = 1;

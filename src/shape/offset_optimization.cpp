@@ -150,7 +150,7 @@ std::string check_optimize_settings(const OptimizeSettings& s) {
   cavity.cells_per_wall = s.cavity_cells_per_wall;
   cavity.margin_cells = s.cavity_margin_cells;
   if (const std::string problem = check_contour_cavity_options(cavity); !problem.empty()) return "cavity: " + problem;
-  return check_al_params(s.solver);
+  return s.solver.check();
 }
 
 namespace {
@@ -391,8 +391,8 @@ class OffsetSolve {
   Json repairs = Json::array();
 
  private:
-  AlParams params(int round) const {
-    AlParams p = settings_.solver;
+  AlOptions params(int round) const {
+    AlOptions p = settings_.solver;
     if (round > 0) {
       // A later round solves a nearby problem: start from the last round's multipliers and
       // penalty (measured on the bottle with --outer: 3605 evaluations without, 1124 with), the

@@ -70,7 +70,7 @@ struct OptimizeSettings {
   // to 1e-4, scaled (the objective is a preference, not a requirement: on the demo meshes 1e-6
   // changes it in the 7th digit and costs 1.5 to 3 times the evaluations); at most 2000
   // evaluations per solve (each is O(#F + 10·#V·k)), so every round of the solve is capped.
-  AlParams solver = default_solver_params();
+  AlOptions solver = default_solver_params();
   // Report every outer iteration of the solver through the progress callback (`-v`).
   bool trace_solver = false;
   // Threads per stage (1..64). With more than one, the basis is computed alongside the skeleton
@@ -79,8 +79,8 @@ struct OptimizeSettings {
   // for any count.
   int threads = 2;
 
-  static AlParams default_solver_params() {
-    AlParams p;
+  static AlOptions default_solver_params() {
+    AlOptions p;
     p.feasibility_tolerance = 1e-8;
     p.stationarity_tolerance = 1e-4;
     p.complementarity_tolerance = 1e-4;

@@ -171,15 +171,26 @@ void solve_dense(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& ma
 // the operator is also kept row-major (the layout of its triangular solves).
 class BlockKrylovSchur {
  public:
-  struct Settings {
+  // Derived from LanczosOptions by lanczos_eigensolver, which checks them before the iteration.
+  struct Options {
     int k = 0, block = 0, basis = 0;
     long max_applications = 0;
     double tolerance = 0.0, cluster_tolerance = 0.0, shift = 0.0, norm_L = 0.0;
     std::uint64_t seed = 0;
+
+    // Empty when the iteration can run on these, else what is wrong (one line).
+    std::string check() const {
+      if (k < 1 || block < 1) return "k and block must be >= 1";
+      if (basis < k + 1 + 2 * block || basis % block != 0) return "basis must be a multiple of block >= k + 1 + 2 block";
+      if (max_applications < 1) return "max_applications must be >= 1";
+      if (!(tolerance > 0.0) || !(cluster_tolerance >= 0.0)) return "tolerance must be > 0, cluster_tolerance >= 0";
+      if (!(shift > 0.0) || !std::isfinite(shift) || !std::isfinite(norm_L)) return "shift and norm_L must be finite, shift > 0";
+      return {};
+    }
   };
 
   BlockKrylovSchur(const ShiftInvertOperator& op, const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass,
-                   const Settings& settings, WorkerPool& pool)
+                   const Options& settings, WorkerPool& pool)
       : op_(op), L_(L), pool_(&pool), n_(op.size()), k_(settings.k), b_(settings.block), m_(settings.basis),
         settings_(settings), rng_(settings.seed) {
     scale_.resize(n_);
@@ -230,7 +241,7 @@ class BlockKrylovSchur {
   WorkerPool* pool_;
   Eigen::Index n_;
   int k_, b_, m_, capacity_ = 0;
-  Settings settings_;
+  Options settings_;
   Rng rng_;
   Eigen::VectorXd scale_;  // D
   double smallest_phi_norm_ = 1.0;
@@ -665,7 +676,7 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
     return fail(LanczosStatus::FactorizationFailed, "L + sM is not positive definite (is L positive semi-definite?)");
 
   const Clock::time_point iterate = Clock::now();
-  BlockKrylovSchur::Settings settings;
+  BlockKrylovSchur::Options settings;
   settings.k = k;
   settings.block = b;
   settings.basis = basis;
@@ -675,6 +686,8 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
   settings.shift = result.shift;
   settings.norm_L = result.matrix_norm;
   settings.seed = options.seed;
+  if (const std::string problem = settings.check(); !problem.empty())
+    return fail(LanczosStatus::InvalidInput, "iteration options: " + problem);
   BlockKrylovSchur solver(op, L, mass, settings, pool);
   bool converged = false;
   for (int verification = 0; verification < 6; ++verification) {

@@ -212,5 +212,7 @@ TEST_CASE("empty and degenerate inputs") {
   CHECK_THROWS_AS(TriangleBvh(bad.V, bad.F), std::invalid_argument);
   BvhOptions options;
   options.leaf_size = 0;
-  CHECK_THROWS_AS(check_bvh_options(options), std::invalid_argument);
+  CHECK(options.check() == "BvhOptions::leaf_size must be in [1, 64]");
+  const Mesh good = make_icosphere(1.0, 1);
+  CHECK_THROWS_AS(TriangleBvh(good.V, good.F, options), std::invalid_argument);
 }

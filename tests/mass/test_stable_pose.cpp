@@ -51,7 +51,7 @@ TEST_CASE("stable_pose: a tilted 4 x 2 x 1 box rests on a 4 x 2 face with margin
     if (box.V(i, 2) == face_z) CHECK(std::fabs(posed.V(i, 2)) < 1e-12);
     else CHECK(posed.V(i, 2) == doctest::Approx(1.0).epsilon(1e-12));
   }
-  StablePoseSettings bad;
+  StablePoseOptions bad;
   bad.coplanar_tolerance = -1.0;
   CHECK(stable_pose(tilted, P.segment<3>(kCx), bad).status == StablePoseStatus::bad_settings);
   // The pose is a rigid motion: edge lengths are kept.

@@ -110,7 +110,7 @@ TEST_CASE("augmented-lagrangian: nonlinear constraint out of reach of the bounds
   CHECK(r.outer_iterations < 20);
   // A clearly infeasible problem (violation far above the tolerance) is checked after one
   // stagnant outer iteration: the same answer, sooner.
-  AlParams quick;
+  AlOptions quick;
   quick.clear_violation_factor = 1e4;
   const AlResult q = augmented_lagrangian_minimize(p, Eigen::Vector2d(2.5, 4.0), quick);
   MESSAGE(describe(q));
@@ -237,7 +237,7 @@ TEST_CASE("augmented-lagrangian: a feasible problem with a flat constraint is no
     c(0) = 1e-4 * (x(0) + x(1) - 1.0);
     j << 1e-4, 1e-4;
   };
-  AlParams params;
+  AlOptions params;
   params.feasibility_tolerance = 1e-12;
   params.stationarity_tolerance = 1e-6;
   const AlResult r = augmented_lagrangian_minimize(p, Eigen::Vector2d(0.0, 0.0), params);
@@ -276,7 +276,7 @@ TEST_CASE("augmented-lagrangian: a warm start with the solution's multipliers ne
   REQUIRE(cold.status == AlStatus::Converged);
   const VectorXd nearby = cold.x + VectorXd::Constant(4, 1e-3);
   const AlResult cold_again = augmented_lagrangian_minimize(p, nearby);
-  AlParams warm_params;
+  AlOptions warm_params;
   warm_params.initial_equality_multipliers = cold.equality_multipliers;
   warm_params.initial_inequality_multipliers = cold.inequality_multipliers;
   warm_params.initial_penalty = cold.penalty;
@@ -287,7 +287,7 @@ TEST_CASE("augmented-lagrangian: a warm start with the solution's multipliers ne
   CHECK(warm.evaluations < cold_again.evaluations);
   CHECK(warm.equality_multipliers(0) == doctest::Approx(cold.equality_multipliers(0)).epsilon(1e-4));
 
-  AlParams wrong;
+  AlOptions wrong;
   wrong.initial_inequality_multipliers = VectorXd::Zero(2);
   const AlResult refused = augmented_lagrangian_minimize(p, x0, wrong);
   CHECK(refused.status == AlStatus::InvalidInput);
@@ -338,7 +338,7 @@ TEST_CASE("augmented-lagrangian: bad input and non-finite start are reported, no
   CHECK(empty.status == AlStatus::InvalidInput);
   CHECK(empty.message.find("variable 1") != std::string::npos);
   CHECK(empty.x == Eigen::Vector2d(0.5, 0.75));
-  AlParams params;
+  AlOptions params;
   params.feasibility_tolerance = 0.0;
   CHECK(augmented_lagrangian_minimize(p, VectorXd::Zero(2), params).status == AlStatus::InvalidInput);
   ConstrainedProblem s = p;
@@ -363,7 +363,7 @@ TEST_CASE("gradient-check: accepts exact derivatives and pinpoints a wrong compo
   const GradientCheckResult ok4 = check_gradient(good, x);
   CHECK(ok4.passed);
   CHECK(ok4.normalized_error < 1e-10);
-  GradientCheckParams second;
+  GradientCheckOptions second;
   second.order = 2;
   second.relative_step = 1e-6;
   CHECK(check_gradient(good, x, second).passed);
@@ -380,7 +380,7 @@ TEST_CASE("gradient-check: accepts exact derivatives and pinpoints a wrong compo
   CHECK_FALSE(jr.passed);
   CHECK(jr.worst_row == 1);
   CHECK(jr.worst_col == 2);
-  GradientCheckParams invalid;
+  GradientCheckOptions invalid;
   invalid.order = 3;
   CHECK_FALSE(check_gradient(good, x, invalid).passed);
   CHECK_FALSE(check_gradient(good, x, invalid).message.empty());
@@ -411,7 +411,7 @@ TEST_CASE("augmented-lagrangian: an exhausted evaluation budget ends MaxEvaluati
   };
   for (int budget : {7, 25, 60}) {
     CAPTURE(budget);
-    AlParams params;
+    AlOptions params;
     params.max_evaluations = budget;
     const AlResult r = augmented_lagrangian_minimize(p, VectorXd::Constant(10, -1.0), params);
     MESSAGE(describe(r));

@@ -277,7 +277,7 @@ TEST_CASE("hock-schittkowski: published optima to 1e-6 relative, constraints to 
   for (const HsProblem& h : all_problems()) {
     CAPTURE(h.name);
     std::string trace;
-    AlParams params;
+    AlOptions params;
     params.on_outer_iteration = [&trace](const AlIterationInfo& it) {
       trace += "\n  outer " + std::to_string(it.outer_iteration) + " f=" + std::to_string(it.f) +
                " viol=" + std::to_string(it.max_violation) + " stat=" +

@@ -61,7 +61,7 @@ VectorXd rosenbrock_start(int n) {
 TEST_CASE("lbfgsb: unconstrained chained Rosenbrock reaches (1,...,1) for n = 2, 10, 100") {
   for (int n : {2, 10, 100}) {
     CAPTURE(n);
-    LbfgsbParams params;
+    LbfgsbOptions params;
     params.gradient_tolerance = 1e-10;
     params.function_tolerance = 0.0;
     const LbfgsbResult r = lbfgsb_minimize(chained_rosenbrock, rosenbrock_start(n), VectorXd(),
@@ -96,7 +96,7 @@ TEST_CASE("lbfgsb: bounded Rosenbrock pairs stop on the bounds with the known mi
       expected(j + 1) = b * b;
       f_star += (1.0 - b) * (1.0 - b);
     }
-    LbfgsbParams params;
+    LbfgsbOptions params;
     params.gradient_tolerance = 1e-10;
     params.function_tolerance = 0.0;
     const LbfgsbResult r = lbfgsb_minimize(pair_rosenbrock, rosenbrock_start(n), lower, upper, params);
@@ -208,7 +208,7 @@ TEST_CASE("lbfgsb: random bounded convex quadratics match brute-force active-set
       grad = qp.h * x + qp.q;
       return qp.value(x);
     };
-    LbfgsbParams params;
+    LbfgsbOptions params;
     params.gradient_tolerance = 1e-12;
     params.function_tolerance = 0.0;
     params.memory = 5;
@@ -267,7 +267,7 @@ TEST_CASE("lbfgsb: constructed ill-conditioned bounded quadratic, n = 100, 40 ac
     grad = h * x + q;
     return 0.5 * x.dot(h * x) + q.dot(x);
   };
-  LbfgsbParams params;
+  LbfgsbOptions params;
   params.gradient_tolerance = 1e-11;
   params.function_tolerance = 0.0;
   const LbfgsbResult r = lbfgsb_minimize(f, VectorXd::Zero(n), lower, upper, params);
@@ -283,23 +283,23 @@ TEST_CASE("lbfgsb: constructed ill-conditioned bounded quadratic, n = 100, 40 ac
 
 TEST_CASE("lbfgsb: bad input is reported, not thrown") {
   ObjectiveFunction f = chained_rosenbrock;
-  LbfgsbParams bad;
+  LbfgsbOptions bad;
   bad.memory = 0;
   CHECK(lbfgsb_minimize(f, VectorXd::Zero(3), VectorXd(), VectorXd(), bad).status ==
         LbfgsbStatus::InvalidInput);
-  CHECK(lbfgsb_minimize(f, VectorXd::Zero(3), VectorXd::Zero(2), VectorXd(), LbfgsbParams()).status ==
+  CHECK(lbfgsb_minimize(f, VectorXd::Zero(3), VectorXd::Zero(2), VectorXd(), LbfgsbOptions()).status ==
         LbfgsbStatus::InvalidInput);
   CHECK(lbfgsb_minimize(f, VectorXd::Zero(2), VectorXd::Constant(2, 1.0), VectorXd::Zero(2),
-                        LbfgsbParams()).status == LbfgsbStatus::InvalidInput);
+                        LbfgsbOptions()).status == LbfgsbStatus::InvalidInput);
   VectorXd nan_start = VectorXd::Zero(2);
   nan_start(1) = std::numeric_limits<double>::quiet_NaN();
-  CHECK(lbfgsb_minimize(f, nan_start, VectorXd(), VectorXd(), LbfgsbParams()).status ==
+  CHECK(lbfgsb_minimize(f, nan_start, VectorXd(), VectorXd(), LbfgsbOptions()).status ==
         LbfgsbStatus::InvalidInput);
   ObjectiveFunction nan_f = [](const VectorXd&, VectorXd& g) {
     g.setZero();
     return std::numeric_limits<double>::quiet_NaN();
   };
-  CHECK(lbfgsb_minimize(nan_f, VectorXd::Zero(2), VectorXd(), VectorXd(), LbfgsbParams()).status ==
+  CHECK(lbfgsb_minimize(nan_f, VectorXd::Zero(2), VectorXd(), VectorXd(), LbfgsbOptions()).status ==
         LbfgsbStatus::NumericalIssue);
 }
 
@@ -320,7 +320,7 @@ TEST_CASE("lbfgsb: non-finite trial values are backed off, and early stops keep 
     return v;
   };
   VectorXd x0 = VectorXd::Constant(4, -30.0);
-  LbfgsbParams params;
+  LbfgsbOptions params;
   params.gradient_tolerance = 1e-10;
   const LbfgsbResult r = lbfgsb_minimize(f, x0, VectorXd(), VectorXd(), params);
   CHECK(r.status == LbfgsbStatus::Converged);
@@ -329,7 +329,7 @@ TEST_CASE("lbfgsb: non-finite trial values are backed off, and early stops keep 
   CHECK(g.lpNorm<Eigen::Infinity>() < 1e-9);
 
   // Cap the iterations: the result is the best iterate, below the start value, and consistent.
-  LbfgsbParams capped;
+  LbfgsbOptions capped;
   capped.max_iterations = 3;
   const LbfgsbResult c = lbfgsb_minimize(chained_rosenbrock, rosenbrock_start(10), VectorXd(),
                                          VectorXd(), capped);
@@ -339,7 +339,7 @@ TEST_CASE("lbfgsb: non-finite trial values are backed off, and early stops keep 
   CHECK(c.f < chained_rosenbrock(rosenbrock_start(10), g0));
   CHECK(chained_rosenbrock(c.x, gc) == c.f);
   CHECK(gc == c.grad);
-  LbfgsbParams few_evals;
+  LbfgsbOptions few_evals;
   few_evals.max_evaluations = 5;
   const LbfgsbResult e = lbfgsb_minimize(chained_rosenbrock, rosenbrock_start(10), VectorXd(),
                                          VectorXd(), few_evals);

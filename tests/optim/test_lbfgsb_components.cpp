@@ -254,7 +254,7 @@ TEST_CASE("more-thuente: strong Wolfe steps with the paper's evaluation counts o
       double f0, g0;
       fn.phi(0.0, f0, g0);
       REQUIRE(g0 < 0.0);
-      MoreThuenteSettings st;
+      MoreThuenteOptions st;
       st.ftol = fn.ftol;
       st.gtol = fn.gtol;
       st.xtol = 1e-10;
