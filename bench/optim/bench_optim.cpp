@@ -61,5 +61,5 @@ int main(int argc, char** argv) {
   std::printf("  |f - f*| / |f*|           %.3e\n", std::abs(r.f - lb.f_star) / std::abs(lb.f_star));
   std::printf("  max violation             %.3e\n", r.max_violation);
   std::printf("  stationarity (scaled)     %.3e\n", r.stationarity);
-  return r.status == AlStatus::Converged ? 0 : 1;
+  return r.status == AlStatus::converged ? 0 : 1;
 }

@@ -75,7 +75,7 @@ PosedInput pose_input(const Mesh& mesh, const PoseOptions& options, const std::s
     if (cut.status != FlattenStatus::ok) throw UsageError(mesh_path + ": --flatten " + format_double(options.flatten) + ": " + cut.message);
     const MeshValidation validation = validate_mesh(cut.mesh);
     for (const Defect& defect : validation.defects) {
-      if (defect.kind == DefectKind::kSeveralComponents && !single_component) continue;
+      if (defect.kind == DefectKind::several_components && !single_component) continue;
       // The cut mesh's numbers mean nothing to the user: say where, in the working frame.
       std::string where;
       const long long v = defect.vertex >= 0 ? defect.vertex : defect.face >= 0 ? cut.mesh.F(defect.face, 0) : -1;

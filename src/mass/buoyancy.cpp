@@ -66,11 +66,11 @@ FloatingEquilibrium floating_equilibrium(const Mesh& outer, double mass, const F
     }
   };
   if (mass >= options.fluid_density * volume_integrals(outer).values(kIntVolume)) {
-    out.status = FloatingEquilibrium::Status::kSinks;
+    out.status = FloatingEquilibrium::Status::sinks;
     record(hi);
     return out;
   }
-  out.status = FloatingEquilibrium::Status::kFloats;
+  out.status = FloatingEquilibrium::Status::floats;
   const double tolerance = options.level_tolerance * (hi - lo);
   while (out.iterations < options.max_iterations && hi - lo > tolerance) {
     ++out.iterations;

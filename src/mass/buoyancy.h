@@ -19,8 +19,8 @@ namespace offsetopt {
 VolumeIntegrals volume_integrals_below(const Mesh& mesh, double level);
 
 struct FloatingEquilibrium {
-  enum class Status { kFloats, kSinks };
-  Status status = Status::kSinks;
+  enum class Status { floats, sinks };
+  Status status = Status::sinks;
   double waterline = 0.0;          // z of the fluid surface (the mesh's top when it sinks)
   double displaced_volume = 0.0;   // volume below the waterline
   Eigen::Vector3d center_of_buoyancy = Eigen::Vector3d::Zero();  // centroid of that volume

@@ -148,13 +148,13 @@ std::string AlOptions::check() const {
 
 const char* to_string(AlStatus status) {
   switch (status) {
-    case AlStatus::Converged: return "converged";
-    case AlStatus::Infeasible: return "infeasible";
-    case AlStatus::Stalled: return "stalled";
-    case AlStatus::MaxOuterIterations: return "max-outer-iterations";
-    case AlStatus::MaxEvaluations: return "max-evaluations";
-    case AlStatus::NumericalIssue: return "numerical-issue";
-    case AlStatus::InvalidInput: return "invalid-input";
+    case AlStatus::converged: return "converged";
+    case AlStatus::infeasible: return "infeasible";
+    case AlStatus::stalled: return "stalled";
+    case AlStatus::max_outer_iterations: return "max-outer-iterations";
+    case AlStatus::max_evaluations: return "max-evaluations";
+    case AlStatus::numerical_issue: return "numerical-issue";
+    case AlStatus::invalid_input: return "invalid-input";
   }
   return "unknown";
 }
@@ -212,7 +212,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
   if (msg.empty() && !(params.initial_equality_multipliers.allFinite() && params.initial_inequality_multipliers.allFinite()))
     msg = "initial multipliers must be finite";
   if (!msg.empty()) {
-    res.status = AlStatus::InvalidInput;
+    res.status = AlStatus::invalid_input;
     res.x = x0;  // the caller's point, unchanged
     return res;
   }
@@ -318,7 +318,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
   if (!start_finite) {
     shift.setZero();
     const Measures meas = measures();
-    return fill_result(AlStatus::NumericalIssue, meas);
+    return fill_result(AlStatus::numerical_issue, meas);
   }
 
   if (params.initial_penalty > 0.0) {
@@ -428,7 +428,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
       shift(k) = nu_bar(k) / rho;
     }
     const int budget = params.max_evaluations - ev.count;
-    if (budget <= 0) return fill_result(AlStatus::MaxEvaluations, meas);
+    if (budget <= 0) return fill_result(AlStatus::max_evaluations, meas);
     inner.gradient_tolerance = inner_tol;
     inner.relative_gradient_tolerance = 0.0;
     inner.max_evaluations = std::min(inner.max_evaluations, budget);
@@ -456,18 +456,18 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
     const double feas = std::max(meas.violation, meas.scaled_violation);
     if (feas <= feas_tol && sub.projected_gradient_norm <= params.stationarity_tolerance &&
         meas.complementarity <= params.complementarity_tolerance)
-      return fill_result(AlStatus::Converged, meas);
-    if (ev.count >= params.max_evaluations) return fill_result(AlStatus::MaxEvaluations, meas);
+      return fill_result(AlStatus::converged, meas);
+    if (ev.count >= params.max_evaluations) return fill_result(AlStatus::max_evaluations, meas);
     // The subproblem stopped at the budget this loop left it, not at its own cap. Its count
     // includes its start point, which the evaluator had cached and does not count again, so the
     // total can end just below the cap: every later subproblem would then stop at its start
     // point while the penalty kept growing, and the stagnation would read as infeasibility.
-    if (sub.status == LbfgsbStatus::MaxEvaluations && budget <= params.inner.max_evaluations)
-      return fill_result(AlStatus::MaxEvaluations, meas);
-    const bool inner_stuck = sub.status == LbfgsbStatus::SmallReduction ||
-                             sub.status == LbfgsbStatus::LineSearchFailed;
+    if (sub.status == LbfgsbStatus::max_evaluations && budget <= params.inner.max_evaluations)
+      return fill_result(AlStatus::max_evaluations, meas);
+    const bool inner_stuck = sub.status == LbfgsbStatus::small_reduction ||
+                             sub.status == LbfgsbStatus::line_search_failed;
     if (feas <= feas_tol && meas.complementarity <= params.complementarity_tolerance && inner_stuck) {
-      if (++stalled >= params.stall_patience) return fill_result(AlStatus::Stalled, meas);
+      if (++stalled >= params.stall_patience) return fill_result(AlStatus::stalled, meas);
     } else {
       stalled = 0;
     }
@@ -522,7 +522,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
       if (least_feas > feas_tol) {
         // The multipliers stay those of the last subproblem; the violation is this point's.
         res.stationarity = least_stationarity;
-        return fill_result(AlStatus::Infeasible, at_least);
+        return fill_result(AlStatus::infeasible, at_least);
       }
       // A feasible point exists: continue from it.
       x = least_x;
@@ -538,7 +538,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
   }
   evaluate_all(x);
   meas = measures();
-  return fill_result(AlStatus::MaxOuterIterations, meas);
+  return fill_result(AlStatus::max_outer_iterations, meas);
 }
 
 }  // namespace offsetopt

@@ -141,12 +141,12 @@ std::string MoreThuenteOptions::check() const {
   return std::string();
 }
 
-MoreThuenteState MoreThuenteSearch::start(double f0, double g0, double stp,
+MoreThuenteStatus MoreThuenteSearch::start(double f0, double g0, double stp,
                                           const MoreThuenteOptions& settings) {
   s_ = settings;
   stp_ = stp;
   if (!(stp >= s_.stpmin) || !(stp <= s_.stpmax) || !(g0 < 0.0) || !s_.check().empty() || !std::isfinite(f0)) {
-    return MoreThuenteState::Error;
+    return MoreThuenteStatus::error;
   }
   brackt_ = false;
   stage_ = 1;
@@ -163,10 +163,10 @@ MoreThuenteState MoreThuenteSearch::start(double f0, double g0, double stp,
   gy_ = ginit_;
   stmin_ = 0.0;
   stmax_ = stp_ + 4.0 * stp_;
-  return MoreThuenteState::Evaluate;
+  return MoreThuenteStatus::evaluate;
 }
 
-MoreThuenteState MoreThuenteSearch::advance(double f, double g) {
+MoreThuenteStatus MoreThuenteSearch::advance(double f, double g) {
   constexpr double kExtrapolateLower = 1.1;
   constexpr double kExtrapolateUpper = 4.0;
 
@@ -174,13 +174,13 @@ MoreThuenteState MoreThuenteSearch::advance(double f, double g) {
   if (stage_ == 1 && f <= ftest && g >= 0.0) stage_ = 2;
 
   // Tests for warnings, then for convergence.
-  MoreThuenteState state = MoreThuenteState::Evaluate;
-  if (brackt_ && (stp_ <= stmin_ || stp_ >= stmax_)) state = MoreThuenteState::WarningRoundingErrors;
-  if (brackt_ && stmax_ - stmin_ <= s_.xtol * stmax_) state = MoreThuenteState::WarningXtol;
-  if (stp_ == s_.stpmax && f <= ftest && g <= gtest_) state = MoreThuenteState::WarningStpmax;
-  if (stp_ == s_.stpmin && (f > ftest || g >= gtest_)) state = MoreThuenteState::WarningStpmin;
-  if (f <= ftest && std::fabs(g) <= s_.gtol * (-ginit_)) state = MoreThuenteState::Converged;
-  if (state != MoreThuenteState::Evaluate) return state;
+  MoreThuenteStatus state = MoreThuenteStatus::evaluate;
+  if (brackt_ && (stp_ <= stmin_ || stp_ >= stmax_)) state = MoreThuenteStatus::warning_rounding_errors;
+  if (brackt_ && stmax_ - stmin_ <= s_.xtol * stmax_) state = MoreThuenteStatus::warning_xtol;
+  if (stp_ == s_.stpmax && f <= ftest && g <= gtest_) state = MoreThuenteStatus::warning_stpmax;
+  if (stp_ == s_.stpmin && (f > ftest || g >= gtest_)) state = MoreThuenteStatus::warning_stpmin;
+  if (f <= ftest && std::fabs(g) <= s_.gtol * (-ginit_)) state = MoreThuenteStatus::converged;
+  if (state != MoreThuenteStatus::evaluate) return state;
 
   if (stage_ == 1 && f <= fx_ && f > ftest) {
     // In the first stage, with a lower value that lacks sufficient decrease, work with the
@@ -224,7 +224,7 @@ MoreThuenteState MoreThuenteSearch::advance(double f, double g) {
       (brackt_ && stmax_ - stmin_ <= s_.xtol * stmax_)) {
     stp_ = stx_;
   }
-  return MoreThuenteState::Evaluate;
+  return MoreThuenteStatus::evaluate;
 }
 
 }  // namespace offsetopt

@@ -5,7 +5,7 @@
 //   |φ'(stp)| ≤ gtol·|φ'(0)|              (curvature: together, the strong Wolfe conditions)
 // where φ(stp) = f(x + stp·d) and φ'(0) < 0.
 //
-// Reverse communication: start() and advance() return Evaluate with step() set to the next trial;
+// Reverse communication: start() and advance() return evaluate with step() set to the next trial;
 // the caller evaluates φ and φ' there and calls advance(). Any other state ends the search.
 // Deviation from MINPACK-2: square roots of cubic-interpolation discriminants are taken of
 // max(0, ·), so rounding can never produce a NaN step.
@@ -26,22 +26,22 @@ struct MoreThuenteOptions {
   std::string check() const;
 };
 
-enum class MoreThuenteState {
-  Evaluate,               // evaluate φ, φ' at step() and call advance()
-  Converged,              // the strong Wolfe conditions hold at the last evaluated step
-  WarningRoundingErrors,  // the bracket cannot shrink any more: rounding prevents progress
-  WarningXtol,            // the bracket is narrower than xtol·stmax
-  WarningStpmax,          // the step is stpmax and sufficient decrease holds with φ' < 0
-  WarningStpmin,          // the step is stpmin and sufficient decrease or curvature fails
-  Error                   // bad input: φ'(0) ≥ 0, stp outside [stpmin, stpmax], bad constants
+enum class MoreThuenteStatus {
+  evaluate,                 // evaluate φ, φ' at step() and call advance()
+  converged,                // the strong Wolfe conditions hold at the last evaluated step
+  warning_rounding_errors,  // the bracket cannot shrink any more: rounding prevents progress
+  warning_xtol,             // the bracket is narrower than xtol·stmax
+  warning_stpmax,           // the step is stpmax and sufficient decrease holds with φ' < 0
+  warning_stpmin,           // the step is stpmin and sufficient decrease or curvature fails
+  error                     // bad input: φ'(0) ≥ 0, stp outside [stpmin, stpmax], bad constants
 };
 
 class MoreThuenteSearch {
  public:
   // φ(0) = f0, φ'(0) = g0 (must be < 0), first trial step stp.
-  MoreThuenteState start(double f0, double g0, double stp, const MoreThuenteOptions& settings);
+  MoreThuenteStatus start(double f0, double g0, double stp, const MoreThuenteOptions& settings);
   // φ and φ' at the step last returned by step().
-  MoreThuenteState advance(double f, double g);
+  MoreThuenteStatus advance(double f, double g);
   double step() const { return stp_; }
 
  private:

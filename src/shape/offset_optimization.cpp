@@ -427,8 +427,8 @@ class OffsetSolve {
     }
     // A problem the solver refuses (hard bounds with an empty box) or cannot evaluate at the start
     // is not changed by tighter bounds or a correction either.
-    const bool refused = solved.status == AlStatus::InvalidInput || solved.status == AlStatus::NumericalIssue;
-    constraints_met = !refused && solved.status != AlStatus::Infeasible &&
+    const bool refused = solved.status == AlStatus::invalid_input || solved.status == AlStatus::numerical_issue;
+    constraints_met = !refused && solved.status != AlStatus::infeasible &&
                       solved.max_violation <= 100.0 * settings_.solver.feasibility_tolerance;
     return constraints_met;
   }
@@ -671,13 +671,13 @@ std::string failure_reason(const OptimizeSettings& settings, const Band& b, cons
   std::string why = verification.failures.empty() ? "unknown" : verification.failures.front();
   const AlResult& solved = solve.solved;
   const bool constraints_unmet =
-      solved.status == AlStatus::Infeasible || solved.max_violation > 100.0 * settings.solver.feasibility_tolerance;
+      solved.status == AlStatus::infeasible || solved.max_violation > 100.0 * settings.solver.feasibility_tolerance;
   if (settings.bounds == BoundsMode::hard && b.thin_count_initial > 0)
     return std::string("the per-vertex bounds cannot be met") + (settings.k == 0 ? ": " : " in the basis: ") +
            std::to_string(b.thin_count_initial) +
            " vertices lie in parts thinner than two walls, where no offset is both above the wall and below the "
            "skeleton (try --bounds clamp); " + why;
-  if (solved.status == AlStatus::InvalidInput || solved.status == AlStatus::NumericalIssue)
+  if (solved.status == AlStatus::invalid_input || solved.status == AlStatus::numerical_issue)
     return std::string("the solver could not start (") + to_string(solved.status) +
            (solved.message.empty() ? "" : ": " + solved.message) + "); " + why;
   const char* later = settings.cavity == CavityMode::offset ? "repair" : "correction";
@@ -687,7 +687,7 @@ std::string failure_reason(const OptimizeSettings& settings, const Band& b, cons
            (settings.cavity == CavityMode::offset ? "the bounds were tightened there to remove folds and thin walls"
                                                   : "the contoured cavity's moments were taken into account") +
            "; " + why;
-  if (constraints_unmet && solved.status == AlStatus::MaxEvaluations)
+  if (constraints_unmet && solved.status == AlStatus::max_evaluations)
     return "the solver used its " + std::to_string(settings.solver.max_evaluations) +
            " evaluations before meeting the constraints (violation " + format_double(solved.max_violation) +
            ", normalised frame); " + why;
@@ -808,7 +808,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeSettings& setti
     // axis goals), so a small basis can end above the first and still pass: say so, as the
     // report's solver status alone would read as a failure.
     const AlResult& solved = solve.solved;
-    if (solved.status == AlStatus::Infeasible || solved.max_violation > 100.0 * settings.solver.feasibility_tolerance)
+    if (solved.status == AlStatus::infeasible || solved.max_violation > 100.0 * settings.solver.feasibility_tolerance)
       result.warnings.push_back(std::string("the solver ended ") + to_string(solved.status) + " with constraint violation " +
                                 format_double(solved.max_violation) + " (tolerance " +
                                 format_double(settings.solver.feasibility_tolerance) +

@@ -29,7 +29,7 @@ bool parse_cavity_mode(const std::string& text, CavityMode& mode);
 struct OptimizeSettings {
   GoalKind goal = GoalKind::stand;
   int k = 36;                    // basis size; 0 means every vertex (`--k all`, paper eq. 1)
-  BasisKind basis = BasisKind::Mass;
+  BasisKind basis = BasisKind::mass;
   BoundsMode bounds = BoundsMode::clamp;
   bool outer = false;
   // Lengths in input units; a negative value means "the default", a fraction of the diagonal:

@@ -181,17 +181,17 @@ Eigen::Vector2d pivot_point(const Stability& st, const Eigen::Vector2d& c) {
 }
 
 bool read_vec3(const Json& j, Eigen::Vector3d& out) {
-  if (j.type() != Json::Type::Array || j.size() != 3) return false;
+  if (j.type() != Json::Type::array || j.size() != 3) return false;
   for (std::size_t i = 0; i < 3; ++i) {
     const Json& e = j.at(i);
-    if (e.type() != Json::Type::Number && e.type() != Json::Type::Integer) return false;
+    if (e.type() != Json::Type::number && e.type() != Json::Type::integer) return false;
     out(static_cast<Eigen::Index>(i)) = e.as_number();
     if (!std::isfinite(out(static_cast<Eigen::Index>(i)))) return false;
   }
   return true;
 }
 
-bool is_number(const Json& j) { return j.type() == Json::Type::Number || j.type() == Json::Type::Integer; }
+bool is_number(const Json& j) { return j.type() == Json::Type::number || j.type() == Json::Type::integer; }
 
 // A number field of `object`: absent or null leaves `out` alone; anything else but a finite
 // number is an error.
@@ -213,11 +213,11 @@ std::string check_preview_settings(const PreviewSettings& s) {
 }
 
 std::string preview_input_from_report(const Json& report, PreviewInput& input) {
-  if (report.type() != Json::Type::Object) return "the report is not a JSON object";
-  if (!report.contains("parameters") || report.at("parameters").type() != Json::Type::Object)
+  if (report.type() != Json::Type::object) return "the report is not a JSON object";
+  if (!report.contains("parameters") || report.at("parameters").type() != Json::Type::object)
     return "the report has no 'parameters' object";
   const Json& parameters = report.at("parameters");
-  if (!parameters.contains("goal") || parameters.at("goal").type() != Json::Type::String)
+  if (!parameters.contains("goal") || parameters.at("goal").type() != Json::Type::string)
     return "the report has no 'parameters.goal' string";
   if (!parse_goal_kind(parameters.at("goal").as_string(), input.goal))
     return "unknown goal '" + parameters.at("goal").as_string() + "' in 'parameters.goal'";
@@ -231,13 +231,13 @@ std::string preview_input_from_report(const Json& report, PreviewInput& input) {
   if (!(input.fill_density > 0.0)) return "'parameters.fill_density' must be positive";
   if (input.goal == GoalKind::floating && !(input.fluid_density > 0.0))
     return "goal float needs a positive 'parameters.fluid_density'";
-  if (report.contains("before") && report.at("before").type() == Json::Type::Object &&
+  if (report.contains("before") && report.at("before").type() == Json::Type::object &&
       report.at("before").contains("center_of_mass")) {
     if (!read_vec3(report.at("before").at("center_of_mass"), input.before_com))
       return "'before.center_of_mass' is not three finite numbers";
     input.has_before_com = true;
   }
-  if (report.contains("goal") && report.at("goal").type() == Json::Type::Object) {
+  if (report.contains("goal") && report.at("goal").type() == Json::Type::object) {
     const Json& goal = report.at("goal");
     if (goal.contains("sphere_center")) {
       if (!read_vec3(goal.at("sphere_center"), input.sphere_center)) return "'goal.sphere_center' is not three finite numbers";
@@ -252,7 +252,7 @@ std::string preview_input_from_report(const Json& report, PreviewInput& input) {
       input.has_tip = true;
     }
   }
-  if (report.contains("after") && report.at("after").type() == Json::Type::Object) {
+  if (report.contains("after") && report.at("after").type() == Json::Type::object) {
     double v = -1.0;
     if (!optional_number(report.at("after"), "void_volume", v)) return "'after.void_volume' is not a finite number";
     input.void_volume = v;
@@ -372,12 +372,12 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
     // verification uses (1e-3 of the mass) the fluid's surface is at or above the top, and the
     // centre of buoyancy is the outer volume's centroid.
     if (std::fabs(input.fluid_density * Pout(kMass) - P(kMass)) <= 1e-3 * P(kMass)) {
-      water.status = FloatingEquilibrium::Status::kFloats;
+      water.status = FloatingEquilibrium::Status::floats;
       water.waterline = shells.outer.V.col(2).maxCoeff();
       water.displaced_volume = Pout(kMass);
       water.center_of_buoyancy = Eigen::Vector3d(Pout(kCx), Pout(kCy), Pout(kCz));
       neutral = true;
-    } else if (water.status == FloatingEquilibrium::Status::kSinks) {
+    } else if (water.status == FloatingEquilibrium::Status::sinks) {
       water.center_of_buoyancy = Eigen::Vector3d(Pout(kCx), Pout(kCy), Pout(kCz));
     }
   }
@@ -466,7 +466,7 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
         svg.cross(at(input.tip), r + 1.5, kGoalMark);
       }
       if (have_water) {
-        if (water.status == FloatingEquilibrium::Status::kFloats)
+        if (water.status == FloatingEquilibrium::Status::floats)
           svg.line(v.map(v.umin, water.waterline), v.map(v.umax, water.waterline), kWater, 1.5, "8 4");
         svg.dot(at(water.center_of_buoyancy), r, "#ffffff", kWater);
       }
@@ -607,7 +607,7 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
         if (neutral)
           lines.push_back("fully submerged in density " + num(input.fluid_density) + ": buoyancy - weight = " + num(excess) +
                           " (" + num(100.0 * excess / P(kMass)) + "% of the weight)");
-        else if (water.status == FloatingEquilibrium::Status::kFloats)
+        else if (water.status == FloatingEquilibrium::Status::floats)
           lines.push_back("floats in density " + num(input.fluid_density) + ", waterline z = " + num(water.waterline));
         else
           lines.push_back("sinks in density " + num(input.fluid_density) + ": buoyancy - weight = " + num(excess));

@@ -30,10 +30,10 @@ std::string LanczosOptions::check() const {
 
 const char* to_string(LanczosStatus status) {
   switch (status) {
-    case LanczosStatus::Converged: return "converged";
-    case LanczosStatus::NotConverged: return "not_converged";
-    case LanczosStatus::InvalidInput: return "invalid_input";
-    case LanczosStatus::FactorizationFailed: return "factorization_failed";
+    case LanczosStatus::converged: return "converged";
+    case LanczosStatus::not_converged: return "not_converged";
+    case LanczosStatus::invalid_input: return "invalid_input";
+    case LanczosStatus::factorization_failed: return "factorization_failed";
   }
   return "unknown";
 }
@@ -620,18 +620,18 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
     result.message = std::move(message);
     return result;
   };
-  if (std::string problem = options.check(); !problem.empty()) return fail(LanczosStatus::InvalidInput, problem);
+  if (std::string problem = options.check(); !problem.empty()) return fail(LanczosStatus::invalid_input, problem);
   const Eigen::Index n = L.rows();
-  if (L.cols() != n) return fail(LanczosStatus::InvalidInput, "the matrix is not square");
-  if (mass.size() != 0 && mass.size() != n) return fail(LanczosStatus::InvalidInput, "mass has the wrong size");
-  if (positions && positions->rows() != n) return fail(LanczosStatus::InvalidInput, "positions have the wrong size");
-  if (k < 1) return fail(LanczosStatus::InvalidInput, "k must be at least 1");
+  if (L.cols() != n) return fail(LanczosStatus::invalid_input, "the matrix is not square");
+  if (mass.size() != 0 && mass.size() != n) return fail(LanczosStatus::invalid_input, "mass has the wrong size");
+  if (positions && positions->rows() != n) return fail(LanczosStatus::invalid_input, "positions have the wrong size");
+  if (k < 1) return fail(LanczosStatus::invalid_input, "k must be at least 1");
   if (k >= n)
-    return fail(LanczosStatus::InvalidInput, "k = " + std::to_string(k) + " must be below the number of rows (" +
+    return fail(LanczosStatus::invalid_input, "k = " + std::to_string(k) + " must be below the number of rows (" +
                                                  std::to_string(n) + ")");
   for (Eigen::Index i = 0; i < mass.size(); ++i)
     if (!(mass(i) > 0.0) || !std::isfinite(mass(i)))
-      return fail(LanczosStatus::InvalidInput, "mass must be positive and finite (row " + std::to_string(i) + ")");
+      return fail(LanczosStatus::invalid_input, "mass must be positive and finite (row " + std::to_string(i) + ")");
 
   result.matrix_norm = infinity_norm(L);
   double trace_L = 0.0, trace_M = 0.0;
@@ -641,7 +641,7 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
   }
   result.shift = options.shift_scale * trace_L / (static_cast<double>(n) * trace_M);
   if (!(result.shift > 0.0) || !std::isfinite(result.shift) || !std::isfinite(result.matrix_norm))
-    return fail(LanczosStatus::InvalidInput, "the matrix has no positive finite diagonal (empty or degenerate mesh?)");
+    return fail(LanczosStatus::invalid_input, "the matrix has no positive finite diagonal (empty or degenerate mesh?)");
 
   const int b = std::min<int>(options.block_size, static_cast<int>(n));
   int basis = options.max_basis;
@@ -664,16 +664,16 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
     result.eigenvectors = std::move(X);
     result.converged = finalize_pairs(L, mass, result.matrix_norm, options.tolerance, result.eigenvectors,
                                       result.eigenvalues, result.residuals, pool);
-    result.status = result.converged == k ? LanczosStatus::Converged : LanczosStatus::NotConverged;
-    if (result.status != LanczosStatus::Converged) result.message = "the dense solver missed the tolerance";
+    result.status = result.converged == k ? LanczosStatus::converged : LanczosStatus::not_converged;
+    if (result.status != LanczosStatus::converged) result.message = "the dense solver missed the tolerance";
     return result;
   }
 
   ShiftInvertOperator op(L, mass, result.shift, positions, &pool);
   result.factor_seconds = seconds_since(start);
   result.factor_nonzeros = static_cast<long>(op.factor_nonzeros());
-  if (op.status() != ShiftInvertOperator::Status::Ok)
-    return fail(LanczosStatus::FactorizationFailed, "L + sM is not positive definite (is L positive semi-definite?)");
+  if (op.status() != ShiftInvertOperator::Status::ok)
+    return fail(LanczosStatus::factorization_failed, "L + sM is not positive definite (is L positive semi-definite?)");
 
   const Clock::time_point iterate = Clock::now();
   BlockKrylovSchur::Options settings;
@@ -687,7 +687,7 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
   settings.norm_L = result.matrix_norm;
   settings.seed = options.seed;
   if (const std::string problem = settings.check(); !problem.empty())
-    return fail(LanczosStatus::InvalidInput, "iteration options: " + problem);
+    return fail(LanczosStatus::invalid_input, "iteration options: " + problem);
   BlockKrylovSchur solver(op, L, mass, settings, pool);
   bool converged = false;
   for (int verification = 0; verification < 6; ++verification) {
@@ -707,9 +707,9 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
   result.corrections = solver.corrections();
   result.iteration_seconds = seconds_since(iterate);
   if (result.converged == k) {
-    result.status = LanczosStatus::Converged;
+    result.status = LanczosStatus::converged;
   } else {
-    result.status = LanczosStatus::NotConverged;
+    result.status = LanczosStatus::not_converged;
     result.message = converged ? "residuals stayed above the tolerance" : "operator-application cap reached";
   }
   return result;

@@ -194,7 +194,7 @@ TEST_CASE("flatten_base: a torus standing on its side cut above its hole gives t
   // parts touching in a point), which validation names; pose_input refuses it with that message.
   const FlattenResult bottom = flatten_base(torus, FlattenOptions{20.0});
   REQUIRE(bottom.status == FlattenStatus::ok);
-  CHECK(validate_mesh(bottom.mesh).find(DefectKind::kNonManifoldVertex) != nullptr);
+  CHECK(validate_mesh(bottom.mesh).find(DefectKind::non_manifold_vertex) != nullptr);
 }
 
 TEST_CASE("flatten_base: a plane through a ring of vertices cuts at them, bad heights are refused") {
@@ -276,7 +276,7 @@ TEST_CASE("flatten_base: demo meshes, upright and posed stable, cut at many heig
         const FlattenResult r = flatten_base(*mesh, FlattenOptions{(zmax - zmin) * k / 16.0});
         REQUIRE(r.status == FlattenStatus::ok);
         const MeshValidation validation = validate_mesh(r.mesh);
-        for (const Defect& defect : validation.defects) CHECK(defect.kind == DefectKind::kSeveralComponents);
+        for (const Defect& defect : validation.defects) CHECK(defect.kind == DefectKind::several_components);
         CHECK(cap_figures(r).faces_down);
         CHECK(cap_figures(r).in_plane);
         // Relative to the whole volume: near the top the kept part is a small difference.

@@ -261,17 +261,17 @@ TEST_CASE("more-thuente: strong Wolfe steps with the paper's evaluation counts o
       st.stpmin = 0.0;
       st.stpmax = 1e10;
       MoreThuenteSearch search;
-      MoreThuenteState state = search.start(f0, g0, a0, st);
+      MoreThuenteStatus state = search.start(f0, g0, a0, st);
       int evals = 0;
       double f = 0.0, g = 0.0, a = 0.0;
-      while (state == MoreThuenteState::Evaluate && evals < 50) {
+      while (state == MoreThuenteStatus::evaluate && evals < 50) {
         a = search.step();
         fn.phi(a, f, g);
         ++evals;
         state = search.advance(f, g);
       }
       MESSAGE(fn.name << " a0=" << a0 << " evals=" << evals << " a=" << a << " g=" << g);
-      CHECK(state == MoreThuenteState::Converged);
+      CHECK(state == MoreThuenteStatus::converged);
       CHECK(f <= f0 + fn.ftol * a * g0);
       CHECK(std::fabs(g) <= fn.gtol * std::fabs(g0));
       CHECK(evals == fn.published_evaluations[static_cast<size_t>(k)]);
