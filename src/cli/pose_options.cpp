@@ -53,7 +53,7 @@ PosedInput pose_input(const Mesh& mesh, const PoseOptions& options, const std::s
   if (options.stable) {
     const Vector10d P = mass_properties(posed.mesh);
     const StablePose pose = stable_pose(posed.mesh, P.segment<3>(kCx));
-    if (pose.status == StablePoseStatus::no_hull || pose.status == StablePoseStatus::bad_settings)
+    if (pose.status == StablePoseStatus::no_hull || pose.status == StablePoseStatus::bad_options)
       throw UsageError(mesh_path + ": --pose stable: " + pose.message);
     if (pose.status != StablePoseStatus::ok) posed.warnings.push_back("--pose stable: " + pose.message);
     posed.mesh = apply_rigid_motion(posed.mesh, pose.motion);

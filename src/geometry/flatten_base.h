@@ -28,7 +28,7 @@ struct FlattenOptions {
   std::string check() const;
 };
 
-enum class FlattenStatus { ok, bad_settings, cuts_everything, cap_failed };
+enum class FlattenStatus { ok, bad_options, cuts_everything, cap_failed };
 
 struct FlattenResult {
   FlattenStatus status = FlattenStatus::ok;

@@ -16,7 +16,7 @@ std::string StablePoseOptions::check() const {
 StablePose stable_pose(const Mesh& mesh, const Eigen::Vector3d& center_of_mass, const StablePoseOptions& settings) {
   StablePose pose;
   if (const std::string problem = settings.check(); !problem.empty()) {
-    pose.status = StablePoseStatus::bad_settings;
+    pose.status = StablePoseStatus::bad_options;
     pose.message = problem;
     return pose;
   }

@@ -12,7 +12,7 @@
 
 namespace offsetopt {
 
-enum class StablePoseStatus { ok, bad_settings, no_hull, falls_on_every_facet };
+enum class StablePoseStatus { ok, bad_options, no_hull, falls_on_every_facet };
 
 struct StablePose {
   StablePoseStatus status = StablePoseStatus::ok;

@@ -1,3 +1,9 @@
+// src/optim (this is the folder's main header): the optimisers of the reduced problem, knowing
+// nothing of meshes. It owns L-BFGS-B (lbfgsb.h, with its Cauchy point, subspace minimisation,
+// limited memory and Moré–Thuente line search), the augmented Lagrangian that drives it (this
+// header) and the finite-difference gradient and Jacobian checker. Layer: just above util; it may
+// include util and itself only (and Eigen).
+//
 // Augmented Lagrangian method (Powell–Hestenes–Rockafellar), as in LANCELOT and ALGENCAN
 // (R. Andreani, E. G. Birgin, J. M. Martínez, M. L. Schuverdt, "On augmented Lagrangian methods
 // with general lower-level constraints", SIAM J. Optim. 18(4), 2007; E. G. Birgin and

@@ -231,8 +231,8 @@ TEST_CASE("flatten_base: a plane through a ring of vertices cuts at them, bad he
   CHECK(volume_of(t.mesh) == doctest::Approx(volume_of(tilted) - volume_below(tilted, t.plane_z)).epsilon(1e-12));
 
   CHECK(flatten_base(cylinder, FlattenOptions{10.0}).status == FlattenStatus::cuts_everything);
-  CHECK(flatten_base(cylinder, FlattenOptions{0.0}).status == FlattenStatus::bad_settings);
-  CHECK(flatten_base(cylinder, FlattenOptions{std::nan("")}).status == FlattenStatus::bad_settings);
+  CHECK(flatten_base(cylinder, FlattenOptions{0.0}).status == FlattenStatus::bad_options);
+  CHECK(flatten_base(cylinder, FlattenOptions{std::nan("")}).status == FlattenStatus::bad_options);
 }
 
 TEST_CASE("triangulate_polygons: a square with two square holes uses every point, area exact") {

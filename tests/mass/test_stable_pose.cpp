@@ -53,7 +53,7 @@ TEST_CASE("stable_pose: a tilted 4 x 2 x 1 box rests on a 4 x 2 face with margin
   }
   StablePoseOptions bad;
   bad.coplanar_tolerance = -1.0;
-  CHECK(stable_pose(tilted, P.segment<3>(kCx), bad).status == StablePoseStatus::bad_settings);
+  CHECK(stable_pose(tilted, P.segment<3>(kCx), bad).status == StablePoseStatus::bad_options);
   // The pose is a rigid motion: edge lengths are kept.
   CHECK((posed.V.row(7) - posed.V.row(0)).norm() == doctest::Approx(std::sqrt(21.0)).epsilon(1e-14));
 }
