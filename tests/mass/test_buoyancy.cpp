@@ -32,6 +32,7 @@ TEST_CASE("the part of a box below a plane, and a box floating at the density ra
   options.fluid_density = 0.9;
   CHECK(floating_equilibrium(box, 48.0, options).status == FloatingEquilibrium::Status::sinks);
   options.fluid_density = -1.0;
+  CHECK(options.check() == "fluid_density must be a positive number");
   CHECK_THROWS_AS(floating_equilibrium(box, 48.0, options), std::invalid_argument);
 }
 

@@ -278,3 +278,18 @@ TEST_CASE("more-thuente: strong Wolfe steps with the paper's evaluation counts o
     }
   }
 }
+
+TEST_CASE("more-thuente: bad options are named by check() and end the search with error") {
+  CHECK(MoreThuenteOptions{}.check().empty());
+  MoreThuenteOptions options;
+  options.stpmin = 2.0;
+  options.stpmax = 1.0;
+  CHECK(options.check() == "stpmax must be >= stpmin");
+  MoreThuenteSearch search;
+  CHECK(search.start(1.0, -1.0, 1.5, options) == MoreThuenteStatus::error);
+  options = MoreThuenteOptions{};
+  options.xtol = -1.0;
+  CHECK(options.check() == "xtol must be >= 0");
+  CHECK(search.start(1.0, -1.0, 1.0, options) == MoreThuenteStatus::error);
+  CHECK(search.start(1.0, -1.0, 1.0, MoreThuenteOptions{}) == MoreThuenteStatus::evaluate);
+}
