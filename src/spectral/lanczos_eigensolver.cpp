@@ -181,10 +181,12 @@ class BlockKrylovSchur {
     // Empty when the iteration can run on these, else what is wrong (one line).
     std::string check() const {
       if (k < 1 || block < 1) return "k and block must be >= 1";
-      if (basis < k + 1 + 2 * block || basis % block != 0) return "basis must be a multiple of block >= k + 1 + 2 block";
+      if (basis < k + 1 + 2 * block || basis % block != 0)
+        return "basis must be a multiple of block >= k + 1 + 2 block";
       if (max_applications < 1) return "max_applications must be >= 1";
       if (!(tolerance > 0.0) || !(cluster_tolerance >= 0.0)) return "tolerance must be > 0, cluster_tolerance >= 0";
-      if (!(shift > 0.0) || !std::isfinite(shift) || !std::isfinite(norm_L)) return "shift and norm_L must be finite, shift > 0";
+      if (!(shift > 0.0) || !std::isfinite(shift) || !std::isfinite(norm_L))
+        return "shift and norm_L must be finite, shift > 0";
       return {};
     }
   };
