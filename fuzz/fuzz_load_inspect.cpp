@@ -52,7 +52,7 @@ void inspect_command(const LoadedMesh& loaded) {
   const Mesh& mesh = loaded.mesh;
   const MeshValidation validation = validate_mesh(mesh);
   for (const Defect& d : validation.defects)
-    OFFSETOPT_FUZZ_CHECK(d.kind == DefectKind::kSeveralComponents,
+    OFFSETOPT_FUZZ_CHECK(d.kind == DefectKind::several_components,
                          "load_raw_mesh accepted a mesh with defect: " + defect_report_line(kName, d));
   OFFSETOPT_FUZZ_CHECK(validation.volume > 0, "load_raw_mesh accepted a mesh of volume <= 0");
   OFFSETOPT_FUZZ_CHECK(validation.unreferenced_vertices == 0, "load_raw_mesh kept unreferenced vertices");

@@ -176,8 +176,8 @@ inline void check_raw_mesh(const RawMesh& raw, bool text_format) {
 }
 
 inline bool is_text_format(MeshFormat format) {
-  return format == MeshFormat::kObj || format == MeshFormat::kStlAscii || format == MeshFormat::kOff ||
-         format == MeshFormat::kPlyAscii;
+  return format == MeshFormat::obj || format == MeshFormat::stl_ascii || format == MeshFormat::off ||
+         format == MeshFormat::ply_ascii;
 }
 
 // The body of the four reader harnesses: `read(name, bytes)` either returns a RawMesh that passes

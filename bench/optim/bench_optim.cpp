@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   }
   const auto tp1 = clock::now();
 
-  AlParams params;
+  AlOptions params;
   if (argc > 4) params.inner.memory = std::atoi(argv[4]);
   if (trace) {
     params.on_outer_iteration = [](const AlIterationInfo& it) {
@@ -61,5 +61,5 @@ int main(int argc, char** argv) {
   std::printf("  |f - f*| / |f*|           %.3e\n", std::abs(r.f - lb.f_star) / std::abs(lb.f_star));
   std::printf("  max violation             %.3e\n", r.max_violation);
   std::printf("  stationarity (scaled)     %.3e\n", r.stationarity);
-  return r.status == AlStatus::Converged ? 0 : 1;
+  return r.status == AlStatus::converged ? 0 : 1;
 }

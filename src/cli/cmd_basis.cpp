@@ -135,8 +135,8 @@ int run_basis(const Args& args) {
 
   const LanczosResult result = manifold_harmonics(mesh, k, options);
   const double total_seconds = seconds_since(start);
-  if (result.status == LanczosStatus::InvalidInput) throw UsageError(mesh_path + ": " + result.message);
-  if (result.status == LanczosStatus::FactorizationFailed) {
+  if (result.status == LanczosStatus::invalid_input) throw UsageError(mesh_path + ": " + result.message);
+  if (result.status == LanczosStatus::factorization_failed) {
     std::fprintf(stderr, "Error: %s: %s\n", mesh_path.c_str(), result.message.c_str());
     return kExitInternal;
   }
@@ -186,7 +186,7 @@ int run_basis(const Args& args) {
   if (!matrices_prefix.empty()) {
     const Eigen::SparseMatrix<double> L = cotan_laplacian(mesh.V, mesh.F, options.cotan);
     Eigen::SparseMatrix<double> M(n, n);
-    if (options.kind == BasisKind::Mass) {
+    if (options.kind == BasisKind::mass) {
       const Eigen::VectorXd mass = lumped_mass(mesh.V, mesh.F);
       std::vector<Eigen::Triplet<double>> diagonal;
       for (Eigen::Index i = 0; i < n; ++i) diagonal.emplace_back(i, i, mass(i));
@@ -197,7 +197,7 @@ int run_basis(const Args& args) {
     write_text(matrices_prefix + "_L.mtx", matrix_market(L), inputs);
     write_text(matrices_prefix + "_M.mtx", matrix_market(M), inputs);
   }
-  return result.status == LanczosStatus::Converged ? kExitOk : kExitGoalNotMet;
+  return result.status == LanczosStatus::converged ? kExitOk : kExitGoalNotMet;
 }
 
 }  // namespace offsetopt::cli

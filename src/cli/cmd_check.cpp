@@ -87,8 +87,8 @@ int run_check(const Args& args) {
   // are still searched: crossings are what makes them overlap.
   bool geometry_ok = true;
   for (const Defect& d : validation.defects)
-    geometry_ok = geometry_ok && (d.kind == DefectKind::kSeveralComponents || d.kind == DefectKind::kInsideOut ||
-                                  d.kind == DefectKind::kOverlappingShells || d.kind == DefectKind::kZeroVolume);
+    geometry_ok = geometry_ok && (d.kind == DefectKind::several_components || d.kind == DefectKind::inside_out ||
+                                  d.kind == DefectKind::overlapping_shells || d.kind == DefectKind::zero_volume);
   bool geometric_defect = false;
   if (geometry_ok) {
     const SelfIntersectionReport crossings = find_self_intersections(mesh);

@@ -2,6 +2,7 @@
 
 #include "geometry/flatten_base.h"
 #include "mass/mass_properties.h"
+#include "mass/stable_pose.h"
 #include "meshio/validate_mesh.h"
 #include "util/format_double.h"
 
@@ -60,7 +61,7 @@ PosedInput pose_input(const Mesh& mesh, const PoseOptions& options, const std::s
   if (options.stable) {
     const Vector10d P = mass_properties(posed.mesh);
     const StablePose pose = stable_pose(posed.mesh, P.segment<3>(kCx));
-    if (pose.status == StablePoseStatus::no_hull || pose.status == StablePoseStatus::bad_settings)
+    if (pose.status == StablePoseStatus::no_hull || pose.status == StablePoseStatus::bad_options)
       throw UsageError(mesh_path + ": --pose stable: " + pose.message);
     if (pose.status != StablePoseStatus::ok) posed.warnings.push_back("--pose stable: " + pose.message);
     posed.mesh = apply_rigid_motion(posed.mesh, pose.motion);
@@ -78,11 +79,11 @@ PosedInput pose_input(const Mesh& mesh, const PoseOptions& options, const std::s
   }
   report["flatten"] = Json();
   if (options.flatten > 0.0) {
-    const FlattenResult cut = flatten_base(posed.mesh, FlattenSettings{options.flatten});
+    const FlattenResult cut = flatten_base(posed.mesh, FlattenOptions{options.flatten});
     if (cut.status != FlattenStatus::ok) throw UsageError(mesh_path + ": --flatten " + format_double(options.flatten) + ": " + cut.message);
     const MeshValidation validation = validate_mesh(cut.mesh);
     for (const Defect& defect : validation.defects) {
-      if (defect.kind == DefectKind::kSeveralComponents && !single_component) continue;
+      if (defect.kind == DefectKind::several_components && !single_component) continue;
       // The cut mesh's numbers mean nothing to the user: say where, in the working frame.
       std::string where;
       const long long v = defect.vertex >= 0 ? defect.vertex : defect.face >= 0 ? cut.mesh.F(defect.face, 0) : -1;

@@ -10,17 +10,17 @@ namespace offsetopt::cli {
 namespace {
 
 bool read_vec3(const Json& j, Eigen::Vector3d& out) {
-  if (j.type() != Json::Type::Array || j.size() != 3) return false;
+  if (j.type() != Json::Type::array || j.size() != 3) return false;
   for (std::size_t i = 0; i < 3; ++i) {
     const Json& e = j.at(i);
-    if (e.type() != Json::Type::Number && e.type() != Json::Type::Integer) return false;
+    if (e.type() != Json::Type::number && e.type() != Json::Type::integer) return false;
     out(static_cast<Eigen::Index>(i)) = e.as_number();
     if (!std::isfinite(out(static_cast<Eigen::Index>(i)))) return false;
   }
   return true;
 }
 
-bool is_number(const Json& j) { return j.type() == Json::Type::Number || j.type() == Json::Type::Integer; }
+bool is_number(const Json& j) { return j.type() == Json::Type::number || j.type() == Json::Type::integer; }
 
 // A number field of `object`: absent or null leaves `out` alone; anything else but a finite
 // number is an error.
@@ -34,11 +34,11 @@ bool optional_number(const Json& object, const char* key, double& out) {
 }  // namespace
 
 std::string preview_input_from_report(const Json& report, PreviewInput& input) {
-  if (report.type() != Json::Type::Object) return "the report is not a JSON object";
-  if (!report.contains("parameters") || report.at("parameters").type() != Json::Type::Object)
+  if (report.type() != Json::Type::object) return "the report is not a JSON object";
+  if (!report.contains("parameters") || report.at("parameters").type() != Json::Type::object)
     return "the report has no 'parameters' object";
   const Json& parameters = report.at("parameters");
-  if (!parameters.contains("goal") || parameters.at("goal").type() != Json::Type::String)
+  if (!parameters.contains("goal") || parameters.at("goal").type() != Json::Type::string)
     return "the report has no 'parameters.goal' string";
   if (!parse_goal_kind(parameters.at("goal").as_string(), input.goal))
     return "unknown goal '" + parameters.at("goal").as_string() + "' in 'parameters.goal'";
@@ -52,13 +52,13 @@ std::string preview_input_from_report(const Json& report, PreviewInput& input) {
   if (!(input.fill_density > 0.0)) return "'parameters.fill_density' must be positive";
   if (input.goal == GoalKind::floating && !(input.fluid_density > 0.0))
     return "goal float needs a positive 'parameters.fluid_density'";
-  if (report.contains("before") && report.at("before").type() == Json::Type::Object &&
+  if (report.contains("before") && report.at("before").type() == Json::Type::object &&
       report.at("before").contains("center_of_mass")) {
     if (!read_vec3(report.at("before").at("center_of_mass"), input.before_com))
       return "'before.center_of_mass' is not three finite numbers";
     input.has_before_com = true;
   }
-  if (report.contains("goal") && report.at("goal").type() == Json::Type::Object) {
+  if (report.contains("goal") && report.at("goal").type() == Json::Type::object) {
     const Json& goal = report.at("goal");
     if (goal.contains("sphere_center")) {
       if (!read_vec3(goal.at("sphere_center"), input.sphere_center)) return "'goal.sphere_center' is not three finite numbers";
@@ -73,7 +73,7 @@ std::string preview_input_from_report(const Json& report, PreviewInput& input) {
       input.has_tip = true;
     }
   }
-  if (report.contains("after") && report.at("after").type() == Json::Type::Object) {
+  if (report.contains("after") && report.at("after").type() == Json::Type::object) {
     double v = -1.0;
     if (!optional_number(report.at("after"), "void_volume", v)) return "'after.void_volume' is not a finite number";
     input.void_volume = v;

@@ -5,14 +5,14 @@
 
 namespace offsetopt {
 
-void check_bvh_options(const BvhOptions& options) {
-  if (options.leaf_size < 1 || options.leaf_size > 64)
-    throw std::invalid_argument("BvhOptions::leaf_size must be in [1, 64]");
+std::string BvhOptions::check() const {
+  if (leaf_size < 1 || leaf_size > 64) return "BvhOptions::leaf_size must be in [1, 64]";
+  return std::string();
 }
 
 TriangleBvh::TriangleBvh(const Vertices& V, const Faces& F, const BvhOptions& options)
     : V_(V), F_(F), leaf_size_(options.leaf_size) {
-  check_bvh_options(options);
+  if (const std::string problem = options.check(); !problem.empty()) throw std::invalid_argument(problem);
   const int face_count = static_cast<int>(F_.rows());
   for (int f = 0; f < face_count; ++f)
     for (int k = 0; k < 3; ++k)

@@ -8,6 +8,7 @@
 // the mesh alone (no dependence on the standard library's partial-sort order), and every query
 // result is reproducible bit for bit.
 #pragma once
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -18,10 +19,11 @@ namespace offsetopt {
 
 struct BvhOptions {
   int leaf_size = 4;  // at most this many faces per leaf; >= 1
-};
 
-// Throws std::invalid_argument when the options are out of range.
-void check_bvh_options(const BvhOptions& options);
+  // Empty when valid, else what is wrong (TriangleBvh's constructor throws it as
+  // std::invalid_argument).
+  std::string check() const;
+};
 
 struct BvhNode {
   Aabb box;         // bounds of every face below, inflated by TriangleBvh::box_margin()

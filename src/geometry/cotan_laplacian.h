@@ -1,6 +1,7 @@
 // src/geometry (this header opens the folder's mesh operators): computations on a mesh's
 // shape. It owns spatial queries (BVH, ray casting, point in solid, closest point, triangle
-// intersections, self-intersections and pinches), hulls, plane sections, poses and the flat-base
+// intersections, self-intersections and pinches), hulls, plane sections, poses (axis
+// permutations and rigid motions; the stable pose needs mass and is mass/stable_pose.h), the flat-base
 // cut, polygon triangulation, grid winding numbers, marching tetrahedra, mesh shells, and the
 // discrete differential operators of a surface: the cotan Laplacian (this file), the lumped area
 // matrix (lumped_mass.h; an area per vertex, not physical mass, which is src/mass) and their

@@ -13,22 +13,22 @@
 
 namespace offsetopt {
 
-std::string FlattenSettings::check() const {
+std::string FlattenOptions::check() const {
   if (!(height > 0.0) || !std::isfinite(height)) return "the base height must be a finite number > 0";
   if (!(snap >= 0.0 && snap < 1e-3)) return "snap must be in [0, 1e-3)";
   return {};
 }
 
-FlattenResult flatten_base(const Mesh& mesh, const FlattenSettings& settings) {
+FlattenResult flatten_base(const Mesh& mesh, const FlattenOptions& settings) {
   FlattenResult result;
   if (const std::string problem = settings.check(); !problem.empty()) {
-    result.status = FlattenStatus::bad_settings;
+    result.status = FlattenStatus::bad_options;
     result.message = problem;
     return result;
   }
   const Eigen::Index nv = mesh.V.rows();
   if (nv == 0 || mesh.F.rows() == 0) {
-    result.status = FlattenStatus::bad_settings;
+    result.status = FlattenStatus::bad_options;
     result.message = "empty mesh";
     return result;
   }
@@ -41,7 +41,7 @@ FlattenResult flatten_base(const Mesh& mesh, const FlattenSettings& settings) {
     return result;
   }
   if (!(plane > zmin + 2.0 * settings.snap * (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm())) {
-    result.status = FlattenStatus::bad_settings;
+    result.status = FlattenStatus::bad_options;
     result.message = "the base height is too small to cut anything";
     return result;
   }

@@ -4,7 +4,7 @@
 // Cap polygons are triangulated by ear clipping after bridging holes (triangulate_polygons.h).
 //
 // Exactness: the plane is z = zmin + H rounded to a double. Vertices within 1e-6 of the diagonal
-// of it are first moved onto it (z only; FlattenSettings::snap). A vertex exactly on it counts as
+// of it are first moved onto it (z only; FlattenOptions::snap). A vertex exactly on it counts as
 // above and stays (the limit of a plane slightly below it): an edge from below to it is cut at
 // the vertex itself, and pieces of faces that shrink to a point or a segment vanish. Every other
 // cut edge has one end strictly on each side; its crossing point gets z equal to the plane's
@@ -20,7 +20,7 @@
 
 namespace offsetopt {
 
-struct FlattenSettings {
+struct FlattenOptions {
   double height = 0.0;  // H above the lowest vertex, mesh units, > 0 and below the top
   // Vertices closer to the plane than this fraction of the bounding-box diagonal are moved onto
   // it (z only) before the cut, so no sliver of a near-zero height is left next to the cap.
@@ -28,7 +28,7 @@ struct FlattenSettings {
   std::string check() const;
 };
 
-enum class FlattenStatus { ok, bad_settings, cuts_everything, cap_failed };
+enum class FlattenStatus { ok, bad_options, cuts_everything, cap_failed };
 
 struct FlattenResult {
   FlattenStatus status = FlattenStatus::ok;
@@ -46,6 +46,6 @@ struct FlattenResult {
 };
 
 // `mesh` must be closed, edge-manifold and outward-oriented (as load_mesh returns it).
-FlattenResult flatten_base(const Mesh& mesh, const FlattenSettings& settings);
+FlattenResult flatten_base(const Mesh& mesh, const FlattenOptions& settings);
 
 }  // namespace offsetopt

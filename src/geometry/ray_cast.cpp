@@ -1,10 +1,19 @@
 #include "geometry/ray_cast.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "geometry/ray_triangle.h"
 
 namespace offsetopt {
+
+std::string RayCastOptions::check() const {
+  if (std::isnan(t_min) || std::isnan(t_max) || !(t_min <= t_max)) return "RayCastOptions: need t_min <= t_max";
+  if (!(tolerance >= 0.0) || !std::isfinite(tolerance)) return "RayCastOptions::tolerance must be finite and >= 0";
+  for (int face : ignored_faces)
+    if (face < 0) return "RayCastOptions::ignored_faces must hold face numbers >= 0";
+  return std::string();
+}
 
 RayCastHit ray_cast_closest(const TriangleBvh& bvh, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                             const RayCastOptions& options) {

@@ -4,6 +4,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "geometry/bvh.h"
@@ -27,6 +28,10 @@ struct RayCastOptions {
   // Barycentric enlargement of each triangle (see ray_triangle): conservative, so a ray through
   // a shared edge or vertex is never lost between its faces.
   double tolerance = 1e-10;
+
+  // Empty when valid, else what is wrong (one line). The casts below do not call it: they run
+  // per ray, with options their callers build; a caller taking them from input checks them once.
+  std::string check() const;
 };
 
 // The nearest hit with t in (t_min, t_max]; ties in t go to the lowest face index, so the result

@@ -9,8 +9,8 @@
 namespace offsetopt {
 
 Json& Json::push_back(Json value) {
-  if (type_ == Type::Null) type_ = Type::Array;
-  if (type_ != Type::Array) throw std::runtime_error("json: push_back on a non-array");
+  if (type_ == Type::null) type_ = Type::array;
+  if (type_ != Type::array) throw std::runtime_error("json: push_back on a non-array");
   array_.push_back(std::move(value));
   return array_.back();
 }
@@ -22,8 +22,8 @@ Json& Json::set(const std::string& key, Json value) {
 }
 
 Json& Json::operator[](const std::string& key) {
-  if (type_ == Type::Null) type_ = Type::Object;
-  if (type_ != Type::Object) throw std::runtime_error("json: key access on a non-object");
+  if (type_ == Type::null) type_ = Type::object;
+  if (type_ != Type::object) throw std::runtime_error("json: key access on a non-object");
   for (auto& item : object_)
     if (item.first == key) return item.second;
   object_.emplace_back(key, Json());
@@ -31,49 +31,49 @@ Json& Json::operator[](const std::string& key) {
 }
 
 const Json& Json::at(const std::string& key) const {
-  if (type_ != Type::Object) throw std::runtime_error("json: key access on a non-object");
+  if (type_ != Type::object) throw std::runtime_error("json: key access on a non-object");
   for (const auto& item : object_)
     if (item.first == key) return item.second;
   throw std::runtime_error("json: missing key '" + key + "'");
 }
 
 const Json& Json::at(std::size_t index) const {
-  if (type_ != Type::Array) throw std::runtime_error("json: index access on a non-array");
+  if (type_ != Type::array) throw std::runtime_error("json: index access on a non-array");
   if (index >= array_.size()) throw std::runtime_error("json: index out of range");
   return array_[index];
 }
 
 bool Json::contains(const std::string& key) const {
-  if (type_ != Type::Object) return false;
+  if (type_ != Type::object) return false;
   for (const auto& item : object_)
     if (item.first == key) return true;
   return false;
 }
 
 std::size_t Json::size() const {
-  if (type_ == Type::Array) return array_.size();
-  if (type_ == Type::Object) return object_.size();
+  if (type_ == Type::array) return array_.size();
+  if (type_ == Type::object) return object_.size();
   return 0;
 }
 
 bool Json::as_bool() const {
-  if (type_ != Type::Bool) throw std::runtime_error("json: not a bool");
+  if (type_ != Type::boolean) throw std::runtime_error("json: not a bool");
   return bool_;
 }
 
 double Json::as_number() const {
-  if (type_ == Type::Number) return number_;
-  if (type_ == Type::Integer) return static_cast<double>(int_);
+  if (type_ == Type::number) return number_;
+  if (type_ == Type::integer) return static_cast<double>(int_);
   throw std::runtime_error("json: not a number");
 }
 
 std::int64_t Json::as_integer() const {
-  if (type_ != Type::Integer) throw std::runtime_error("json: not an integer");
+  if (type_ != Type::integer) throw std::runtime_error("json: not an integer");
   return int_;
 }
 
 const std::string& Json::as_string() const {
-  if (type_ != Type::String) throw std::runtime_error("json: not a string");
+  if (type_ != Type::string) throw std::runtime_error("json: not a string");
   return string_;
 }
 
@@ -103,7 +103,7 @@ void append_escaped(std::string& out, const std::string& s) {
 }
 
 bool is_scalar(const Json& j) {
-  return j.type() != Json::Type::Array && j.type() != Json::Type::Object;
+  return j.type() != Json::Type::array && j.type() != Json::Type::object;
 }
 
 void newline(std::string& out, int indent, int depth) {
@@ -115,15 +115,15 @@ void newline(std::string& out, int indent, int depth) {
 
 void Json::dump_to(std::string& out, int indent, int depth) const {
   switch (type_) {
-    case Type::Null: out += "null"; return;
-    case Type::Bool: out += bool_ ? "true" : "false"; return;
-    case Type::Integer: out += std::to_string(int_); return;
-    case Type::Number:
+    case Type::null: out += "null"; return;
+    case Type::boolean: out += bool_ ? "true" : "false"; return;
+    case Type::integer: out += std::to_string(int_); return;
+    case Type::number:
       if (std::isfinite(number_)) append_double(out, number_);
       else out += "null";
       return;
-    case Type::String: append_escaped(out, string_); return;
-    case Type::Array: {
+    case Type::string: append_escaped(out, string_); return;
+    case Type::array: {
       if (array_.empty()) { out += "[]"; return; }
       bool flat = indent < 0 || array_.size() <= 16;
       for (const auto& e : array_) flat = flat && is_scalar(e);
@@ -137,7 +137,7 @@ void Json::dump_to(std::string& out, int indent, int depth) const {
       out += ']';
       return;
     }
-    case Type::Object: {
+    case Type::object: {
       if (object_.empty()) { out += "{}"; return; }
       out += '{';
       for (std::size_t i = 0; i < object_.size(); ++i) {

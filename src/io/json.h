@@ -18,23 +18,23 @@ namespace offsetopt {
 
 class Json {
  public:
-  enum class Type { Null, Bool, Integer, Number, String, Array, Object };
+  enum class Type { null, boolean, integer, number, string, array, object };
 
   Json() = default;                                   // null
   Json(std::nullptr_t) {}                             // null
-  Json(bool b) : type_(Type::Bool), bool_(b) {}
-  Json(int i) : type_(Type::Integer), int_(i) {}
-  Json(long i) : type_(Type::Integer), int_(i) {}
-  Json(long long i) : type_(Type::Integer), int_(i) {}
-  Json(unsigned i) : type_(Type::Integer), int_(i) {}
-  Json(unsigned long i) : type_(Type::Integer), int_(static_cast<std::int64_t>(i)) {}
-  Json(unsigned long long i) : type_(Type::Integer), int_(static_cast<std::int64_t>(i)) {}
-  Json(double d) : type_(Type::Number), number_(d) {}
-  Json(const char* s) : type_(Type::String), string_(s) {}
-  Json(std::string s) : type_(Type::String), string_(std::move(s)) {}
+  Json(bool b) : type_(Type::boolean), bool_(b) {}
+  Json(int i) : type_(Type::integer), int_(i) {}
+  Json(long i) : type_(Type::integer), int_(i) {}
+  Json(long long i) : type_(Type::integer), int_(i) {}
+  Json(unsigned i) : type_(Type::integer), int_(i) {}
+  Json(unsigned long i) : type_(Type::integer), int_(static_cast<std::int64_t>(i)) {}
+  Json(unsigned long long i) : type_(Type::integer), int_(static_cast<std::int64_t>(i)) {}
+  Json(double d) : type_(Type::number), number_(d) {}
+  Json(const char* s) : type_(Type::string), string_(s) {}
+  Json(std::string s) : type_(Type::string), string_(std::move(s)) {}
 
-  static Json array() { Json j; j.type_ = Type::Array; return j; }
-  static Json object() { Json j; j.type_ = Type::Object; return j; }
+  static Json array() { Json j; j.type_ = Type::array; return j; }
+  static Json object() { Json j; j.type_ = Type::object; return j; }
   template <class Range>
   static Json array_of(const Range& values) {
     Json j = array();
@@ -48,7 +48,7 @@ class Json {
   }
 
   Type type() const { return type_; }
-  bool is_null() const { return type_ == Type::Null; }
+  bool is_null() const { return type_ == Type::null; }
 
   // Array: append. Object: set (replaces an existing key in place, else appends).
   Json& push_back(Json value);
@@ -77,7 +77,7 @@ class Json {
  private:
   void dump_to(std::string& out, int indent, int depth) const;
 
-  Type type_ = Type::Null;
+  Type type_ = Type::null;
   bool bool_ = false;
   std::int64_t int_ = 0;
   double number_ = 0.0;

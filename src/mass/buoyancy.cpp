@@ -44,15 +44,15 @@ VolumeIntegrals volume_integrals_below(const Mesh& mesh, double level) {
   return volume_integrals(clipped, origin);
 }
 
-void check_floating_options(const FloatingOptions& options) {
-  if (!(options.fluid_density > 0.0) || !std::isfinite(options.fluid_density))
-    throw std::invalid_argument("fluid_density must be a positive number");
-  if (options.max_iterations <= 0) throw std::invalid_argument("max_iterations must be positive");
-  if (!(options.level_tolerance > 0.0)) throw std::invalid_argument("level_tolerance must be positive");
+std::string FloatingOptions::check() const {
+  if (!(fluid_density > 0.0) || !std::isfinite(fluid_density)) return "fluid_density must be a positive number";
+  if (max_iterations <= 0) return "max_iterations must be positive";
+  if (!(level_tolerance > 0.0)) return "level_tolerance must be positive";
+  return std::string();
 }
 
 FloatingEquilibrium floating_equilibrium(const Mesh& outer, double mass, const FloatingOptions& options) {
-  check_floating_options(options);
+  if (const std::string problem = options.check(); !problem.empty()) throw std::invalid_argument(problem);
   if (outer.V.rows() == 0) throw std::invalid_argument("floating_equilibrium: empty mesh");
   double lo = outer.V.col(2).minCoeff(), hi = outer.V.col(2).maxCoeff();
   FloatingEquilibrium out;
@@ -66,11 +66,11 @@ FloatingEquilibrium floating_equilibrium(const Mesh& outer, double mass, const F
     }
   };
   if (mass >= options.fluid_density * volume_integrals(outer).values(kIntVolume)) {
-    out.status = FloatingEquilibrium::Status::kSinks;
+    out.status = FloatingEquilibrium::Status::sinks;
     record(hi);
     return out;
   }
-  out.status = FloatingEquilibrium::Status::kFloats;
+  out.status = FloatingEquilibrium::Status::floats;
   const double tolerance = options.level_tolerance * (hi - lo);
   while (out.iterations < options.max_iterations && hi - lo > tolerance) {
     ++out.iterations;

@@ -6,6 +6,8 @@
 // on the plane. Measured from an origin on that plane, the cap's tetrahedra are flat, so the
 // divergence-theorem sum over the clipped triangles alone is exact (mass/volume_integrals.h).
 #pragma once
+#include <string>
+
 #include <Eigen/Core>
 
 #include "mass/volume_integrals.h"
@@ -17,8 +19,8 @@ namespace offsetopt {
 VolumeIntegrals volume_integrals_below(const Mesh& mesh, double level);
 
 struct FloatingEquilibrium {
-  enum class Status { kFloats, kSinks };
-  Status status = Status::kSinks;
+  enum class Status { floats, sinks };
+  Status status = Status::sinks;
   double waterline = 0.0;          // z of the fluid surface (the mesh's top when it sinks)
   double displaced_volume = 0.0;   // volume below the waterline
   Eigen::Vector3d center_of_buoyancy = Eigen::Vector3d::Zero();  // centroid of that volume
@@ -29,10 +31,11 @@ struct FloatingOptions {
   double fluid_density = 1.0;     // relative to the solid's density 1
   int max_iterations = 200;       // bisection cap
   double level_tolerance = 1e-12; // relative to the mesh's height
-};
 
-// Throws std::invalid_argument unless fluid_density > 0, max_iterations > 0, tolerance > 0.
-void check_floating_options(const FloatingOptions& options);
+  // Empty when valid, else what is wrong: fluid_density, max_iterations and level_tolerance must
+  // be > 0 (floating_equilibrium throws it as std::invalid_argument).
+  std::string check() const;
+};
 
 // The waterline at which fluid_density * displaced_volume = mass for the outer surface `outer`
 // of an object of the given mass (a hollow object: pass its outer surface and the shell's mass).

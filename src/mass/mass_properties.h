@@ -1,3 +1,10 @@
+// src/mass (this is the folder's main header): the physics of a solid at density 1. It owns the
+// volume integrals and their vertex gradients, the 10 mass properties (this header) and their
+// gradient, surface area, static stability on the ground (stability.h), the stable pose on a
+// convex-hull facet (stable_pose.h) and buoyancy. Layer: above geometry, meshio and io; it may
+// include util, optim, mesh, geometry, meshio, io and itself, not sparse, spectral or skeleton
+// (it solves no linear systems), nor shape or cli.
+//
 // The 10 mass properties of the paper's eq. 4 (Musialski et al. 2015),
 //   P = [m, cx, cy, cz, Ixx, Iyy, Izz, Ixy, Iyz, Izx],
 // at density 1 (m is the volume), from the raw volume integrals (mass/volume_integrals.h).

@@ -26,8 +26,9 @@ double degrees(double radians) { return radians * (180.0 / kPi); }
 
 }  // namespace
 
-void check_stability_options(const StabilityOptions& options) {
-  if (!std::isfinite(options.ground_tol)) throw std::invalid_argument("ground_tol must be finite");
+std::string StabilityOptions::check() const {
+  if (!std::isfinite(ground_tol)) return "ground_tol must be finite";
+  return std::string();
 }
 
 void support_polygon_margins(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& com_xy,
@@ -66,7 +67,7 @@ void support_polygon_margins(const std::vector<Eigen::Vector2d>& polygon, const 
 }
 
 Stability compute_stability(const Mesh& mesh, const Eigen::Vector3d& center_of_mass, const StabilityOptions& options) {
-  check_stability_options(options);
+  if (const std::string problem = options.check(); !problem.empty()) throw std::invalid_argument(problem);
   if (mesh.V.rows() == 0) throw std::invalid_argument("compute_stability: empty mesh");
   Stability s;
   const Eigen::Vector3d lo = mesh.V.colwise().minCoeff().transpose();

@@ -6,6 +6,7 @@
 // counter-clockwise, collinear points dropped (geometry/convex_hull_2d.h). Edge i runs from
 // support_polygon[i] to support_polygon[(i + 1) % n]; the inside is on its left.
 #pragma once
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -18,10 +19,10 @@ struct StabilityOptions {
   // Height above the lowest vertex that still counts as touching the ground, in mesh units.
   // Negative (the default): 1e-3 times the bounding-box diagonal.
   double ground_tol = -1.0;
-};
 
-// Throws std::invalid_argument when an option is not finite.
-void check_stability_options(const StabilityOptions& options);
+  // Empty when valid, else what is wrong (compute_stability throws it as std::invalid_argument).
+  std::string check() const;
+};
 
 struct Stability {
   double ground_z = 0.0;    // zmin, the ground plane's height

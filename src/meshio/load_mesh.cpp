@@ -31,7 +31,7 @@ LoadedMesh load_raw_mesh(const std::string& name, RawMesh raw, const LoadOptions
 
   MeshValidation validation = validate_mesh(mesh);
   // Without valid indices nothing can be repaired.
-  for (const DefectKind kind : {DefectKind::kEmptyMesh, DefectKind::kIndexOutOfRange})
+  for (const DefectKind kind : {DefectKind::empty_mesh, DefectKind::index_out_of_range})
     if (const Defect* d = validation.find(kind)) throw MeshInputError(defect_error_message(name, *d, file_numbering));
 
   // Safe repairs: drop faces that repeat a vertex and same-orientation copies of a face, then
@@ -52,7 +52,7 @@ LoadedMesh load_raw_mesh(const std::string& name, RawMesh raw, const LoadOptions
                              " with a repeated vertex (first: " + where_face(first, raw.face_line) + ")");
     }
     if (copies > 0) {
-      const Defect* d = validation.find(DefectKind::kDuplicateFace);
+      const Defect* d = validation.find(DefectKind::duplicate_face);
       std::string first;
       if (d && d->value > 0) first = " (first: " + where_face(d->face, raw.face_line) + ", a copy of face " + std::to_string(d->other_face) + ")";
       out.warnings.push_back("dropped " + plural(copies, "duplicate face", "duplicate faces") + first);
@@ -99,10 +99,10 @@ LoadedMesh load_raw_mesh(const std::string& name, RawMesh raw, const LoadOptions
                             &raw.face_line, &raw.vertex_line};
 
   for (const Defect& d : validation.defects) {
-    if (d.kind == DefectKind::kInsideOut || d.kind == DefectKind::kSeveralComponents) continue;
+    if (d.kind == DefectKind::inside_out || d.kind == DefectKind::several_components) continue;
     throw MeshInputError(defect_error_message(name, d, source));
   }
-  if (const Defect* inverted = validation.find(DefectKind::kInsideOut)) {
+  if (const Defect* inverted = validation.find(DefectKind::inside_out)) {
     const bool every_shell = inverted->count == validation.components;
     if (!every_shell || !options.flip_inside_out) {
       std::string message = defect_error_message(name, *inverted, source);
@@ -126,7 +126,7 @@ LoadedMesh load_raw_mesh(const std::string& name, RawMesh raw, const LoadOptions
   out.face_line = std::move(raw.face_line);
   out.vertex_line = std::move(raw.vertex_line);
   if (validation.components > 1) {
-    const Defect* several = validation.find(DefectKind::kSeveralComponents);
+    const Defect* several = validation.find(DefectKind::several_components);
     if (options.single_component) {
       throw MeshInputError(defect_error_message(name, *several, source) +
                            "; this command needs one connected surface (split the file into parts)");

@@ -34,6 +34,10 @@ struct LoadOptions {
   // default: such a mesh is accepted with a warning when every shell is closed and nested with
   // the right orientation (see the policy table in meshio/validate_mesh.h).
   bool single_component = false;
+
+  // Empty when valid, else what is wrong: every combination of these flags is valid, so always
+  // empty (kept for the one convention of options structs).
+  std::string check() const { return std::string(); }
 };
 
 struct LoadedMesh {

@@ -73,7 +73,7 @@ bool lower_equal(std::string_view a, std::string_view b) { return equals_ignorin
 class Reader {
  public:
   Reader(const std::string& name, const std::string& bytes)
-      : name_(name), archive_(bytes), builder_(name, MeshFormat::k3mf, false) {}
+      : name_(name), archive_(bytes), builder_(name, MeshFormat::three_mf, false) {}
 
   RawMesh read() {
     std::string error;

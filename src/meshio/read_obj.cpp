@@ -83,7 +83,7 @@ int parse_corner(const std::string& name, int line, std::string_view token, std:
 
 RawMesh read_obj(const std::string& name, const std::string& text) {
   refuse_nul_bytes(name, text);
-  RawMeshBuilder builder(name, MeshFormat::kObj, true);
+  RawMeshBuilder builder(name, MeshFormat::obj, true);
   // Pass 1 (ours). `filtered` keeps only v and f lines for tinyobjloader, others blanked.
   std::string filtered;
   filtered.reserve(text.size());
@@ -220,12 +220,12 @@ RawMesh read_obj(const std::string& name, const std::string& text) {
         points[static_cast<std::size_t>(i)] = Eigen::Vector3d(coordinates[3 * static_cast<std::size_t>(corners[i])],
                                                               coordinates[3 * static_cast<std::size_t>(corners[i]) + 1],
                                                               coordinates[3 * static_cast<std::size_t>(corners[i]) + 2]);
-      const PolygonTriangulation how = triangulate_polygon(points, local, budget);
-      if (how == PolygonTriangulation::kBudgetExhausted) {
+      const PolygonTriangulationStatus how = triangulate_polygon(points, local, budget);
+      if (how == PolygonTriangulationStatus::budget_exhausted) {
         fail(name, polygon_line[p], "polygon of " + std::to_string(n) +
                                         " corners is too complex to triangulate (work cap of the ear clipping reached)");
       }
-      if (how == PolygonTriangulation::kFan) {
+      if (how == PolygonTriangulationStatus::fan) {
         builder.add_polygon(corners, n, polygon_line[p]);
         continue;
       }

@@ -78,7 +78,7 @@ RawMesh read_off(const std::string& name, const std::string& text) {
                                " faces, more than the remaining " + std::to_string(remaining) + " bytes can hold");
   }
 
-  RawMeshBuilder builder(name, MeshFormat::kOff, true);
+  RawMeshBuilder builder(name, MeshFormat::off, true);
   builder.reserve(nv, nf);
   for (std::int64_t i = 0; i < nv; ++i) {
     if (!next_tokens(lines, tokens))

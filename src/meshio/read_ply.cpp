@@ -9,7 +9,7 @@ namespace offsetopt {
 
 namespace {
 
-enum class Scalar { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat32, kFloat64 };
+enum class Scalar { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
 
 bool parse_scalar_type(std::string_view word, Scalar& type) {
   struct Entry {
@@ -17,10 +17,10 @@ bool parse_scalar_type(std::string_view word, Scalar& type) {
     const char* b;
     Scalar type;
   };
-  static const Entry kTypes[] = {{"char", "int8", Scalar::kInt8},       {"uchar", "uint8", Scalar::kUint8},
-                                 {"short", "int16", Scalar::kInt16},    {"ushort", "uint16", Scalar::kUint16},
-                                 {"int", "int32", Scalar::kInt32},      {"uint", "uint32", Scalar::kUint32},
-                                 {"float", "float32", Scalar::kFloat32}, {"double", "float64", Scalar::kFloat64}};
+  static const Entry kTypes[] = {{"char", "int8", Scalar::int8},       {"uchar", "uint8", Scalar::uint8},
+                                 {"short", "int16", Scalar::int16},    {"ushort", "uint16", Scalar::uint16},
+                                 {"int", "int32", Scalar::int32},      {"uint", "uint32", Scalar::uint32},
+                                 {"float", "float32", Scalar::float32}, {"double", "float64", Scalar::float64}};
   for (const Entry& e : kTypes)
     if (word == e.a || word == e.b) {
       type = e.type;
@@ -31,25 +31,25 @@ bool parse_scalar_type(std::string_view word, Scalar& type) {
 
 int size_of(Scalar type) {
   switch (type) {
-    case Scalar::kInt8:
-    case Scalar::kUint8: return 1;
-    case Scalar::kInt16:
-    case Scalar::kUint16: return 2;
-    case Scalar::kInt32:
-    case Scalar::kUint32:
-    case Scalar::kFloat32: return 4;
-    case Scalar::kFloat64: return 8;
+    case Scalar::int8:
+    case Scalar::uint8: return 1;
+    case Scalar::int16:
+    case Scalar::uint16: return 2;
+    case Scalar::int32:
+    case Scalar::uint32:
+    case Scalar::float32: return 4;
+    case Scalar::float64: return 8;
   }
   return 8;
 }
 
-bool is_integer(Scalar type) { return type != Scalar::kFloat32 && type != Scalar::kFloat64; }
+bool is_integer(Scalar type) { return type != Scalar::float32 && type != Scalar::float64; }
 
 struct Property {
   std::string name;
   bool is_list = false;
-  Scalar count_type = Scalar::kUint8;
-  Scalar type = Scalar::kFloat32;
+  Scalar count_type = Scalar::uint8;
+  Scalar type = Scalar::float32;
 };
 
 struct Element {
@@ -60,7 +60,7 @@ struct Element {
   int x = -1, y = -1, z = -1, indices = -1;  // positions of the properties we use
 };
 
-enum class Encoding { kAscii, kLittle, kBig };
+enum class Encoding { ascii, little, big };
 
 [[noreturn]] void fail_line(const std::string& name, int line, const std::string& what) {
   throw MeshInputError(name + ":" + std::to_string(line) + ": " + what);
@@ -106,20 +106,20 @@ class BinaryCursor {
     }
     position_ += static_cast<std::size_t>(n);
     switch (type) {
-      case Scalar::kInt8: integer = static_cast<std::int8_t>(bits); break;
-      case Scalar::kUint8: integer = static_cast<std::uint8_t>(bits); break;
-      case Scalar::kInt16: integer = static_cast<std::int16_t>(bits); break;
-      case Scalar::kUint16: integer = static_cast<std::uint16_t>(bits); break;
-      case Scalar::kInt32: integer = static_cast<std::int32_t>(bits); break;
-      case Scalar::kUint32: integer = static_cast<std::uint32_t>(bits); break;
-      case Scalar::kFloat32: {
+      case Scalar::int8: integer = static_cast<std::int8_t>(bits); break;
+      case Scalar::uint8: integer = static_cast<std::uint8_t>(bits); break;
+      case Scalar::int16: integer = static_cast<std::int16_t>(bits); break;
+      case Scalar::uint16: integer = static_cast<std::uint16_t>(bits); break;
+      case Scalar::int32: integer = static_cast<std::int32_t>(bits); break;
+      case Scalar::uint32: integer = static_cast<std::uint32_t>(bits); break;
+      case Scalar::float32: {
         const std::uint32_t b32 = static_cast<std::uint32_t>(bits);
         float f;
         std::memcpy(&f, &b32, sizeof f);
         real = f;
         return;
       }
-      case Scalar::kFloat64: {
+      case Scalar::float64: {
         double d;
         std::memcpy(&d, &bits, sizeof d);
         real = d;
@@ -175,7 +175,7 @@ RawMesh read_ply(const std::string& name, const std::string& bytes) {
   std::string_view line;
   std::vector<std::string_view> tokens;
   if (!lines.next(line) || line != "ply") throw MeshInputError(name + ": not a PLY file (first line is not 'ply')");
-  Encoding encoding = Encoding::kAscii;
+  Encoding encoding = Encoding::ascii;
   bool have_format = false, have_end = false;
   std::vector<Element> elements;
   while (lines.next(line)) {
@@ -191,9 +191,9 @@ RawMesh read_ply(const std::string& name, const std::string& bytes) {
     }
     if (keyword == "format") {
       if (tokens.size() != 3 || tokens[2] != "1.0") fail_line(name, number, "expected 'format <encoding> 1.0'");
-      if (tokens[1] == "ascii") encoding = Encoding::kAscii;
-      else if (tokens[1] == "binary_little_endian") encoding = Encoding::kLittle;
-      else if (tokens[1] == "binary_big_endian") encoding = Encoding::kBig;
+      if (tokens[1] == "ascii") encoding = Encoding::ascii;
+      else if (tokens[1] == "binary_little_endian") encoding = Encoding::little;
+      else if (tokens[1] == "binary_big_endian") encoding = Encoding::big;
       else fail_line(name, number, "unknown PLY format '" + quote_bytes(tokens[1]) + "'");
       have_format = true;
     } else if (keyword == "element") {
@@ -270,11 +270,11 @@ RawMesh read_ply(const std::string& name, const std::string& bytes) {
     if (element.name == "tristrips") fail_line(name, element.line, "triangle strips (element 'tristrips') are not supported");
     std::uint64_t per_instance = 0;
     for (const Property& p : element.properties)
-      per_instance += encoding == Encoding::kAscii ? 2 : static_cast<std::uint64_t>(size_of(p.is_list ? p.count_type : p.type));
+      per_instance += encoding == Encoding::ascii ? 2 : static_cast<std::uint64_t>(size_of(p.is_list ? p.count_type : p.type));
     smallest = saturating_add(smallest, saturating_mul(element.count, per_instance));
   }
   const std::uint64_t remaining = bytes.size() - body;
-  if (smallest > remaining + (encoding == Encoding::kAscii ? 1 : 0)) {
+  if (smallest > remaining + (encoding == Encoding::ascii ? 1 : 0)) {
     // At most 8 elements named: a header of thousands of elements must not make a huge line.
     std::string claims;
     for (std::size_t i = 0; i < elements.size() && i < 8; ++i) {
@@ -286,9 +286,9 @@ RawMesh read_ply(const std::string& name, const std::string& bytes) {
                          " bytes after the header can hold");
   }
 
-  const bool text = encoding == Encoding::kAscii;
-  const MeshFormat format = text ? MeshFormat::kPlyAscii
-                                 : encoding == Encoding::kLittle ? MeshFormat::kPlyBinaryLittle : MeshFormat::kPlyBinaryBig;
+  const bool text = encoding == Encoding::ascii;
+  const MeshFormat format = text ? MeshFormat::ply_ascii
+                                 : encoding == Encoding::little ? MeshFormat::ply_binary_little : MeshFormat::ply_binary_big;
   RawMeshBuilder builder(name, format, text);
   builder.reserve(vertex_element ? static_cast<std::int64_t>(vertex_element->count) : 0,
                   face_element ? static_cast<std::int64_t>(face_element->count) : 0);
@@ -296,7 +296,7 @@ RawMesh read_ply(const std::string& name, const std::string& bytes) {
   double xyz[3] = {0, 0, 0};
 
   if (!text) {
-    BinaryCursor cursor(name, bytes, body, encoding == Encoding::kBig);
+    BinaryCursor cursor(name, bytes, body, encoding == Encoding::big);
     for (const Element& element : elements) {
       // An element without properties holds no bytes: its count (up to the cap, unchecked
       // against the file size) must not cost a loop.

@@ -19,14 +19,14 @@ namespace offsetopt {
 
 const char* format_name(MeshFormat format) {
   switch (format) {
-    case MeshFormat::kObj: return "OBJ";
-    case MeshFormat::kStlAscii: return "ASCII STL";
-    case MeshFormat::kStlBinary: return "binary STL";
-    case MeshFormat::kOff: return "OFF";
-    case MeshFormat::kPlyAscii: return "ASCII PLY";
-    case MeshFormat::kPlyBinaryLittle: return "binary little-endian PLY";
-    case MeshFormat::kPlyBinaryBig: return "binary big-endian PLY";
-    case MeshFormat::k3mf: return "3MF";
+    case MeshFormat::obj: return "OBJ";
+    case MeshFormat::stl_ascii: return "ASCII STL";
+    case MeshFormat::stl_binary: return "binary STL";
+    case MeshFormat::off: return "OFF";
+    case MeshFormat::ply_ascii: return "ASCII PLY";
+    case MeshFormat::ply_binary_little: return "binary little-endian PLY";
+    case MeshFormat::ply_binary_big: return "binary big-endian PLY";
+    case MeshFormat::three_mf: return "3MF";
   }
   return "unknown";
 }

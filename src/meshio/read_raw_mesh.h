@@ -33,10 +33,10 @@ constexpr std::int64_t kMaxFaces = std::int64_t{1} << 25;
 // Stored in F for a vertex index that does not fit in 32 bits (always out of range).
 constexpr int kIndexOverflow = std::numeric_limits<int>::min();
 
-enum class MeshFormat { kObj, kStlAscii, kStlBinary, kOff, kPlyAscii, kPlyBinaryLittle, kPlyBinaryBig, k3mf };
+enum class MeshFormat { obj, stl_ascii, stl_binary, off, ply_ascii, ply_binary_little, ply_binary_big, three_mf };
 
 struct RawMesh {
-  MeshFormat format = MeshFormat::kObj;
+  MeshFormat format = MeshFormat::obj;
   Vertices V;  // #V by 3, possibly non-finite
   Faces F;     // #F by 3, indices not yet checked against #V
   // Text formats: 1-based source line of each vertex and of the polygon each triangle came

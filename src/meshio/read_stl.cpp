@@ -121,7 +121,7 @@ RawMesh read_binary(const std::string& name, const std::string& bytes, std::vect
   const unsigned char* p = reinterpret_cast<const unsigned char*>(bytes.data()) + 84;
   for (std::uint64_t t = 0; t < count; ++t, p += 50)
     for (int k = 0; k < 9; ++k) corner_xyz[static_cast<std::size_t>(9 * t + k)] = read_f32_le(p + 12 + 4 * k);
-  return weld(name, MeshFormat::kStlBinary, corner_xyz, {}, {}, std::move(warnings));
+  return weld(name, MeshFormat::stl_binary, corner_xyz, {}, {}, std::move(warnings));
 }
 
 // Whitespace tokens with their line numbers.
@@ -199,7 +199,7 @@ RawMesh read_ascii(const std::string& name, const std::string& text) {
     tokens.expect("endfacet");
   }
   if (!ended) warnings.push_back("ASCII STL ends without 'endsolid'");
-  return weld(name, MeshFormat::kStlAscii, corner_xyz, corner_line, triangle_line, std::move(warnings));
+  return weld(name, MeshFormat::stl_ascii, corner_xyz, corner_line, triangle_line, std::move(warnings));
 }
 
 }  // namespace

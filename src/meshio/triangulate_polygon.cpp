@@ -24,13 +24,13 @@ void fan(int n, std::vector<int>& triangles) {
 
 }  // namespace
 
-PolygonTriangulation triangulate_polygon(const std::vector<Eigen::Vector3d>& points, std::vector<int>& triangles,
+PolygonTriangulationStatus triangulate_polygon(const std::vector<Eigen::Vector3d>& points, std::vector<int>& triangles,
                                          long long& budget) {
   const int n = static_cast<int>(points.size());
   triangles.clear();
   if (n <= 3) {
     fan(n, triangles);
-    return PolygonTriangulation::kFan;
+    return PolygonTriangulationStatus::fan;
   }
   // Newell's normal, about the first corner (smaller numbers, less rounding).
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
@@ -43,7 +43,7 @@ PolygonTriangulation triangulate_polygon(const std::vector<Eigen::Vector3d>& poi
   }
   if (!normal.allFinite() || normal.isZero(0.0)) {
     fan(n, triangles);
-    return PolygonTriangulation::kFan;
+    return PolygonTriangulationStatus::fan;
   }
   int axis = 0;
   for (int k = 1; k < 3; ++k)
@@ -70,7 +70,7 @@ PolygonTriangulation triangulate_polygon(const std::vector<Eigen::Vector3d>& poi
   for (int i = 0; i < n && !any_reflex; ++i) any_reflex = corner_orient(i) < 0.0;
   if (!any_reflex) {
     fan(n, triangles);
-    return PolygonTriangulation::kFan;
+    return PolygonTriangulationStatus::fan;
   }
 
   auto is_ear = [&](int i) {
@@ -91,7 +91,7 @@ PolygonTriangulation triangulate_polygon(const std::vector<Eigen::Vector3d>& poi
   while (remaining > 3) {
     if (budget < 0) {
       triangles.clear();
-      return PolygonTriangulation::kBudgetExhausted;
+      return PolygonTriangulationStatus::budget_exhausted;
     }
     bool clip = is_ear(current);
     if (!clip && since_ear >= remaining) {
@@ -116,7 +116,7 @@ PolygonTriangulation triangulate_polygon(const std::vector<Eigen::Vector3d>& poi
     since_ear = 0;
   }
   triangles.insert(triangles.end(), {prev[static_cast<std::size_t>(current)], current, next[static_cast<std::size_t>(current)]});
-  return PolygonTriangulation::kEarClipping;
+  return PolygonTriangulationStatus::ear_clipping;
 }
 
 }  // namespace offsetopt

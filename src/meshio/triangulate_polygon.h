@@ -14,18 +14,18 @@
 // polygons give the same triangles as the other readers. When no ear exists (a self-intersecting
 // outline) the first convex-or-flat corner is clipped anyway: n - 2 triangles always come out.
 // Cost: O(n^2) point tests for ordinary polygons, O(n^3) at worst; `budget` is decreased by
-// the tests made, and the status is kBudgetExhausted (no triangles) when it runs out.
+// the tests made, and the status is budget_exhausted (no triangles) when it runs out.
 #pragma once
 #include <Eigen/Core>
 #include <vector>
 
 namespace offsetopt {
 
-enum class PolygonTriangulation { kFan, kEarClipping, kBudgetExhausted };
+enum class PolygonTriangulationStatus { fan, ear_clipping, budget_exhausted };
 
 // `points` are the polygon's corners in order (n >= 3). On return `triangles` holds 3 (n - 2)
 // corner numbers into `points`.
-PolygonTriangulation triangulate_polygon(const std::vector<Eigen::Vector3d>& points, std::vector<int>& triangles,
+PolygonTriangulationStatus triangulate_polygon(const std::vector<Eigen::Vector3d>& points, std::vector<int>& triangles,
                                          long long& budget);
 
 }  // namespace offsetopt

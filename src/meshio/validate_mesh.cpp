@@ -83,7 +83,7 @@ void count_instance(Defect& d, bool first, Note note) {
 // ---- edge (describe_defect turns that into the sentence, DefectSource into file and line).
 
 struct CoordinateFindings {
-  Defect non_finite{DefectKind::kNonFiniteCoordinate}, too_large{DefectKind::kCoordinateTooLarge};
+  Defect non_finite{DefectKind::non_finite_coordinate}, too_large{DefectKind::coordinate_too_large};
   std::vector<char> bad_vertex;  // per vertex: one of the two defects
 };
 
@@ -117,7 +117,7 @@ CoordinateFindings check_coordinates(const Mesh& mesh) {
 // Faces with a vertex index outside [0, #V): the first such index of the first such face.
 Defect check_vertex_indices(const Mesh& mesh) {
   const long long nv = mesh.V.rows(), nf = mesh.F.rows();
-  Defect out_of_range{DefectKind::kIndexOutOfRange};
+  Defect out_of_range{DefectKind::index_out_of_range};
   out_of_range.bound = nv;
   for (long long f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) {
@@ -150,7 +150,7 @@ void note_unreferenced_vertices(const Mesh& mesh, MeshValidation& out) {
 // and faces of exactly zero area with three distinct corners (a note in `out`).
 Defect check_degenerate_faces(const Mesh& mesh, const std::vector<char>& bad_vertex, MeshValidation& out) {
   const long long nf = mesh.F.rows();
-  Defect degenerate{DefectKind::kDegenerateFace};
+  Defect degenerate{DefectKind::degenerate_face};
   for (long long f = 0; f < nf; ++f) {
     const int a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
     bool repeated = a == b || b == c || a == c;
@@ -198,7 +198,7 @@ Defect check_duplicate_faces(const Mesh& mesh, MeshValidation& out) {
         return true;
     return false;
   };
-  Defect duplicate{DefectKind::kDuplicateFace};
+  Defect duplicate{DefectKind::duplicate_face};
   // `first` starts the run of equal triples (walking back from each copy was quadratic in
   // the number of copies: minutes for 200,000 copies of one face).
   std::size_t first = 0;
@@ -238,8 +238,8 @@ std::uint32_t corner_of(const Mesh& mesh, int face, int vertex) {
 }
 
 struct EdgeFindings {
-  Defect boundary{DefectKind::kBoundaryEdge}, non_manifold{DefectKind::kNonManifoldEdge},
-      inconsistent{DefectKind::kInconsistentOrientation};
+  Defect boundary{DefectKind::boundary_edge}, non_manifold{DefectKind::non_manifold_edge},
+      inconsistent{DefectKind::inconsistent_orientation};
   long long edges = 0;  // undirected edges
   // The corners (3 f + k) joined across every shared edge: the fans check_manifold_vertices counts.
   DisjointSets fans{0};
@@ -310,7 +310,7 @@ Defect check_manifold_vertices(const Mesh& mesh, DisjointSets& fans) {
     // A face that repeats a vertex counts once at it: through its first corner there.
     roots[fill[v]++] = fans.find(corner_of(mesh, static_cast<int>(c / 3), static_cast<int>(v)));
   }
-  Defect pinched{DefectKind::kNonManifoldVertex};
+  Defect pinched{DefectKind::non_manifold_vertex};
   for (long long v = 0; v < nv; ++v) {
     auto begin = roots.begin() + start[static_cast<std::size_t>(v)], end = roots.begin() + start[static_cast<std::size_t>(v) + 1];
     if (end - begin < 2) continue;
@@ -350,18 +350,18 @@ std::vector<std::vector<int>> find_components(const Mesh& mesh, MeshValidation& 
   return faces_of;
 }
 
-enum class RayHit { kMiss, kHit, kAmbiguous };
+enum class RayHit { miss, hit, ambiguous };
 
-// geometry/ray_triangle.h with a relative 1e-9 tolerance: kAmbiguous when the ray passes that
+// geometry/ray_triangle.h with a relative 1e-9 tolerance: ambiguous when the ray passes that
 // close to an edge or the origin lies (nearly) on the triangle, where the parity count cannot be
 // trusted; hits behind the origin and rays parallel to the plane miss.
 RayHit cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Eigen::Vector3d& a,
             const Eigen::Vector3d& b, const Eigen::Vector3d& c, double length_scale) {
   const double eps = 1e-9;
   const RayTriangleHit hit = ray_triangle(origin, direction, a, b, c, eps);
-  if (!hit.hit || hit.t < -eps * length_scale) return RayHit::kMiss;
-  if (hit.ambiguous || hit.t < eps * length_scale) return RayHit::kAmbiguous;
-  return RayHit::kHit;
+  if (!hit.hit || hit.t < -eps * length_scale) return RayHit::miss;
+  if (hit.ambiguous || hit.t < eps * length_scale) return RayHit::ambiguous;
+  return RayHit::hit;
 }
 
 // Number of shells among `faces_of` (other than `self`) that contain `point`, by ray parity.
@@ -381,11 +381,11 @@ int nesting_depth(const Mesh& mesh, const Eigen::Vector3d& point, int self, cons
       for (const int f : faces_of[shell]) {
         const RayHit hit = cast(point, direction, row(mesh, mesh.F(f, 0)), row(mesh, mesh.F(f, 1)),
                                 row(mesh, mesh.F(f, 2)), length_scale);
-        if (hit == RayHit::kAmbiguous) {
+        if (hit == RayHit::ambiguous) {
           ambiguous = true;
           break;
         }
-        if (hit == RayHit::kHit) ++crossings;
+        if (hit == RayHit::hit) ++crossings;
       }
       if (!ambiguous) break;
     }
@@ -463,7 +463,7 @@ void check_shells(const Mesh& mesh, const std::vector<std::vector<int>>& faces_o
         out.component_depth[static_cast<std::size_t>(s)] =
             nesting_depth(mesh, points[static_cast<std::size_t>(s)], s, faces_of, boxes);
   }
-  Defect zero{DefectKind::kZeroVolume}, inverted{DefectKind::kInsideOut};
+  Defect zero{DefectKind::zero_volume}, inverted{DefectKind::inside_out};
   // A volume is zero when it is round-off of the coordinates in a box of this diagonal.
   const auto is_zero_volume = [](double volume, double box_diagonal) {
     return std::fabs(volume) <= 1e-12 * box_diagonal * box_diagonal * box_diagonal;
@@ -491,7 +491,7 @@ void check_shells(const Mesh& mesh, const std::vector<std::vector<int>>& faces_o
   const double oriented_total = all_inverted ? -out.volume : out.volume;
   if (zero.count == 0 && (inverted.count == 0 || all_inverted) && shells > 1 &&
       (oriented_total <= 0.0 || is_zero_volume(oriented_total, diagonal(all)))) {
-    Defect overlap{DefectKind::kOverlappingShells};
+    Defect overlap{DefectKind::overlapping_shells};
     overlap.bound = all_inverted ? 1 : 0;
     double largest_cavity = 0;
     for (int s = 0; s < shells; ++s) {
@@ -532,7 +532,7 @@ MeshValidation validate_mesh(const Mesh& mesh) {
     if (d.count > 0) out.defects.push_back(d);
   };
   if (out.faces == 0) {
-    Defect empty{DefectKind::kEmptyMesh};
+    Defect empty{DefectKind::empty_mesh};
     empty.count = 1;
     empty.bound = out.vertices;
     out.defects.push_back(empty);
@@ -560,11 +560,11 @@ MeshValidation validate_mesh(const Mesh& mesh) {
   add(edges.inconsistent);
   const std::vector<std::vector<int>> faces_of = find_components(mesh, out);
   const bool closed_manifold = edges.boundary.count == 0 && edges.non_manifold.count == 0;
-  note_topology(edges.edges, closed_manifold && !out.find(DefectKind::kNonManifoldVertex), out);
+  note_topology(edges.edges, closed_manifold && !out.find(DefectKind::non_manifold_vertex), out);
   const bool coordinates_ok = coordinates.non_finite.count == 0 && coordinates.too_large.count == 0;
   if (closed_manifold && edges.inconsistent.count == 0 && coordinates_ok) check_shells(mesh, faces_of, out);
   if (out.components > 1) {
-    Defect several{DefectKind::kSeveralComponents};
+    Defect several{DefectKind::several_components};
     several.count = out.components;
     several.face = faces_of[1][0];
     several.value = out.components;
@@ -575,36 +575,36 @@ MeshValidation validate_mesh(const Mesh& mesh) {
 
 const char* defect_name(DefectKind kind) {
   switch (kind) {
-    case DefectKind::kEmptyMesh: return "empty mesh";
-    case DefectKind::kNonFiniteCoordinate: return "non-finite coordinates";
-    case DefectKind::kCoordinateTooLarge: return "coordinates too large";
-    case DefectKind::kIndexOutOfRange: return "vertex index out of range";
-    case DefectKind::kDegenerateFace: return "degenerate faces";
-    case DefectKind::kDuplicateFace: return "duplicate faces";
-    case DefectKind::kBoundaryEdge: return "boundary edges";
-    case DefectKind::kNonManifoldEdge: return "non-manifold edges";
-    case DefectKind::kNonManifoldVertex: return "non-manifold vertices";
-    case DefectKind::kInconsistentOrientation: return "inconsistent orientation";
-    case DefectKind::kZeroVolume: return "zero volume";
-    case DefectKind::kInsideOut: return "inside-out (negative volume)";
-    case DefectKind::kOverlappingShells: return "overlapping shells";
-    case DefectKind::kSeveralComponents: return "several components";
+    case DefectKind::empty_mesh: return "empty mesh";
+    case DefectKind::non_finite_coordinate: return "non-finite coordinates";
+    case DefectKind::coordinate_too_large: return "coordinates too large";
+    case DefectKind::index_out_of_range: return "vertex index out of range";
+    case DefectKind::degenerate_face: return "degenerate faces";
+    case DefectKind::duplicate_face: return "duplicate faces";
+    case DefectKind::boundary_edge: return "boundary edges";
+    case DefectKind::non_manifold_edge: return "non-manifold edges";
+    case DefectKind::non_manifold_vertex: return "non-manifold vertices";
+    case DefectKind::inconsistent_orientation: return "inconsistent orientation";
+    case DefectKind::zero_volume: return "zero volume";
+    case DefectKind::inside_out: return "inside-out (negative volume)";
+    case DefectKind::overlapping_shells: return "overlapping shells";
+    case DefectKind::several_components: return "several components";
   }
   return "unknown defect";
 }
 
 const char* defect_unit(DefectKind kind) {
   switch (kind) {
-    case DefectKind::kNonFiniteCoordinate:
-    case DefectKind::kCoordinateTooLarge:
-    case DefectKind::kNonManifoldVertex: return "vertices";
-    case DefectKind::kBoundaryEdge:
-    case DefectKind::kNonManifoldEdge:
-    case DefectKind::kInconsistentOrientation: return "edges";
-    case DefectKind::kZeroVolume:
-    case DefectKind::kInsideOut:
-    case DefectKind::kOverlappingShells: return "shells";
-    case DefectKind::kSeveralComponents: return "components";
+    case DefectKind::non_finite_coordinate:
+    case DefectKind::coordinate_too_large:
+    case DefectKind::non_manifold_vertex: return "vertices";
+    case DefectKind::boundary_edge:
+    case DefectKind::non_manifold_edge:
+    case DefectKind::inconsistent_orientation: return "edges";
+    case DefectKind::zero_volume:
+    case DefectKind::inside_out:
+    case DefectKind::overlapping_shells: return "shells";
+    case DefectKind::several_components: return "components";
     default: return "faces";
   }
 }
@@ -622,8 +622,8 @@ int line_at(long long i, const std::vector<int>* lines) {
 }
 
 bool is_vertex_defect(DefectKind kind) {
-  return kind == DefectKind::kNonFiniteCoordinate || kind == DefectKind::kCoordinateTooLarge ||
-         kind == DefectKind::kNonManifoldVertex;
+  return kind == DefectKind::non_finite_coordinate || kind == DefectKind::coordinate_too_large ||
+         kind == DefectKind::non_manifold_vertex;
 }
 
 // (number, line) of the first instance in file numbering; line 0 when unknown.
@@ -643,33 +643,33 @@ std::string describe_defect(const Defect& d, const DefectSource& s) {
   const auto vertex = [&s](long long v) { return std::to_string(map_index(v, s.vertex_origin)); };
   const std::string edge = vertex(d.edge_from) + "-" + vertex(d.edge_to);
   switch (d.kind) {
-    case DefectKind::kEmptyMesh:
+    case DefectKind::empty_mesh:
       return "the mesh has no faces (" + std::to_string(d.bound) + (d.bound == 1 ? " vertex)" : " vertices)");
-    case DefectKind::kNonFiniteCoordinate:
+    case DefectKind::non_finite_coordinate:
       return "coordinate '" + format_double(d.value) + "' is not a finite number";
-    case DefectKind::kCoordinateTooLarge:
+    case DefectKind::coordinate_too_large:
       return "coordinate '" + format_double(d.value) + "' exceeds the supported magnitude " + format_double(kMaxCoordinate);
-    case DefectKind::kIndexOutOfRange:
+    case DefectKind::index_out_of_range:
       if (static_cast<int>(d.value) == kIndexOverflow) return "vertex index does not fit in 32 bits";
       return "vertex index " + format_double(d.value) + " (counting from 0) is out of range: the mesh has " +
              std::to_string(d.bound) + " vertices";
-    case DefectKind::kDegenerateFace:
+    case DefectKind::degenerate_face:
       return "face repeats a vertex";
-    case DefectKind::kDuplicateFace:
+    case DefectKind::duplicate_face:
       return std::string("face repeats the vertices of face ") + face(d.other_face) +
              (d.value > 0 ? " (same orientation)" : " (opposite orientation)");
-    case DefectKind::kBoundaryEdge:
+    case DefectKind::boundary_edge:
       return "the mesh is not closed: edge " + edge + " belongs to one face only";
-    case DefectKind::kNonManifoldEdge:
+    case DefectKind::non_manifold_edge:
       return "edge " + edge + " is shared by " + format_double(d.value) + " faces";
-    case DefectKind::kNonManifoldVertex:
+    case DefectKind::non_manifold_vertex:
       return "vertex " + vertex(d.vertex) + " joins " + format_double(d.value) + " separate fans of faces";
-    case DefectKind::kInconsistentOrientation:
+    case DefectKind::inconsistent_orientation:
       return "faces " + face(d.face) + " and " + face(d.other_face) + " traverse edge " + edge +
              " in the same direction";
-    case DefectKind::kZeroVolume:
+    case DefectKind::zero_volume:
       return "closed shell encloses zero volume (signed volume " + format_double(d.value) + ")";
-    case DefectKind::kInsideOut:
+    case DefectKind::inside_out:
       if (d.bound > 0 && d.bound % 2 == 1)
         return "cavity shell has positive signed volume " + format_double(d.value) + " (a shell inside another must face inwards)";
       if (d.bound > 0)
@@ -679,17 +679,17 @@ std::string describe_defect(const Defect& d, const DefectSource& s) {
                " and too many shells to check which are cavities (at most " + std::to_string(kMaxShellsForNesting) +
                " shells and " + std::to_string(kMaxNestingTriangleTests) + " ray-triangle tests)";
       return "shell is inside-out: signed volume " + format_double(d.value) + " (normals point inwards)";
-    case DefectKind::kOverlappingShells:
+    case DefectKind::overlapping_shells:
       return "cavity shell encloses more than the shells around it: the signed volumes sum to " + format_double(d.value) +
              (d.bound == 1 ? " once every face is flipped" : "") + " (shells cross each other)";
-    case DefectKind::kSeveralComponents:
+    case DefectKind::several_components:
       return "the mesh has " + format_double(d.value) + " separate components";
   }
   return "unknown defect";
 }
 
 std::string defect_report_line(const std::string& file, const Defect& d, const DefectSource& s) {
-  if (d.kind == DefectKind::kEmptyMesh) return file + ": empty mesh: " + describe_defect(d, s);
+  if (d.kind == DefectKind::empty_mesh) return file + ": empty mesh: " + describe_defect(d, s);
   const auto [number, line] = first_location(d, s);
   std::string out = file + ": " + defect_name(d.kind) + ": " + std::to_string(d.count) + " (first: " +
                     (is_vertex_defect(d.kind) ? "vertex " : "face ") + std::to_string(number);
@@ -698,13 +698,13 @@ std::string defect_report_line(const std::string& file, const Defect& d, const D
 }
 
 std::string defect_error_message(const std::string& file, const Defect& d, const DefectSource& s) {
-  if (d.kind == DefectKind::kEmptyMesh) return file + ": empty mesh: " + describe_defect(d, s);
+  if (d.kind == DefectKind::empty_mesh) return file + ": empty mesh: " + describe_defect(d, s);
   const auto [number, line] = first_location(d, s);
   std::string out = file;
   if (line > 0) out += ":" + std::to_string(line);
   out += ": " + describe_defect(d, s);
   if (line == 0) out += std::string(is_vertex_defect(d.kind) ? ", vertex " : ", face ") + std::to_string(number);
-  if (d.count > 1 && d.kind != DefectKind::kSeveralComponents)
+  if (d.count > 1 && d.kind != DefectKind::several_components)
     out += " (" + std::to_string(d.count) + " " + defect_unit(d.kind) + " in all)";
   return out;
 }

@@ -95,25 +95,25 @@ namespace offsetopt {
 constexpr double kMaxCoordinate = 1e12;
 
 enum class DefectKind {
-  kEmptyMesh,
-  kNonFiniteCoordinate,
-  kCoordinateTooLarge,
-  kIndexOutOfRange,
-  kDegenerateFace,
-  kDuplicateFace,
-  kBoundaryEdge,
-  kNonManifoldEdge,
-  kNonManifoldVertex,
-  kInconsistentOrientation,
-  kZeroVolume,
-  kInsideOut,
-  kOverlappingShells,
-  kSeveralComponents,
+  empty_mesh,
+  non_finite_coordinate,
+  coordinate_too_large,
+  index_out_of_range,
+  degenerate_face,
+  duplicate_face,
+  boundary_edge,
+  non_manifold_edge,
+  non_manifold_vertex,
+  inconsistent_orientation,
+  zero_volume,
+  inside_out,
+  overlapping_shells,
+  several_components,
 };
 
 // One kind of defect: how many, and the first instance (smallest face or vertex number).
 struct Defect {
-  DefectKind kind = DefectKind::kEmptyMesh;
+  DefectKind kind = DefectKind::empty_mesh;
   long long count = 0;     // faces, vertices, edges, shells or components (see defect_unit)
   long long face = -1;     // first offending face, or -1
   long long vertex = -1;   // first offending vertex (vertex defects), or -1

@@ -119,48 +119,48 @@ struct Measures {
 
 }  // namespace
 
-std::string check_al_params(const AlParams& p) {
+std::string AlOptions::check() const {
   auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
-  if (!positive(p.feasibility_tolerance)) return "feasibility_tolerance must be > 0";
-  if (!positive(p.stationarity_tolerance)) return "stationarity_tolerance must be > 0";
-  if (!positive(p.complementarity_tolerance)) return "complementarity_tolerance must be > 0";
-  if (p.max_outer_iterations < 1) return "max_outer_iterations must be >= 1";
-  if (p.max_evaluations < 1) return "max_evaluations must be >= 1";
-  if (!(p.initial_penalty >= 0.0) || !std::isfinite(p.initial_penalty))
+  if (!positive(feasibility_tolerance)) return "feasibility_tolerance must be > 0";
+  if (!positive(stationarity_tolerance)) return "stationarity_tolerance must be > 0";
+  if (!positive(complementarity_tolerance)) return "complementarity_tolerance must be > 0";
+  if (max_outer_iterations < 1) return "max_outer_iterations must be >= 1";
+  if (max_evaluations < 1) return "max_evaluations must be >= 1";
+  if (!(initial_penalty >= 0.0) || !std::isfinite(initial_penalty))
     return "initial_penalty must be >= 0 (0: automatic)";
-  if (!(p.penalty_increase > 1.0) || !std::isfinite(p.penalty_increase))
+  if (!(penalty_increase > 1.0) || !std::isfinite(penalty_increase))
     return "penalty_increase must be > 1";
-  if (!(p.required_decrease > 0.0) || !(p.required_decrease < 1.0))
+  if (!(required_decrease > 0.0) || !(required_decrease < 1.0))
     return "required_decrease must be in (0, 1)";
-  if (!positive(p.max_penalty)) return "max_penalty must be > 0";
-  if (!positive(p.max_multiplier)) return "max_multiplier must be > 0";
-  if (!(p.scale_floor >= 0.0) || !std::isfinite(p.scale_floor)) return "scale_floor must be >= 0";
-  if (!positive(p.initial_inner_tolerance)) return "initial_inner_tolerance must be > 0";
-  if (!(p.inner_tolerance_decrease > 0.0) || !(p.inner_tolerance_decrease <= 1.0))
+  if (!positive(max_penalty)) return "max_penalty must be > 0";
+  if (!positive(max_multiplier)) return "max_multiplier must be > 0";
+  if (!(scale_floor >= 0.0) || !std::isfinite(scale_floor)) return "scale_floor must be >= 0";
+  if (!positive(initial_inner_tolerance)) return "initial_inner_tolerance must be > 0";
+  if (!(inner_tolerance_decrease > 0.0) || !(inner_tolerance_decrease <= 1.0))
     return "inner_tolerance_decrease must be in (0, 1]";
-  if (p.infeasibility_patience < 1) return "infeasibility_patience must be >= 1";
-  if (p.stall_patience < 1) return "stall_patience must be >= 1";
-  if (!(p.clear_violation_factor >= 0.0)) return "clear_violation_factor must be >= 0";
-  const std::string inner = check_lbfgsb_params(p.inner);
-  if (!inner.empty()) return "inner: " + inner;
+  if (infeasibility_patience < 1) return "infeasibility_patience must be >= 1";
+  if (stall_patience < 1) return "stall_patience must be >= 1";
+  if (!(clear_violation_factor >= 0.0)) return "clear_violation_factor must be >= 0";
+  const std::string inner_problem = inner.check();
+  if (!inner_problem.empty()) return "inner: " + inner_problem;
   return std::string();
 }
 
 const char* to_string(AlStatus status) {
   switch (status) {
-    case AlStatus::Converged: return "converged";
-    case AlStatus::Infeasible: return "infeasible";
-    case AlStatus::Stalled: return "stalled";
-    case AlStatus::MaxOuterIterations: return "max-outer-iterations";
-    case AlStatus::MaxEvaluations: return "max-evaluations";
-    case AlStatus::NumericalIssue: return "numerical-issue";
-    case AlStatus::InvalidInput: return "invalid-input";
+    case AlStatus::converged: return "converged";
+    case AlStatus::infeasible: return "infeasible";
+    case AlStatus::stalled: return "stalled";
+    case AlStatus::max_outer_iterations: return "max-outer-iterations";
+    case AlStatus::max_evaluations: return "max-evaluations";
+    case AlStatus::numerical_issue: return "numerical-issue";
+    case AlStatus::invalid_input: return "invalid-input";
   }
   return "unknown";
 }
 
 AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
-                                       const Eigen::VectorXd& x0, const AlParams& params) {
+                                       const Eigen::VectorXd& x0, const AlOptions& params) {
   AlResult res;
   res.x = x0;
   const int n = problem.num_variables;
@@ -172,7 +172,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
 
   // ---- Validation (once) ----
   std::string& msg = res.message;
-  msg = check_al_params(params);
+  msg = params.check();
   if (msg.empty() && n < 1) msg = "num_variables must be >= 1";
   if (msg.empty() && x0.size() != n) msg = "start point has the wrong length";
   if (msg.empty() && !x0.allFinite()) msg = "start point not finite";
@@ -212,7 +212,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
   if (msg.empty() && !(params.initial_equality_multipliers.allFinite() && params.initial_inequality_multipliers.allFinite()))
     msg = "initial multipliers must be finite";
   if (!msg.empty()) {
-    res.status = AlStatus::InvalidInput;
+    res.status = AlStatus::invalid_input;
     res.x = x0;  // the caller's point, unchanged
     return res;
   }
@@ -318,7 +318,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
   if (!start_finite) {
     shift.setZero();
     const Measures meas = measures();
-    return fill_result(AlStatus::NumericalIssue, meas);
+    return fill_result(AlStatus::numerical_issue, meas);
   }
 
   if (params.initial_penalty > 0.0) {
@@ -419,7 +419,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
   int stagnant = 0;
   int stalled = 0;
   Measures meas;
-  LbfgsbParams inner = params.inner;
+  LbfgsbOptions inner = params.inner;
 
   for (int outer = 1; outer <= params.max_outer_iterations; ++outer) {
     res.outer_iterations = outer;
@@ -428,7 +428,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
       shift(k) = nu_bar(k) / rho;
     }
     const int budget = params.max_evaluations - ev.count;
-    if (budget <= 0) return fill_result(AlStatus::MaxEvaluations, meas);
+    if (budget <= 0) return fill_result(AlStatus::max_evaluations, meas);
     inner.gradient_tolerance = inner_tol;
     inner.relative_gradient_tolerance = 0.0;
     inner.max_evaluations = std::min(inner.max_evaluations, budget);
@@ -456,18 +456,18 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
     const double feas = std::max(meas.violation, meas.scaled_violation);
     if (feas <= feas_tol && sub.projected_gradient_norm <= params.stationarity_tolerance &&
         meas.complementarity <= params.complementarity_tolerance)
-      return fill_result(AlStatus::Converged, meas);
-    if (ev.count >= params.max_evaluations) return fill_result(AlStatus::MaxEvaluations, meas);
+      return fill_result(AlStatus::converged, meas);
+    if (ev.count >= params.max_evaluations) return fill_result(AlStatus::max_evaluations, meas);
     // The subproblem stopped at the budget this loop left it, not at its own cap. Its count
     // includes its start point, which the evaluator had cached and does not count again, so the
     // total can end just below the cap: every later subproblem would then stop at its start
     // point while the penalty kept growing, and the stagnation would read as infeasibility.
-    if (sub.status == LbfgsbStatus::MaxEvaluations && budget <= params.inner.max_evaluations)
-      return fill_result(AlStatus::MaxEvaluations, meas);
-    const bool inner_stuck = sub.status == LbfgsbStatus::SmallReduction ||
-                             sub.status == LbfgsbStatus::LineSearchFailed;
+    if (sub.status == LbfgsbStatus::max_evaluations && budget <= params.inner.max_evaluations)
+      return fill_result(AlStatus::max_evaluations, meas);
+    const bool inner_stuck = sub.status == LbfgsbStatus::small_reduction ||
+                             sub.status == LbfgsbStatus::line_search_failed;
     if (feas <= feas_tol && meas.complementarity <= params.complementarity_tolerance && inner_stuck) {
-      if (++stalled >= params.stall_patience) return fill_result(AlStatus::Stalled, meas);
+      if (++stalled >= params.stall_patience) return fill_result(AlStatus::stalled, meas);
     } else {
       stalled = 0;
     }
@@ -501,7 +501,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
       Measures at_least = meas;
       double least_stationarity = sub.projected_gradient_norm;
       for (int restart = 0; restart < kMaxLeastViolationRestarts; ++restart) {
-        LbfgsbParams lv = params.inner;
+        LbfgsbOptions lv = params.inner;
         lv.gradient_tolerance = params.stationarity_tolerance * least_feas;
         lv.relative_gradient_tolerance = 0.0;
         lv.max_evaluations = std::max(1, std::min(lv.max_evaluations, params.max_evaluations - ev.count));
@@ -522,7 +522,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
       if (least_feas > feas_tol) {
         // The multipliers stay those of the last subproblem; the violation is this point's.
         res.stationarity = least_stationarity;
-        return fill_result(AlStatus::Infeasible, at_least);
+        return fill_result(AlStatus::infeasible, at_least);
       }
       // A feasible point exists: continue from it.
       x = least_x;
@@ -538,7 +538,7 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
   }
   evaluate_all(x);
   meas = measures();
-  return fill_result(AlStatus::MaxOuterIterations, meas);
+  return fill_result(AlStatus::max_outer_iterations, meas);
 }
 
 }  // namespace offsetopt

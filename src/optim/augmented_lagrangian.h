@@ -1,3 +1,9 @@
+// src/optim (this is the folder's main header): the optimisers of the reduced problem, knowing
+// nothing of meshes. It owns L-BFGS-B (lbfgsb.h, with its Cauchy point, subspace minimisation,
+// limited memory and Moré–Thuente line search), the augmented Lagrangian that drives it (this
+// header) and the finite-difference gradient and Jacobian checker. Layer: just above util; it may
+// include util and itself only (and Eigen).
+//
 // Augmented Lagrangian method (Powell–Hestenes–Rockafellar), as in LANCELOT and ALGENCAN
 // (R. Andreani, E. G. Birgin, J. M. Martínez, M. L. Schuverdt, "On augmented Lagrangian methods
 // with general lower-level constraints", SIAM J. Optim. 18(4), 2007; E. G. Birgin and
@@ -24,9 +30,9 @@
 // The block lA ≤ A x ≤ uA (A dense, m by n, m up to ~10⁶) is evaluated as one product A x and one
 // A^T w per evaluation, never row by row through callbacks; A is referenced, not copied.
 //
-// Stopping: Converged when max(unscaled, scaled) violation ≤ feasibility_tolerance, the projected
+// Stopping: converged when max(unscaled, scaled) violation ≤ feasibility_tolerance, the projected
 // gradient of the scaled Lagrangian ≤ stationarity_tolerance and the scaled complementarity
-// min(|ν_i|, distance to the active side) ≤ complementarity_tolerance. Infeasible when the
+// min(|ν_i|, distance to the active side) ≤ complementarity_tolerance. infeasible when the
 // violation stagnates while ρ grows and a direct minimisation of the scaled violation
 // ½ Σ (s_i dist(c_i, [lo_i, hi_i]))² over the box ends stationary above the tolerance: the result
 // then holds that least-violation point (a local one, for nonconvex constraints).
@@ -66,12 +72,12 @@ struct AlIterationInfo {
   double stationarity = 0.0;      // subproblem's projected-gradient norm (scaled)
   double complementarity = 0.0;
   double penalty = 0.0;           // ρ used in this subproblem
-  LbfgsbStatus inner_status = LbfgsbStatus::Converged;
+  LbfgsbStatus inner_status = LbfgsbStatus::converged;
   int inner_iterations = 0;
   int evaluations = 0;            // total so far
 };
 
-struct AlParams {
+struct AlOptions {
   double feasibility_tolerance = 1e-8;      // ∞-norm of the violation (unscaled and scaled)
   double stationarity_tolerance = 1e-8;     // ∞-norm of the scaled Lagrangian's projected gradient
   double complementarity_tolerance = 1e-8;  // scaled, see the header comment
@@ -96,38 +102,39 @@ struct AlParams {
   // outer iteration is checked at once (far from feasible, stagnation under a growing penalty
   // rarely recovers, and every later subproblem is worse conditioned than the last).
   double clear_violation_factor = 0.0;
-  int stall_patience = 3;  // feasible outer iterations whose subproblem cannot progress → Stalled
-  LbfgsbParams inner;  // memory, caps and line search of the subproblem solver; its gradient
+  int stall_patience = 3;  // feasible outer iterations whose subproblem cannot progress → stalled
+  LbfgsbOptions inner;  // memory, caps and line search of the subproblem solver; its gradient
                        // tolerance is set by the outer loop
   std::function<void(const AlIterationInfo&)> on_outer_iteration;  // optional observer
   // Inner defaults: no relative-reduction stop (the projected-gradient and noise tests decide),
   // and 20 pairs instead of 10 because the subproblems are ill-conditioned (ρ‖∇c‖² against the
   // objective's curvature): on the 100,000-row benchmark 20 pairs need 40% fewer evaluations.
-  AlParams() {
+  AlOptions() {
     inner.function_tolerance = 0.0;
     inner.max_iterations = 2000;
     inner.memory = 20;
   }
+
+  // Empty when valid, else what is wrong (one line; the inner options' prefixed "inner: ").
+  std::string check() const;
 };
 
-std::string check_al_params(const AlParams& params);
-
 enum class AlStatus {
-  Converged,           // feasibility, stationarity and complementarity tolerances met
-  Infeasible,          // no feasible point found: x is a (local) least-violation point
-  Stalled,             // feasible (and complementary) to tolerance, but the subproblems stopped
-                       // making progress before the stationarity tolerance (gradient noise)
-  MaxOuterIterations,  // outer cap reached
-  MaxEvaluations,      // evaluation cap reached
-  NumericalIssue,      // f or a constraint not finite at the start point
-  InvalidInput         // sizes, bounds or parameters not valid (message says which)
+  converged,             // feasibility, stationarity and complementarity tolerances met
+  infeasible,            // no feasible point found: x is a (local) least-violation point
+  stalled,               // feasible (and complementary) to tolerance, but the subproblems stopped
+                         // making progress before the stationarity tolerance (gradient noise)
+  max_outer_iterations,  // outer cap reached
+  max_evaluations,       // evaluation cap reached
+  numerical_issue,       // f or a constraint not finite at the start point
+  invalid_input          // sizes, bounds or parameters not valid (message says which)
 };
 
 const char* to_string(AlStatus status);
 
 struct AlResult {
-  AlStatus status = AlStatus::InvalidInput;
-  Eigen::VectorXd x;                   // final iterate (least-violation point when Infeasible)
+  AlStatus status = AlStatus::invalid_input;
+  Eigen::VectorXd x;                   // final iterate (least-violation point when infeasible)
   double f = 0.0;                      // f(x)
   double max_violation = 0.0;          // max_i dist(c_i(x), [lo_i, hi_i]), unscaled, over all rows
   double scaled_violation = 0.0;       // the same on scaled rows
@@ -142,10 +149,10 @@ struct AlResult {
   int outer_iterations = 0;
   int inner_iterations = 0;  // L-BFGS-B iterations summed over subproblems
   int evaluations = 0;       // objective evaluations (each with all constraints)
-  std::string message;       // for InvalidInput: what was wrong
+  std::string message;       // for invalid_input: what was wrong
 };
 
 AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem, const Eigen::VectorXd& x0,
-                                       const AlParams& params = AlParams());
+                                       const AlOptions& params = AlOptions());
 
 }  // namespace offsetopt

@@ -8,7 +8,7 @@ namespace offsetopt {
 namespace {
 
 // A step h with x + h exactly representable, so the difference quotient divides by the true step.
-double exact_step(double xi, const GradientCheckParams& p) {
+double exact_step(double xi, const GradientCheckOptions& p) {
   const double h = p.relative_step * std::max(std::fabs(xi), p.step_floor);
   const double shifted = xi + h;
   return shifted - xi;
@@ -17,7 +17,7 @@ double exact_step(double xi, const GradientCheckParams& p) {
 // Central-difference derivative along coordinate i from a callable value(point) -> VectorXd.
 template <class Values>
 Eigen::VectorXd difference(const Values& value, const Eigen::VectorXd& x, Eigen::Index i,
-                           const GradientCheckParams& p, int& evaluations) {
+                           const GradientCheckOptions& p, int& evaluations) {
   const double h = exact_step(x(i), p);
   Eigen::VectorXd xs = x;
   auto at = [&](double offset) {
@@ -35,19 +35,19 @@ Eigen::VectorXd difference(const Values& value, const Eigen::VectorXd& x, Eigen:
 
 }  // namespace
 
-std::string check_gradient_check_params(const GradientCheckParams& p) {
-  if (p.order != 2 && p.order != 4) return "order must be 2 or 4";
-  if (!(p.relative_step > 0.0) || !std::isfinite(p.relative_step)) return "relative_step must be > 0";
-  if (!(p.step_floor > 0.0) || !std::isfinite(p.step_floor)) return "step_floor must be > 0";
-  if (!(p.tolerance >= 0.0)) return "tolerance must be >= 0";
-  if (!(p.absolute_floor > 0.0)) return "absolute_floor must be > 0";
+std::string GradientCheckOptions::check() const {
+  if (order != 2 && order != 4) return "order must be 2 or 4";
+  if (!(relative_step > 0.0) || !std::isfinite(relative_step)) return "relative_step must be > 0";
+  if (!(step_floor > 0.0) || !std::isfinite(step_floor)) return "step_floor must be > 0";
+  if (!(tolerance >= 0.0)) return "tolerance must be >= 0";
+  if (!(absolute_floor > 0.0)) return "absolute_floor must be > 0";
   return std::string();
 }
 
 GradientCheckResult check_gradient(const ObjectiveFunction& f, const Eigen::VectorXd& x,
-                                   const GradientCheckParams& params) {
+                                   const GradientCheckOptions& params) {
   GradientCheckResult r;
-  r.message = check_gradient_check_params(params);
+  r.message = params.check();
   if (!r.message.empty()) return r;
   const Eigen::Index n = x.size();
   r.analytic = Eigen::VectorXd::Zero(n);
@@ -79,9 +79,9 @@ GradientCheckResult check_gradient(const ObjectiveFunction& f, const Eigen::Vect
 }
 
 JacobianCheckResult check_jacobian(const ConstraintFunction& c, int rows, const Eigen::VectorXd& x,
-                                   const GradientCheckParams& params) {
+                                   const GradientCheckOptions& params) {
   JacobianCheckResult r;
-  r.message = check_gradient_check_params(params);
+  r.message = params.check();
   if (!r.message.empty()) return r;
   const Eigen::Index n = x.size();
   r.analytic = Eigen::MatrixXd::Zero(rows, n);

@@ -17,16 +17,16 @@
 
 namespace offsetopt {
 
-struct GradientCheckParams {
+struct GradientCheckOptions {
   int order = 4;                // 2 or 4
   double relative_step = 1e-3;  // ~ε^(1/5) for order 4; use ~1e-6 (≈ ε^(1/3)) for order 2
   double step_floor = 1.0;      // lower bound of the scale of x_i in the step (units of x)
   double tolerance = 1e-6;      // passed when the normalised error ≤ tolerance
   double absolute_floor = 1e-300;  // denominator floor of the normalised error
-};
 
-// Empty when valid, else what is wrong. The checks below return passed = false with this message.
-std::string check_gradient_check_params(const GradientCheckParams& params);
+  // Empty when valid, else what is wrong. The checks below return passed = false with this message.
+  std::string check() const;
+};
 
 struct GradientCheckResult {
   bool passed = false;
@@ -41,7 +41,7 @@ struct GradientCheckResult {
 };
 
 GradientCheckResult check_gradient(const ObjectiveFunction& f, const Eigen::VectorXd& x,
-                                   const GradientCheckParams& params = GradientCheckParams());
+                                   const GradientCheckOptions& params = GradientCheckOptions());
 
 struct JacobianCheckResult {
   bool passed = false;
@@ -57,6 +57,6 @@ struct JacobianCheckResult {
 };
 
 JacobianCheckResult check_jacobian(const ConstraintFunction& c, int rows, const Eigen::VectorXd& x,
-                                   const GradientCheckParams& params = GradientCheckParams());
+                                   const GradientCheckOptions& params = GradientCheckOptions());
 
 }  // namespace offsetopt

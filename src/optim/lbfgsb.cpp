@@ -51,39 +51,39 @@ double max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorXd& d,
 
 }  // namespace
 
-std::string check_lbfgsb_params(const LbfgsbParams& p) {
-  if (p.memory < 1 || p.memory > 100) return "memory must be in [1, 100]";
-  if (!(p.gradient_tolerance >= 0.0) || !std::isfinite(p.gradient_tolerance))
+std::string LbfgsbOptions::check() const {
+  if (memory < 1 || memory > 100) return "memory must be in [1, 100]";
+  if (!(gradient_tolerance >= 0.0) || !std::isfinite(gradient_tolerance))
     return "gradient_tolerance must be finite and >= 0";
-  if (!(p.relative_gradient_tolerance >= 0.0) || !std::isfinite(p.relative_gradient_tolerance))
+  if (!(relative_gradient_tolerance >= 0.0) || !std::isfinite(relative_gradient_tolerance))
     return "relative_gradient_tolerance must be finite and >= 0";
-  if (p.gradient_tolerance == 0.0 && p.relative_gradient_tolerance == 0.0)
+  if (gradient_tolerance == 0.0 && relative_gradient_tolerance == 0.0)
     return "gradient_tolerance and relative_gradient_tolerance cannot both be 0";
-  if (!(p.function_tolerance >= 0.0) || !std::isfinite(p.function_tolerance))
+  if (!(function_tolerance >= 0.0) || !std::isfinite(function_tolerance))
     return "function_tolerance must be finite and >= 0";
-  if (p.max_iterations < 1) return "max_iterations must be >= 1";
-  if (p.max_evaluations < 1) return "max_evaluations must be >= 1";
-  if (!(p.wolfe_decrease > 0.0) || !(p.wolfe_decrease < p.wolfe_curvature) ||
-      !(p.wolfe_curvature < 1.0))
+  if (max_iterations < 1) return "max_iterations must be >= 1";
+  if (max_evaluations < 1) return "max_evaluations must be >= 1";
+  if (!(wolfe_decrease > 0.0) || !(wolfe_decrease < wolfe_curvature) ||
+      !(wolfe_curvature < 1.0))
     return "need 0 < wolfe_decrease < wolfe_curvature < 1";
-  if (!(p.line_search_xtol >= 0.0) || !(p.line_search_xtol < 1.0))
+  if (!(line_search_xtol >= 0.0) || !(line_search_xtol < 1.0))
     return "line_search_xtol must be in [0, 1)";
-  if (p.max_line_search_evaluations < 1) return "max_line_search_evaluations must be >= 1";
-  if (!(p.function_noise >= 0.0) || !(p.function_noise < 1.0))
+  if (max_line_search_evaluations < 1) return "max_line_search_evaluations must be >= 1";
+  if (!(function_noise >= 0.0) || !(function_noise < 1.0))
     return "function_noise must be in [0, 1)";
-  if (p.max_noise_steps < 1) return "max_noise_steps must be >= 1";
+  if (max_noise_steps < 1) return "max_noise_steps must be >= 1";
   return std::string();
 }
 
 const char* to_string(LbfgsbStatus status) {
   switch (status) {
-    case LbfgsbStatus::Converged: return "converged";
-    case LbfgsbStatus::SmallReduction: return "small-reduction";
-    case LbfgsbStatus::MaxIterations: return "max-iterations";
-    case LbfgsbStatus::MaxEvaluations: return "max-evaluations";
-    case LbfgsbStatus::LineSearchFailed: return "line-search-failed";
-    case LbfgsbStatus::NumericalIssue: return "numerical-issue";
-    case LbfgsbStatus::InvalidInput: return "invalid-input";
+    case LbfgsbStatus::converged: return "converged";
+    case LbfgsbStatus::small_reduction: return "small-reduction";
+    case LbfgsbStatus::max_iterations: return "max-iterations";
+    case LbfgsbStatus::max_evaluations: return "max-evaluations";
+    case LbfgsbStatus::line_search_failed: return "line-search-failed";
+    case LbfgsbStatus::numerical_issue: return "numerical-issue";
+    case LbfgsbStatus::invalid_input: return "invalid-input";
   }
   return "unknown";
 }
@@ -105,11 +105,11 @@ double projected_gradient_norm(const Eigen::VectorXd& x, const Eigen::VectorXd& 
 
 LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& x0,
                              const Eigen::VectorXd& lower_in, const Eigen::VectorXd& upper_in,
-                             const LbfgsbParams& params) {
+                             const LbfgsbOptions& params) {
   LbfgsbResult res;
   res.x = x0;
   const Eigen::Index n = x0.size();
-  res.message = check_lbfgsb_params(params);
+  res.message = params.check();
   if (res.message.empty() && n == 0) res.message = "no variables";
   if (res.message.empty() && !f) res.message = "no objective function";
   if (res.message.empty() && ((lower_in.size() != 0 && lower_in.size() != n) ||
@@ -128,7 +128,7 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
     }
   }
   if (!res.message.empty()) {
-    res.status = LbfgsbStatus::InvalidInput;
+    res.status = LbfgsbStatus::invalid_input;
     return res;
   }
 
@@ -155,7 +155,7 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
   double lowest_f = fx, lowest_pg = pg;
   auto finish = [&](LbfgsbStatus status) {
     res.status = status;
-    if (status != LbfgsbStatus::Converged && lowest_f < fx) {
+    if (status != LbfgsbStatus::converged && lowest_f < fx) {
       x = lowest_x;
       g = lowest_g;
       fx = lowest_f;
@@ -171,13 +171,13 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
     return res;
   };
 
-  if (!finite_value_and_gradient(fx, g)) return finish(LbfgsbStatus::NumericalIssue);
+  if (!finite_value_and_gradient(fx, g)) return finish(LbfgsbStatus::numerical_issue);
   const double tolerance =
       std::max(params.gradient_tolerance, params.relative_gradient_tolerance * pg);
-  if (pg <= tolerance) return finish(LbfgsbStatus::Converged);
+  if (pg <= tolerance) return finish(LbfgsbStatus::converged);
 
   LbfgsMemory memory(static_cast<int>(n), params.memory);
-  MoreThuenteSettings ls;
+  MoreThuenteOptions ls;
   ls.ftol = params.wolfe_decrease;
   ls.gtol = params.wolfe_curvature;
   ls.xtol = params.line_search_xtol;
@@ -188,8 +188,8 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
   double smallest_pg = pg;
 
   for (;;) {
-    if (iterations >= params.max_iterations) return finish(LbfgsbStatus::MaxIterations);
-    if (evaluations >= params.max_evaluations) return finish(LbfgsbStatus::MaxEvaluations);
+    if (iterations >= params.max_iterations) return finish(LbfgsbStatus::max_iterations);
+    if (evaluations >= params.max_evaluations) return finish(LbfgsbStatus::max_evaluations);
 
     // Search direction: Cauchy point, then subspace minimisation. Without any bound the Cauchy
     // point is skipped once the memory holds a pair (Fortran): the step is then plain L-BFGS.
@@ -216,7 +216,7 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
         ++resets;
         continue;
       }
-      return finish(LbfgsbStatus::LineSearchFailed);
+      return finish(LbfgsbStatus::line_search_failed);
     }
 
     // Line search along d, steps limited to the box.
@@ -226,14 +226,14 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
     if (iterations == 0 && !boxed) stp = std::min(1.0 / d.norm(), stpmax);
     ls.stpmax = stpmax;
     MoreThuenteSearch search;
-    MoreThuenteState state = search.start(fx, gd, stp, ls);
+    MoreThuenteStatus state = search.start(fx, gd, stp, ls);
     bool have_best = false;
     double best_f = 0.0;
     bool accepted = false;
     bool evaluation_limit = false;
     double f_new = 0.0;
     int ls_evaluations = 0;
-    while (state == MoreThuenteState::Evaluate) {
+    while (state == MoreThuenteStatus::evaluate) {
       if (ls_evaluations >= params.max_line_search_evaluations) break;
       if (evaluations >= params.max_evaluations) {
         evaluation_limit = true;
@@ -264,7 +264,7 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
       }
       const double gdt = gt.dot(d);
       state = search.advance(ft, gdt);
-      if (state == MoreThuenteState::Converged) {
+      if (state == MoreThuenteStatus::converged) {
         accepted = true;
         f_new = ft;
       } else if (!sufficient && ft <= fx + params.function_noise * std::fabs(fx) &&
@@ -284,13 +284,13 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
       f_new = best_f;
     }
     if (!accepted) {
-      if (evaluation_limit) return finish(LbfgsbStatus::MaxEvaluations);
+      if (evaluation_limit) return finish(LbfgsbStatus::max_evaluations);
       if (memory.size() > 0) {
         memory.reset();
         ++resets;
         continue;
       }
-      return finish(LbfgsbStatus::LineSearchFailed);
+      return finish(LbfgsbStatus::line_search_failed);
     }
 
     const Eigen::VectorXd s = xt - x;
@@ -310,20 +310,20 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
       lowest_g = g;
       lowest_pg = pg;
     }
-    if (pg <= tolerance) return finish(LbfgsbStatus::Converged);
+    if (pg <= tolerance) return finish(LbfgsbStatus::converged);
     if (f_old - fx <= 0.0) {
       // No decrease of f: still progress while the projected gradient reaches new lows.
       if (new_low_pg) {
         noise_steps = 0;
       } else if (++noise_steps >= params.max_noise_steps) {
-        return finish(LbfgsbStatus::SmallReduction);
+        return finish(LbfgsbStatus::small_reduction);
       }
     } else {
       noise_steps = 0;
       if (f_old - fx <= params.function_tolerance * std::max(std::fabs(f_old), std::fabs(fx)))
-        return finish(LbfgsbStatus::SmallReduction);
+        return finish(LbfgsbStatus::small_reduction);
     }
-    if (evaluation_limit) return finish(LbfgsbStatus::MaxEvaluations);
+    if (evaluation_limit) return finish(LbfgsbStatus::max_evaluations);
     if (s.dot(y) > kEps * slope) {
       if (!memory.add(s, y)) ++resets;
     }

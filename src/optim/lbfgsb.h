@@ -33,16 +33,16 @@ namespace offsetopt {
 // gradient is allowed and treated as "step too long" inside the line search.
 using ObjectiveFunction = std::function<double(const Eigen::VectorXd& x, Eigen::VectorXd& grad)>;
 
-struct LbfgsbParams {
+struct LbfgsbOptions {
   // Number of correction pairs kept (the "m" of the paper). 3..20 is the usual range.
   int memory = 10;
-  // Converged when ‖P(x − ∇f) − x‖_∞ ≤ max(gradient_tolerance,
+  // converged when ‖P(x − ∇f) − x‖_∞ ≤ max(gradient_tolerance,
   // relative_gradient_tolerance · ‖P(x0 − ∇f(x0)) − x0‖_∞)  (P: projection onto the box).
   // Absolute in units of ∇f; the relative part makes the test independent of the objective's
   // scale. Either may be 0, not both.
   double gradient_tolerance = 1e-8;
   double relative_gradient_tolerance = 0.0;
-  // Stops (SmallReduction) when f_k − f_{k+1} ≤ function_tolerance · max(|f_k|, |f_{k+1}|):
+  // Stops (small_reduction) when f_k − f_{k+1} ≤ function_tolerance · max(|f_k|, |f_{k+1}|):
   // a relative test (no floor of 1, unlike the Fortran code, because objectives here can be
   // ~1e-3). 0 disables it.
   double function_tolerance = 1e-14;
@@ -52,7 +52,7 @@ struct LbfgsbParams {
   // (SIAM J. Optim. 16(1), 2005): (2δ−1)φ'(0) ≥ φ'(α) ≥ σφ'(0) with δ = wolfe_decrease,
   // σ = wolfe_curvature. 0 disables it. After max_noise_steps consecutive steps that neither
   // decrease f nor reach a new lowest projected-gradient norm the run stops with
-  // SmallReduction; the lowest f seen is returned whenever the run does not end Converged.
+  // small_reduction; the lowest f seen is returned whenever the run does not end converged.
   double function_noise = 1e-12;
   int max_noise_steps = 5;
   int max_iterations = 10000;
@@ -62,26 +62,26 @@ struct LbfgsbParams {
   double wolfe_curvature = 0.9;   // gtol, in (wolfe_decrease, 1)
   double line_search_xtol = 0.1;  // relative bracket width at which the line search gives up
   int max_line_search_evaluations = 20;
+
+  // Empty when valid, else what is wrong (one line).
+  std::string check() const;
 };
 
-// Empty when valid, else what is wrong (one line).
-std::string check_lbfgsb_params(const LbfgsbParams& params);
-
 enum class LbfgsbStatus {
-  Converged,         // projected-gradient test met
-  SmallReduction,    // relative reduction of f below function_tolerance, or only noise-level
-                     // steps: no further progress measurable
-  MaxIterations,     // iteration cap reached
-  MaxEvaluations,    // evaluation cap reached
-  LineSearchFailed,  // no acceptable step even along the projected steepest-descent path
-  NumericalIssue,    // f or ∇f not finite at the start point
-  InvalidInput       // parameters, sizes, bounds (lower > upper) or start point not valid
+  converged,           // projected-gradient test met
+  small_reduction,     // relative reduction of f below function_tolerance, or only noise-level
+                       // steps: no further progress measurable
+  max_iterations,      // iteration cap reached
+  max_evaluations,     // evaluation cap reached
+  line_search_failed,  // no acceptable step even along the projected steepest-descent path
+  numerical_issue,     // f or ∇f not finite at the start point
+  invalid_input        // parameters, sizes, bounds (lower > upper) or start point not valid
 };
 
 const char* to_string(LbfgsbStatus status);
 
 struct LbfgsbResult {
-  LbfgsbStatus status = LbfgsbStatus::InvalidInput;
+  LbfgsbStatus status = LbfgsbStatus::invalid_input;
   Eigen::VectorXd x;     // best iterate (start point projected onto the box if nothing better)
   double f = 0.0;        // f(x)
   Eigen::VectorXd grad;  // ∇f(x)
@@ -89,13 +89,13 @@ struct LbfgsbResult {
   int iterations = 0;                    // accepted steps
   int evaluations = 0;                   // calls of f
   int memory_resets = 0;                 // restarts from steepest descent
-  std::string message;                   // for InvalidInput: what was wrong
+  std::string message;                   // for invalid_input: what was wrong
 };
 
 // lower/upper: length n, or empty for "no bounds"; entries may be ±infinity.
 LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& x0,
                              const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                             const LbfgsbParams& params = LbfgsbParams());
+                             const LbfgsbOptions& params = LbfgsbOptions());
 
 // ‖P(x − g) − x‖_∞ for x inside the box.
 double projected_gradient_norm(const Eigen::VectorXd& x, const Eigen::VectorXd& g,

@@ -132,14 +132,21 @@ void more_thuente_step(double& stx, double& fx, double& dx, double& sty, double&
   stp = stpf;
 }
 
-MoreThuenteState MoreThuenteSearch::start(double f0, double g0, double stp,
-                                          const MoreThuenteSettings& settings) {
+std::string MoreThuenteOptions::check() const {
+  if (!(ftol >= 0.0)) return "ftol must be >= 0";
+  if (!(gtol >= 0.0)) return "gtol must be >= 0";
+  if (!(xtol >= 0.0)) return "xtol must be >= 0";
+  if (!(stpmin >= 0.0)) return "stpmin must be >= 0";
+  if (!(stpmax >= stpmin)) return "stpmax must be >= stpmin";
+  return std::string();
+}
+
+MoreThuenteStatus MoreThuenteSearch::start(double f0, double g0, double stp,
+                                          const MoreThuenteOptions& settings) {
   s_ = settings;
   stp_ = stp;
-  if (!(stp >= s_.stpmin) || !(stp <= s_.stpmax) || !(g0 < 0.0) || !(s_.ftol >= 0.0) ||
-      !(s_.gtol >= 0.0) || !(s_.xtol >= 0.0) || !(s_.stpmin >= 0.0) ||
-      !(s_.stpmax >= s_.stpmin) || !std::isfinite(f0)) {
-    return MoreThuenteState::Error;
+  if (!(stp >= s_.stpmin) || !(stp <= s_.stpmax) || !(g0 < 0.0) || !s_.check().empty() || !std::isfinite(f0)) {
+    return MoreThuenteStatus::error;
   }
   brackt_ = false;
   stage_ = 1;
@@ -156,10 +163,10 @@ MoreThuenteState MoreThuenteSearch::start(double f0, double g0, double stp,
   gy_ = ginit_;
   stmin_ = 0.0;
   stmax_ = stp_ + 4.0 * stp_;
-  return MoreThuenteState::Evaluate;
+  return MoreThuenteStatus::evaluate;
 }
 
-MoreThuenteState MoreThuenteSearch::advance(double f, double g) {
+MoreThuenteStatus MoreThuenteSearch::advance(double f, double g) {
   constexpr double kExtrapolateLower = 1.1;
   constexpr double kExtrapolateUpper = 4.0;
 
@@ -167,13 +174,13 @@ MoreThuenteState MoreThuenteSearch::advance(double f, double g) {
   if (stage_ == 1 && f <= ftest && g >= 0.0) stage_ = 2;
 
   // Tests for warnings, then for convergence.
-  MoreThuenteState state = MoreThuenteState::Evaluate;
-  if (brackt_ && (stp_ <= stmin_ || stp_ >= stmax_)) state = MoreThuenteState::WarningRoundingErrors;
-  if (brackt_ && stmax_ - stmin_ <= s_.xtol * stmax_) state = MoreThuenteState::WarningXtol;
-  if (stp_ == s_.stpmax && f <= ftest && g <= gtest_) state = MoreThuenteState::WarningStpmax;
-  if (stp_ == s_.stpmin && (f > ftest || g >= gtest_)) state = MoreThuenteState::WarningStpmin;
-  if (f <= ftest && std::fabs(g) <= s_.gtol * (-ginit_)) state = MoreThuenteState::Converged;
-  if (state != MoreThuenteState::Evaluate) return state;
+  MoreThuenteStatus state = MoreThuenteStatus::evaluate;
+  if (brackt_ && (stp_ <= stmin_ || stp_ >= stmax_)) state = MoreThuenteStatus::warning_rounding_errors;
+  if (brackt_ && stmax_ - stmin_ <= s_.xtol * stmax_) state = MoreThuenteStatus::warning_xtol;
+  if (stp_ == s_.stpmax && f <= ftest && g <= gtest_) state = MoreThuenteStatus::warning_stpmax;
+  if (stp_ == s_.stpmin && (f > ftest || g >= gtest_)) state = MoreThuenteStatus::warning_stpmin;
+  if (f <= ftest && std::fabs(g) <= s_.gtol * (-ginit_)) state = MoreThuenteStatus::converged;
+  if (state != MoreThuenteStatus::evaluate) return state;
 
   if (stage_ == 1 && f <= fx_ && f > ftest) {
     // In the first stage, with a lower value that lacks sufficient decrease, work with the
@@ -217,7 +224,7 @@ MoreThuenteState MoreThuenteSearch::advance(double f, double g) {
       (brackt_ && stmax_ - stmin_ <= s_.xtol * stmax_)) {
     stp_ = stx_;
   }
-  return MoreThuenteState::Evaluate;
+  return MoreThuenteStatus::evaluate;
 }
 
 }  // namespace offsetopt

@@ -5,42 +5,47 @@
 //   |φ'(stp)| ≤ gtol·|φ'(0)|              (curvature: together, the strong Wolfe conditions)
 // where φ(stp) = f(x + stp·d) and φ'(0) < 0.
 //
-// Reverse communication: start() and advance() return Evaluate with step() set to the next trial;
+// Reverse communication: start() and advance() return evaluate with step() set to the next trial;
 // the caller evaluates φ and φ' there and calls advance(). Any other state ends the search.
 // Deviation from MINPACK-2: square roots of cubic-interpolation discriminants are taken of
 // max(0, ·), so rounding can never produce a NaN step.
 #pragma once
+#include <string>
 
 namespace offsetopt {
 
-struct MoreThuenteSettings {
+struct MoreThuenteOptions {
   double ftol = 1e-3;  // sufficient-decrease constant μ, in (0, gtol) for the strong Wolfe pair
   double gtol = 0.9;   // curvature constant η, in (ftol, 1)
   double xtol = 0.1;   // relative width of the bracketing interval below which the search stops
   double stpmin = 0.0;
   double stpmax = 1e10;
+
+  // Empty when valid, else what is wrong (one line). start() returns Error for these and for a
+  // bad first step or slope.
+  std::string check() const;
 };
 
-enum class MoreThuenteState {
-  Evaluate,               // evaluate φ, φ' at step() and call advance()
-  Converged,              // the strong Wolfe conditions hold at the last evaluated step
-  WarningRoundingErrors,  // the bracket cannot shrink any more: rounding prevents progress
-  WarningXtol,            // the bracket is narrower than xtol·stmax
-  WarningStpmax,          // the step is stpmax and sufficient decrease holds with φ' < 0
-  WarningStpmin,          // the step is stpmin and sufficient decrease or curvature fails
-  Error                   // bad input: φ'(0) ≥ 0, stp outside [stpmin, stpmax], bad constants
+enum class MoreThuenteStatus {
+  evaluate,                 // evaluate φ, φ' at step() and call advance()
+  converged,                // the strong Wolfe conditions hold at the last evaluated step
+  warning_rounding_errors,  // the bracket cannot shrink any more: rounding prevents progress
+  warning_xtol,             // the bracket is narrower than xtol·stmax
+  warning_stpmax,           // the step is stpmax and sufficient decrease holds with φ' < 0
+  warning_stpmin,           // the step is stpmin and sufficient decrease or curvature fails
+  error                     // bad input: φ'(0) ≥ 0, stp outside [stpmin, stpmax], bad constants
 };
 
 class MoreThuenteSearch {
  public:
   // φ(0) = f0, φ'(0) = g0 (must be < 0), first trial step stp.
-  MoreThuenteState start(double f0, double g0, double stp, const MoreThuenteSettings& settings);
+  MoreThuenteStatus start(double f0, double g0, double stp, const MoreThuenteOptions& settings);
   // φ and φ' at the step last returned by step().
-  MoreThuenteState advance(double f, double g);
+  MoreThuenteStatus advance(double f, double g);
   double step() const { return stp_; }
 
  private:
-  MoreThuenteSettings s_;
+  MoreThuenteOptions s_;
   double stp_ = 0.0;
   bool brackt_ = false;
   int stage_ = 1;

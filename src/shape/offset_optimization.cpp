@@ -134,7 +134,7 @@ std::string OptimizeOptions::check() const {
   contour.cells_per_wall = s.cavity_cells_per_wall;
   contour.margin_cells = s.cavity_margin_cells;
   if (const std::string problem = contour.check(); !problem.empty()) return "cavity: " + problem;
-  return check_al_params(s.solver);
+  return s.solver.check();
 }
 
 namespace {
@@ -373,8 +373,8 @@ class OffsetSolve {
   std::vector<RepairRound> repairs;
 
  private:
-  AlParams params(int round) const {
-    AlParams p = options_.solver;
+  AlOptions params(int round) const {
+    AlOptions p = options_.solver;
     if (round > 0) {
       // A later round solves a nearby problem: start from the last round's multipliers and
       // penalty (measured on the bottle with --outer: 3605 evaluations without, 1124 with), the
@@ -409,8 +409,8 @@ class OffsetSolve {
     }
     // A problem the solver refuses (hard bounds with an empty box) or cannot evaluate at the start
     // is not changed by tighter bounds or a correction either.
-    const bool refused = solved.status == AlStatus::InvalidInput || solved.status == AlStatus::NumericalIssue;
-    constraints_met = !refused && solved.status != AlStatus::Infeasible &&
+    const bool refused = solved.status == AlStatus::invalid_input || solved.status == AlStatus::numerical_issue;
+    constraints_met = !refused && solved.status != AlStatus::infeasible &&
                       solved.max_violation <= 100.0 * options_.solver.feasibility_tolerance;
     return constraints_met;
   }
@@ -585,13 +585,13 @@ std::string failure_reason(const OptimizeOptions& options, const Band& b, const 
   std::string why = verification.failures.empty() ? "unknown" : verification.failures.front();
   const AlResult& solved = solve.solved;
   const bool constraints_unmet =
-      solved.status == AlStatus::Infeasible || solved.max_violation > 100.0 * options.solver.feasibility_tolerance;
+      solved.status == AlStatus::infeasible || solved.max_violation > 100.0 * options.solver.feasibility_tolerance;
   if (options.bounds == BoundsMode::hard && b.left_solid_count_initial > 0)
     return std::string("the per-vertex bounds cannot be met") + (options.k == 0 ? ": " : " in the basis: ") +
            std::to_string(b.left_solid_count_initial) +
            " vertices lie in parts thinner than two walls, where no offset is both above the wall and below the "
            "skeleton (try --bounds clamp); " + why;
-  if (solved.status == AlStatus::InvalidInput || solved.status == AlStatus::NumericalIssue)
+  if (solved.status == AlStatus::invalid_input || solved.status == AlStatus::numerical_issue)
     return std::string("the solver could not start (") + to_string(solved.status) +
            (solved.message.empty() ? "" : ": " + solved.message) + "); " + why;
   const char* later = options.cavity == CavityMode::offset ? "repair" : "correction";
@@ -601,7 +601,7 @@ std::string failure_reason(const OptimizeOptions& options, const Band& b, const 
            (options.cavity == CavityMode::offset ? "the bounds were tightened there to remove folds and thin walls"
                                                   : "the contoured cavity's moments were taken into account") +
            "; " + why;
-  if (constraints_unmet && solved.status == AlStatus::MaxEvaluations)
+  if (constraints_unmet && solved.status == AlStatus::max_evaluations)
     return "the solver used its " + std::to_string(options.solver.max_evaluations) +
            " evaluations before meeting the constraints (violation " + format_double(solved.max_violation) +
            ", normalised frame); " + why;
@@ -732,7 +732,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     // axis goals), so a small basis can end above the first and still pass: say so, as the
     // report's solver status alone would read as a failure.
     const AlResult& solved = solve.solved;
-    if (solved.status == AlStatus::Infeasible || solved.max_violation > 100.0 * options.solver.feasibility_tolerance)
+    if (solved.status == AlStatus::infeasible || solved.max_violation > 100.0 * options.solver.feasibility_tolerance)
       result.warnings.push_back(std::string("the solver ended ") + to_string(solved.status) + " with constraint violation " +
                                 format_double(solved.max_violation) + " (tolerance " +
                                 format_double(options.solver.feasibility_tolerance) +

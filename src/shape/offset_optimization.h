@@ -33,7 +33,7 @@ bool parse_cavity_mode(const std::string& text, CavityMode& mode);
 struct OptimizeOptions {
   GoalKind goal = GoalKind::stand;
   int k = 36;                    // basis size; 0 means every vertex (`--k all`, paper eq. 1)
-  BasisKind basis = BasisKind::Mass;
+  BasisKind basis = BasisKind::mass;
   BoundsMode bounds = BoundsMode::clamp;
   bool outer = false;
   // Lengths in input units; a negative value means "the default", a fraction of the diagonal:
@@ -74,7 +74,7 @@ struct OptimizeOptions {
   // to 1e-4, scaled (the objective is a preference, not a requirement: on the demo meshes 1e-6
   // changes it in the 7th digit and costs 1.5 to 3 times the evaluations); at most 2000
   // evaluations per solve (each is O(#F + 10·#V·k)), so every round of the solve is capped.
-  AlParams solver = default_solver_params();
+  AlOptions solver = default_solver_params();
   // Report every outer iteration of the solver through the progress callback (`-v`).
   bool trace_solver = false;
   // Threads per stage (1..64). With more than one, the basis is computed alongside the skeleton
@@ -83,8 +83,8 @@ struct OptimizeOptions {
   // for any count.
   int threads = 2;
 
-  static AlParams default_solver_params() {
-    AlParams p;
+  static AlOptions default_solver_params() {
+    AlOptions p;
     p.feasibility_tolerance = 1e-8;
     p.stationarity_tolerance = 1e-4;
     p.complementarity_tolerance = 1e-4;
@@ -147,7 +147,7 @@ struct FieldSummary {
 
 struct BasisSummary {
   bool identity = false;            // --k all: one variable per vertex, no eigensolver
-  BasisKind kind = BasisKind::Mass;
+  BasisKind kind = BasisKind::mass;
   int k = 0;                        // columns (the vertex count with identity)
   // The eigensolver's status and largest eigenvalue; absent with identity.
   std::optional<LanczosStatus> status;
@@ -168,7 +168,7 @@ struct ConstraintValue {
 };
 
 struct SolverSummary {
-  AlStatus status = AlStatus::InvalidInput;
+  AlStatus status = AlStatus::invalid_input;
   double objective = 0.0;
   int outer_iterations = 0, inner_iterations = 0;  // of the last solve
   int evaluations = 0;              // over every solve

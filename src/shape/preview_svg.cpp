@@ -303,12 +303,12 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
     // verification uses (1e-3 of the mass) the fluid's surface is at or above the top, and the
     // centre of buoyancy is the outer volume's centroid.
     if (std::fabs(input.fluid_density * Pout(kMass) - P(kMass)) <= 1e-3 * P(kMass)) {
-      water.status = FloatingEquilibrium::Status::kFloats;
+      water.status = FloatingEquilibrium::Status::floats;
       water.waterline = shells.outer.V.col(2).maxCoeff();
       water.displaced_volume = Pout(kMass);
       water.center_of_buoyancy = Eigen::Vector3d(Pout(kCx), Pout(kCy), Pout(kCz));
       neutral = true;
-    } else if (water.status == FloatingEquilibrium::Status::kSinks) {
+    } else if (water.status == FloatingEquilibrium::Status::sinks) {
       water.center_of_buoyancy = Eigen::Vector3d(Pout(kCx), Pout(kCy), Pout(kCz));
     }
   }
@@ -397,7 +397,7 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
         svg.cross(at(input.tip), r + 1.5, kGoalMark);
       }
       if (have_water) {
-        if (water.status == FloatingEquilibrium::Status::kFloats)
+        if (water.status == FloatingEquilibrium::Status::floats)
           svg.line(v.map(v.umin, water.waterline), v.map(v.umax, water.waterline), kWater, 1.5, "8 4");
         svg.dot(at(water.center_of_buoyancy), r, "#ffffff", kWater);
       }
@@ -538,7 +538,7 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
         if (neutral)
           lines.push_back("fully submerged in density " + num(input.fluid_density) + ": buoyancy - weight = " + num(excess) +
                           " (" + num(100.0 * excess / P(kMass)) + "% of the weight)");
-        else if (water.status == FloatingEquilibrium::Status::kFloats)
+        else if (water.status == FloatingEquilibrium::Status::floats)
           lines.push_back("floats in density " + num(input.fluid_density) + ", waterline z = " + num(water.waterline));
         else
           lines.push_back("sinks in density " + num(input.fluid_density) + ": buoyancy - weight = " + num(excess));

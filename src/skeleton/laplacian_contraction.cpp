@@ -37,23 +37,26 @@ Measures measure(const Vertices& X, const Faces& F) {
 
 }  // namespace
 
-void check_contraction_options(const ContractionOptions& o) {
-  auto require = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(std::string("ContractionOptions::") + what);
-  };
-  require(std::isfinite(o.initial_laplacian_weight) && o.initial_laplacian_weight > 0.0,
-          "initial_laplacian_weight must be finite and > 0");
-  require(std::isfinite(o.initial_laplacian_weight_per_area) && o.initial_laplacian_weight_per_area >= 0.0,
-          "initial_laplacian_weight_per_area must be finite and >= 0");
-  require(std::isfinite(o.laplacian_weight_growth) && o.laplacian_weight_growth >= 1.0 && o.laplacian_weight_growth <= 100.0,
-          "laplacian_weight_growth must be in [1, 100]");
-  require(std::isfinite(o.attraction_weight) && o.attraction_weight > 0.0, "attraction_weight must be finite and > 0");
-  require(o.stop_volume_ratio >= 0.0 && o.stop_volume_ratio < 1.0, "stop_volume_ratio must be in [0, 1)");
-  require(o.max_steps >= 1 && o.max_steps <= 100, "max_steps must be in [1, 100]");
-  require(o.cotan_sine_floor > 0.0 && o.cotan_sine_floor < 1.0, "cotan_sine_floor must be in (0, 1)");
-  require(o.mollify_margin >= 0.0 && o.mollify_margin <= 0.1, "mollify_margin must be in [0, 0.1]");
-  require(o.area_ratio_floor > 0.0 && o.area_ratio_floor < 1.0, "area_ratio_floor must be in (0, 1)");
-  require(o.threads >= 1 && o.threads <= 256, "threads must be in [1, 256]");
+std::string ContractionOptions::check() const {
+  if (!(std::isfinite(initial_laplacian_weight) && initial_laplacian_weight > 0.0))
+    return "ContractionOptions::initial_laplacian_weight must be finite and > 0";
+  if (!(std::isfinite(initial_laplacian_weight_per_area) && initial_laplacian_weight_per_area >= 0.0))
+    return "ContractionOptions::initial_laplacian_weight_per_area must be finite and >= 0";
+  if (!(std::isfinite(laplacian_weight_growth) && laplacian_weight_growth >= 1.0 && laplacian_weight_growth <= 100.0))
+    return "ContractionOptions::laplacian_weight_growth must be in [1, 100]";
+  if (!(std::isfinite(attraction_weight) && attraction_weight > 0.0))
+    return "ContractionOptions::attraction_weight must be finite and > 0";
+  if (!(stop_volume_ratio >= 0.0 && stop_volume_ratio < 1.0))
+    return "ContractionOptions::stop_volume_ratio must be in [0, 1)";
+  if (!(max_steps >= 1 && max_steps <= 100)) return "ContractionOptions::max_steps must be in [1, 100]";
+  if (!(cotan_sine_floor > 0.0 && cotan_sine_floor < 1.0))
+    return "ContractionOptions::cotan_sine_floor must be in (0, 1)";
+  if (!(mollify_margin >= 0.0 && mollify_margin <= 0.1))
+    return "ContractionOptions::mollify_margin must be in [0, 0.1]";
+  if (!(area_ratio_floor > 0.0 && area_ratio_floor < 1.0))
+    return "ContractionOptions::area_ratio_floor must be in (0, 1)";
+  if (!(threads >= 1 && threads <= 256)) return "ContractionOptions::threads must be in [1, 256]";
+  return std::string();
 }
 
 const char* to_string(ContractionStatus status) {
@@ -67,7 +70,7 @@ const char* to_string(ContractionStatus status) {
 }
 
 ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const ContractionOptions& options) {
-  check_contraction_options(options);
+  if (const std::string problem = options.check(); !problem.empty()) throw std::invalid_argument(problem);
   ContractionResult result;
   result.V = V;
   result.status = ContractionStatus::degenerate_input;

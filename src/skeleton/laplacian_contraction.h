@@ -76,10 +76,11 @@ struct ContractionOptions {
   // Threads for the ordering and the factorisations (1..256); the result is bit for bit the
   // same for any count.
   int threads = 2;
-};
 
-// Throws std::invalid_argument naming the first out-of-range field.
-void check_contraction_options(const ContractionOptions& options);
+  // Empty when valid, else the first out-of-range field (laplacian_contraction throws it as
+  // std::invalid_argument).
+  std::string check() const;
+};
 
 enum class ContractionStatus {
   volume_ratio_reached,   // stop_volume_ratio met

@@ -12,6 +12,7 @@
 #include "spectral/shift_invert_operator.h"
 #include "util/parallel.h"
 #include "util/rng.h"
+#include "util/seconds_since.h"
 
 namespace offsetopt {
 
@@ -29,10 +30,10 @@ std::string LanczosOptions::check() const {
 
 const char* to_string(LanczosStatus status) {
   switch (status) {
-    case LanczosStatus::Converged: return "converged";
-    case LanczosStatus::NotConverged: return "not_converged";
-    case LanczosStatus::InvalidInput: return "invalid_input";
-    case LanczosStatus::FactorizationFailed: return "factorization_failed";
+    case LanczosStatus::converged: return "converged";
+    case LanczosStatus::not_converged: return "not_converged";
+    case LanczosStatus::invalid_input: return "invalid_input";
+    case LanczosStatus::factorization_failed: return "factorization_failed";
   }
   return "unknown";
 }
@@ -45,10 +46,6 @@ using Clock = std::chrono::steady_clock;
 constexpr double kCorrectionThreshold = 1e-12;
 // The exact residual estimate is computed once every wanted ‖Op y - θ y‖ / θ is below this.
 constexpr double kEstimateGate = 1e-2;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // ‖L‖∞ = largest absolute row sum (= column sum, L symmetric); bounds ‖L‖₂ from above.
 double infinity_norm(const Eigen::SparseMatrix<double>& L) {
@@ -174,15 +171,28 @@ void solve_dense(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& ma
 // the operator is also kept row-major (the layout of its triangular solves).
 class BlockKrylovSchur {
  public:
-  struct Settings {
+  // Derived from LanczosOptions by lanczos_eigensolver, which checks them before the iteration.
+  struct Options {
     int k = 0, block = 0, basis = 0;
     long max_applications = 0;
     double tolerance = 0.0, cluster_tolerance = 0.0, shift = 0.0, norm_L = 0.0;
     std::uint64_t seed = 0;
+
+    // Empty when the iteration can run on these, else what is wrong (one line).
+    std::string check() const {
+      if (k < 1 || block < 1) return "k and block must be >= 1";
+      if (basis < k + 1 + 2 * block || basis % block != 0)
+        return "basis must be a multiple of block >= k + 1 + 2 block";
+      if (max_applications < 1) return "max_applications must be >= 1";
+      if (!(tolerance > 0.0) || !(cluster_tolerance >= 0.0)) return "tolerance must be > 0, cluster_tolerance >= 0";
+      if (!(shift > 0.0) || !std::isfinite(shift) || !std::isfinite(norm_L))
+        return "shift and norm_L must be finite, shift > 0";
+      return {};
+    }
   };
 
   BlockKrylovSchur(const ShiftInvertOperator& op, const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass,
-                   const Settings& settings, WorkerPool& pool)
+                   const Options& settings, WorkerPool& pool)
       : op_(op), L_(L), pool_(&pool), n_(op.size()), k_(settings.k), b_(settings.block), m_(settings.basis),
         settings_(settings), rng_(settings.seed) {
     scale_.resize(n_);
@@ -233,7 +243,7 @@ class BlockKrylovSchur {
   WorkerPool* pool_;
   Eigen::Index n_;
   int k_, b_, m_, capacity_ = 0;
-  Settings settings_;
+  Options settings_;
   Rng rng_;
   Eigen::VectorXd scale_;  // D
   double smallest_phi_norm_ = 1.0;
@@ -612,18 +622,18 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
     result.message = std::move(message);
     return result;
   };
-  if (std::string problem = options.check(); !problem.empty()) return fail(LanczosStatus::InvalidInput, problem);
+  if (std::string problem = options.check(); !problem.empty()) return fail(LanczosStatus::invalid_input, problem);
   const Eigen::Index n = L.rows();
-  if (L.cols() != n) return fail(LanczosStatus::InvalidInput, "the matrix is not square");
-  if (mass.size() != 0 && mass.size() != n) return fail(LanczosStatus::InvalidInput, "mass has the wrong size");
-  if (positions && positions->rows() != n) return fail(LanczosStatus::InvalidInput, "positions have the wrong size");
-  if (k < 1) return fail(LanczosStatus::InvalidInput, "k must be at least 1");
+  if (L.cols() != n) return fail(LanczosStatus::invalid_input, "the matrix is not square");
+  if (mass.size() != 0 && mass.size() != n) return fail(LanczosStatus::invalid_input, "mass has the wrong size");
+  if (positions && positions->rows() != n) return fail(LanczosStatus::invalid_input, "positions have the wrong size");
+  if (k < 1) return fail(LanczosStatus::invalid_input, "k must be at least 1");
   if (k >= n)
-    return fail(LanczosStatus::InvalidInput, "k = " + std::to_string(k) + " must be below the number of rows (" +
+    return fail(LanczosStatus::invalid_input, "k = " + std::to_string(k) + " must be below the number of rows (" +
                                                  std::to_string(n) + ")");
   for (Eigen::Index i = 0; i < mass.size(); ++i)
     if (!(mass(i) > 0.0) || !std::isfinite(mass(i)))
-      return fail(LanczosStatus::InvalidInput, "mass must be positive and finite (row " + std::to_string(i) + ")");
+      return fail(LanczosStatus::invalid_input, "mass must be positive and finite (row " + std::to_string(i) + ")");
 
   result.matrix_norm = infinity_norm(L);
   double trace_L = 0.0, trace_M = 0.0;
@@ -633,7 +643,7 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
   }
   result.shift = options.shift_scale * trace_L / (static_cast<double>(n) * trace_M);
   if (!(result.shift > 0.0) || !std::isfinite(result.shift) || !std::isfinite(result.matrix_norm))
-    return fail(LanczosStatus::InvalidInput, "the matrix has no positive finite diagonal (empty or degenerate mesh?)");
+    return fail(LanczosStatus::invalid_input, "the matrix has no positive finite diagonal (empty or degenerate mesh?)");
 
   const int b = std::min<int>(options.block_size, static_cast<int>(n));
   int basis = options.max_basis;
@@ -656,19 +666,19 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
     result.eigenvectors = std::move(X);
     result.converged = finalize_pairs(L, mass, result.matrix_norm, options.tolerance, result.eigenvectors,
                                       result.eigenvalues, result.residuals, pool);
-    result.status = result.converged == k ? LanczosStatus::Converged : LanczosStatus::NotConverged;
-    if (result.status != LanczosStatus::Converged) result.message = "the dense solver missed the tolerance";
+    result.status = result.converged == k ? LanczosStatus::converged : LanczosStatus::not_converged;
+    if (result.status != LanczosStatus::converged) result.message = "the dense solver missed the tolerance";
     return result;
   }
 
   ShiftInvertOperator op(L, mass, result.shift, positions, &pool);
   result.factor_seconds = seconds_since(start);
   result.factor_nonzeros = static_cast<long>(op.factor_nonzeros());
-  if (op.status() != ShiftInvertOperator::Status::Ok)
-    return fail(LanczosStatus::FactorizationFailed, "L + sM is not positive definite (is L positive semi-definite?)");
+  if (op.status() != ShiftInvertOperator::Status::ok)
+    return fail(LanczosStatus::factorization_failed, "L + sM is not positive definite (is L positive semi-definite?)");
 
   const Clock::time_point iterate = Clock::now();
-  BlockKrylovSchur::Settings settings;
+  BlockKrylovSchur::Options settings;
   settings.k = k;
   settings.block = b;
   settings.basis = basis;
@@ -678,6 +688,8 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
   settings.shift = result.shift;
   settings.norm_L = result.matrix_norm;
   settings.seed = options.seed;
+  if (const std::string problem = settings.check(); !problem.empty())
+    return fail(LanczosStatus::invalid_input, "iteration options: " + problem);
   BlockKrylovSchur solver(op, L, mass, settings, pool);
   bool converged = false;
   for (int verification = 0; verification < 6; ++verification) {
@@ -697,9 +709,9 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
   result.corrections = solver.corrections();
   result.iteration_seconds = seconds_since(iterate);
   if (result.converged == k) {
-    result.status = LanczosStatus::Converged;
+    result.status = LanczosStatus::converged;
   } else {
-    result.status = LanczosStatus::NotConverged;
+    result.status = LanczosStatus::not_converged;
     result.message = converged ? "residuals stayed above the tolerance" : "operator-application cap reached";
   }
   return result;

@@ -37,7 +37,7 @@
 namespace offsetopt {
 
 struct LanczosOptions {
-  // Converged when every returned pair has ‖Lφ - λMφ‖₂ ≤ tolerance · ‖L‖∞ · ‖φ‖₂.
+  // converged when every returned pair has ‖Lφ - λMφ‖₂ ≤ tolerance · ‖L‖∞ · ‖φ‖₂.
   double tolerance = 1e-10;
   // Vectors per Lanczos block. At least the largest multiplicity expected (icosahedral symmetry
   // gives 5, octahedral 3, rotational 2); larger blocks make the triangular solves faster per
@@ -66,17 +66,17 @@ struct LanczosOptions {
 };
 
 enum class LanczosStatus {
-  Converged,            // every returned pair meets the tolerance
-  NotConverged,         // the cap was reached; the best pairs are returned with their residuals
-  InvalidInput,         // k out of range, sizes mismatch, non-positive mass, bad options
-  FactorizationFailed,  // L + sM was not positive definite (L not PSD, or NaN/inf entries)
+  converged,             // every returned pair meets the tolerance
+  not_converged,         // the cap was reached; the best pairs are returned with their residuals
+  invalid_input,         // k out of range, sizes mismatch, non-positive mass, bad options
+  factorization_failed,  // L + sM was not positive definite (L not PSD, or NaN/inf entries)
 };
 
 const char* to_string(LanczosStatus status);
 
 struct LanczosResult {
-  LanczosStatus status = LanczosStatus::InvalidInput;
-  std::string message;            // why, when not Converged
+  LanczosStatus status = LanczosStatus::invalid_input;
+  std::string message;            // why, when not converged
   Eigen::VectorXd eigenvalues;    // k, ascending
   Eigen::MatrixXd eigenvectors;   // #V by k
   Eigen::VectorXd residuals;      // k, relative (see above)

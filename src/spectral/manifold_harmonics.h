@@ -7,8 +7,8 @@
 // Manifold-harmonic basis of a mesh (Musialski et al. 2015 section 5.1; Vallet & Lévy 2008): the
 // k eigenvectors of the cotan Laplacian with the smallest eigenvalues, Γk (#V by k), used as the
 // reduced coordinates of the offsets (δ = Γk α).
-//  - BasisKind::Laplacian: L γ = λ γ, as in the paper; columns have ‖γ‖₂ = 1.
-//  - BasisKind::Mass: L γ = λ M γ with the lumped mass M; columns have γᵀMγ = 1. This is the
+//  - BasisKind::laplacian: L γ = λ γ, as in the paper; columns have ‖γ‖₂ = 1.
+//  - BasisKind::mass: L γ = λ M γ with the lumped mass M; columns have γᵀMγ = 1. This is the
 //    discretisation that converges to the Laplace–Beltrami eigenfunctions under refinement
 //    (λ ≈ l(l+1)/R² on a sphere of radius R), independent of how densely a region is sampled.
 // Assembly by geometry/cotan_laplacian.h and geometry/lumped_mass.h, eigenpairs by
@@ -23,14 +23,14 @@
 
 namespace offsetopt {
 
-enum class BasisKind { Laplacian, Mass };
+enum class BasisKind { laplacian, mass };
 
 const char* to_string(BasisKind kind);  // "laplacian" or "mass"
 // Parses "laplacian" or "mass"; false for anything else.
 bool parse_basis_kind(const std::string& text, BasisKind& kind);
 
 struct ManifoldHarmonicsOptions {
-  BasisKind kind = BasisKind::Mass;
+  BasisKind kind = BasisKind::mass;
   CotanOptions cotan;
   LanczosOptions lanczos;
   std::string check() const;

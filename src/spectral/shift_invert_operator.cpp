@@ -180,7 +180,7 @@ ShiftInvertOperator::ShiftInvertOperator(const Eigen::SparseMatrix<double>& L, c
     cholesky.set_thread_count(threads);
     cholesky.analyze(K);
     if (!cholesky.factorize(K)) {
-      status_ = Status::NotPositiveDefinite;
+      status_ = Status::not_positive_definite;
       return;
     }
     factor_ = cholesky.block_ldlt(kMaxSupernodeWidth);
@@ -194,7 +194,7 @@ ShiftInvertOperator::ShiftInvertOperator(const Eigen::SparseMatrix<double>& L, c
   }
   for (double pivot : factor_.pivots)
     if (!(pivot > 0.0) || !std::isfinite(pivot)) {
-      status_ = Status::NotPositiveDefinite;
+      status_ = Status::not_positive_definite;
       return;
     }
 }

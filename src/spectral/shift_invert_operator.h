@@ -25,7 +25,7 @@ using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::R
 
 class ShiftInvertOperator {
  public:
-  enum class Status { Ok, NotPositiveDefinite };
+  enum class Status { ok, not_positive_definite };
 
   // `L` is #V by #V symmetric (both triangles stored); `mass` is the diagonal of M (#V, all > 0)
   // or empty for M = I; `shift` > 0; `positions` (#V by 3) lets nested dissection compete with
@@ -47,7 +47,7 @@ class ShiftInvertOperator {
  private:
   Eigen::Index n_ = 0;
   Eigen::Index factor_nonzeros_ = 0;
-  Status status_ = Status::Ok;
+  Status status_ = Status::ok;
   std::vector<int> order_;     // order_[factor column] = vertex
   std::vector<double> scale_;  // D in the factor's order
   BlockLdlt factor_;

@@ -212,5 +212,21 @@ TEST_CASE("empty and degenerate inputs") {
   CHECK_THROWS_AS(TriangleBvh(bad.V, bad.F), std::invalid_argument);
   BvhOptions options;
   options.leaf_size = 0;
-  CHECK_THROWS_AS(check_bvh_options(options), std::invalid_argument);
+  CHECK(options.check() == "BvhOptions::leaf_size must be in [1, 64]");
+  const Mesh good = make_icosphere(1.0, 1);
+  CHECK_THROWS_AS(TriangleBvh(good.V, good.F, options), std::invalid_argument);
+}
+
+TEST_CASE("ray-cast options: check() names what is wrong") {
+  CHECK(RayCastOptions{}.check().empty());
+  RayCastOptions options;
+  options.t_min = 2.0;
+  options.t_max = 1.0;
+  CHECK(options.check() == "RayCastOptions: need t_min <= t_max");
+  options = RayCastOptions{};
+  options.tolerance = -1e-3;
+  CHECK(options.check() == "RayCastOptions::tolerance must be finite and >= 0");
+  options = RayCastOptions{};
+  options.ignored_faces = {3, -1};
+  CHECK(options.check() == "RayCastOptions::ignored_faces must hold face numbers >= 0");
 }

@@ -18,6 +18,7 @@
 
 #include "geometry/flatten_base.h"
 #include "geometry/pose.h"
+#include "mass/stable_pose.h"
 #include "geometry/triangulate_polygons.h"
 #include "mass/mass_properties.h"
 #include "mass/volume_integrals.h"
@@ -101,7 +102,7 @@ double volume_of(const Mesh& mesh) { return volume_integrals(mesh).values(kIntVo
 TEST_CASE("flatten_base: a sphere gets a closed base disk of the cut polygon's area") {
   const double radius = 30.0;
   const Mesh sphere = make_icosphere(radius, 4);
-  const FlattenResult r = flatten_base(sphere, FlattenSettings{5.0});
+  const FlattenResult r = flatten_base(sphere, FlattenOptions{5.0});
   REQUIRE(r.status == FlattenStatus::ok);
   const double plane = sphere.V.col(2).minCoeff() + 5.0;
   CHECK(r.plane_z == plane);
@@ -129,7 +130,7 @@ TEST_CASE("flatten_base: a sphere gets a closed base disk of the cut polygon's a
 
 TEST_CASE("flatten_base: a torus lying flat cut through its tube gives a ring cap (one hole)") {
   const Mesh torus = make_torus(30.0, 10.0, 64, 24);
-  const FlattenResult r = flatten_base(torus, FlattenSettings{4.0});
+  const FlattenResult r = flatten_base(torus, FlattenOptions{4.0});
   REQUIRE(r.status == FlattenStatus::ok);
   CHECK(r.snapped_vertices == 0);
   CHECK(r.cap_loops == 2);
@@ -151,7 +152,7 @@ TEST_CASE("flatten_base: a torus lying flat cut through its tube gives a ring ca
 
   // At H = 5 the plane passes within rounding of two rings of tube vertices (10 sin 210° = 10 sin 330° = −5):
   // they are put on it, and no sliver is left.
-  const FlattenResult near = flatten_base(torus, FlattenSettings{5.0});
+  const FlattenResult near = flatten_base(torus, FlattenOptions{5.0});
   REQUIRE(near.status == FlattenStatus::ok);
   CHECK(near.snapped_vertices == 128);  // the rings at 210° and 330°
   CHECK(near.cap_holes == 1);
@@ -166,7 +167,7 @@ TEST_CASE("flatten_base: a torus standing on its side cut above its hole gives t
     torus.V(i, 1) = -z;
     torus.V(i, 2) = y;
   }
-  const FlattenResult r = flatten_base(torus, FlattenSettings{25.0});
+  const FlattenResult r = flatten_base(torus, FlattenOptions{25.0});
   REQUIRE(r.status == FlattenStatus::ok);
   CHECK(r.cap_loops == 2);
   CHECK(r.cap_holes == 0);
@@ -184,16 +185,16 @@ TEST_CASE("flatten_base: a torus standing on its side cut above its hole gives t
 
   // Tangent to the top of the hole (z = 20, a saddle vertex on the plane): the two pieces of the
   // section touch at that vertex, the solid above does not pinch, and the cut is a valid solid.
-  const FlattenResult top = flatten_base(torus, FlattenSettings{60.0});
+  const FlattenResult top = flatten_base(torus, FlattenOptions{60.0});
   REQUIRE(top.status == FlattenStatus::ok);
   CHECK(top.cap_loops == 2);
   CHECK(validate_mesh(top.mesh).valid());
   CHECK(cap_figures(top).faces_down);
   // Tangent to the bottom of the hole (z = −20): what is left above pinches at that vertex (two
   // parts touching in a point), which validation names; pose_input refuses it with that message.
-  const FlattenResult bottom = flatten_base(torus, FlattenSettings{20.0});
+  const FlattenResult bottom = flatten_base(torus, FlattenOptions{20.0});
   REQUIRE(bottom.status == FlattenStatus::ok);
-  CHECK(validate_mesh(bottom.mesh).find(DefectKind::kNonManifoldVertex) != nullptr);
+  CHECK(validate_mesh(bottom.mesh).find(DefectKind::non_manifold_vertex) != nullptr);
 }
 
 TEST_CASE("flatten_base: a plane through a ring of vertices cuts at them, bad heights are refused") {
@@ -202,7 +203,7 @@ TEST_CASE("flatten_base: a plane through a ring of vertices cuts at them, bad he
   int on_plane = 0;
   for (Eigen::Index i = 0; i < cylinder.V.rows(); ++i) on_plane += cylinder.V(i, 2) == 5.0;
   REQUIRE(on_plane == segments);
-  const FlattenResult r = flatten_base(cylinder, FlattenSettings{5.0});
+  const FlattenResult r = flatten_base(cylinder, FlattenOptions{5.0});
   REQUIRE(r.status == FlattenStatus::ok);
   CHECK(r.plane_z == 5.0);
   CHECK(r.mesh.V.col(2).minCoeff() == 5.0);
@@ -222,16 +223,16 @@ TEST_CASE("flatten_base: a plane through a ring of vertices cuts at them, bad he
   for (Eigen::Index i = 0; i < tilted.V.rows(); ++i)
     if (cylinder.V(i, 2) == 5.0 && cylinder.V(i, 0) == 10.0) through = tilted.V(i, 2);
   REQUIRE(through == 5.625);
-  const FlattenResult t = flatten_base(tilted, FlattenSettings{through - zmin});
+  const FlattenResult t = flatten_base(tilted, FlattenOptions{through - zmin});
   REQUIRE(t.status == FlattenStatus::ok);
   REQUIRE(t.plane_z == through);
   CHECK(validate_mesh(t.mesh).valid());
   CHECK(cap_figures(t).faces_down);
   CHECK(volume_of(t.mesh) == doctest::Approx(volume_of(tilted) - volume_below(tilted, t.plane_z)).epsilon(1e-12));
 
-  CHECK(flatten_base(cylinder, FlattenSettings{10.0}).status == FlattenStatus::cuts_everything);
-  CHECK(flatten_base(cylinder, FlattenSettings{0.0}).status == FlattenStatus::bad_settings);
-  CHECK(flatten_base(cylinder, FlattenSettings{std::nan("")}).status == FlattenStatus::bad_settings);
+  CHECK(flatten_base(cylinder, FlattenOptions{10.0}).status == FlattenStatus::cuts_everything);
+  CHECK(flatten_base(cylinder, FlattenOptions{0.0}).status == FlattenStatus::bad_options);
+  CHECK(flatten_base(cylinder, FlattenOptions{std::nan("")}).status == FlattenStatus::bad_options);
 }
 
 TEST_CASE("triangulate_polygons: a square with two square holes uses every point, area exact") {
@@ -272,10 +273,10 @@ TEST_CASE("flatten_base: demo meshes, upright and posed stable, cut at many heig
       for (int k = 1; k < 16; ++k) {
         CAPTURE(name);
         CAPTURE(k);
-        const FlattenResult r = flatten_base(*mesh, FlattenSettings{(zmax - zmin) * k / 16.0});
+        const FlattenResult r = flatten_base(*mesh, FlattenOptions{(zmax - zmin) * k / 16.0});
         REQUIRE(r.status == FlattenStatus::ok);
         const MeshValidation validation = validate_mesh(r.mesh);
-        for (const Defect& defect : validation.defects) CHECK(defect.kind == DefectKind::kSeveralComponents);
+        for (const Defect& defect : validation.defects) CHECK(defect.kind == DefectKind::several_components);
         CHECK(cap_figures(r).faces_down);
         CHECK(cap_figures(r).in_plane);
         // Relative to the whole volume: near the top the kept part is a small difference.

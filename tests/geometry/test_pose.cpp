@@ -1,6 +1,6 @@
 // Poses (issue 13): the 3-D convex hull against its defining property (every point on or below
-// every hull plane, Euler's formula), the exact up-axis permutations, the sqrt-only rotation to
-// −z, and the stable pose of a tilted box against the analytic margin of its largest face.
+// every hull plane, Euler's formula), the exact up-axis permutations and the sqrt-only rotation
+// to −z (the stable pose is tested in tests/mass/test_stable_pose.cpp).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -10,7 +10,6 @@
 
 #include "geometry/convex_hull_3d.h"
 #include "geometry/pose.h"
-#include "mass/mass_properties.h"
 #include "mesh/primitives.h"
 #include "util/det_math.h"
 #include "util/rng.h"
@@ -23,16 +22,6 @@ std::vector<Eigen::Vector3d> points_of(const Mesh& mesh) {
   std::vector<Eigen::Vector3d> points;
   for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) points.emplace_back(mesh.V.row(i).transpose());
   return points;
-}
-
-// Rotation by `angle` about the unit axis (Rodrigues), built independently of pose.h.
-Eigen::Matrix3d axis_angle(Eigen::Vector3d axis, double angle) {
-  axis.normalize();
-  double s, c;
-  det_sincos(angle, s, c);
-  Eigen::Matrix3d K;
-  K << 0, -axis.z(), axis.y(), axis.z(), 0, -axis.x(), -axis.y(), axis.x(), 0;
-  return Eigen::Matrix3d::Identity() + s * K + (1 - c) * K * K;
 }
 
 void check_hull(const std::vector<Eigen::Vector3d>& points, const ConvexHull3d& hull) {
@@ -133,34 +122,4 @@ TEST_CASE("rotation_to_minus_z: orthonormal, proper, and takes the vector to −
     CHECK(R.determinant() == doctest::Approx(1.0).epsilon(1e-15));
     CHECK((R * d.normalized() - Eigen::Vector3d(0, 0, -1)).norm() < 1e-15);
   }
-}
-
-TEST_CASE("stable_pose: a tilted 4 x 2 x 1 box rests on a 4 x 2 face with margin 1") {
-  const Mesh box = make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(4, 2, 1));
-  const Eigen::Matrix3d tilt = axis_angle(Eigen::Vector3d(1, 2, 3), 0.7);
-  Mesh tilted = box;
-  for (Eigen::Index i = 0; i < box.V.rows(); ++i) tilted.V.row(i) = (tilt * box.V.row(i).transpose()).transpose();
-  tilted.V.col(0).array() += 5.0;  // away from the origin too
-  const Vector10d P = mass_properties(tilted);
-  const StablePose pose = stable_pose(tilted, P.segment<3>(kCx));
-  REQUIRE(pose.status == StablePoseStatus::ok);
-  CHECK(pose.facet_count == 6);
-  CHECK(pose.facet_vertices == 4);
-  CHECK(pose.facet_area == doctest::Approx(8.0).epsilon(1e-12));
-  CHECK(pose.margin == doctest::Approx(1.0).epsilon(1e-12));  // half the smaller side of the face
-  // The chosen face is the bottom (z = 0) or top (z = 1) face of the untilted box.
-  const Eigen::Vector3d original_normal = tilt.transpose() * pose.facet_normal;
-  CHECK(std::fabs(original_normal.z()) == doctest::Approx(1.0).epsilon(1e-12));
-  const Mesh posed = apply_rigid_motion(tilted, pose.motion);
-  CHECK(posed.V.col(2).minCoeff() == 0.0);
-  const double face_z = original_normal.z() < 0 ? 0.0 : 1.0;
-  for (Eigen::Index i = 0; i < box.V.rows(); ++i) {
-    if (box.V(i, 2) == face_z) CHECK(std::fabs(posed.V(i, 2)) < 1e-12);
-    else CHECK(posed.V(i, 2) == doctest::Approx(1.0).epsilon(1e-12));
-  }
-  StablePoseSettings bad;
-  bad.coplanar_tolerance = -1.0;
-  CHECK(stable_pose(tilted, P.segment<3>(kCx), bad).status == StablePoseStatus::bad_settings);
-  // The pose is a rigid motion: edge lengths are kept.
-  CHECK((posed.V.row(7) - posed.V.row(0)).norm() == doctest::Approx(std::sqrt(21.0)).epsilon(1e-14));
 }

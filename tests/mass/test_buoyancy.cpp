@@ -25,13 +25,14 @@ TEST_CASE("the part of a box below a plane, and a box floating at the density ra
   FloatingOptions options;
   options.fluid_density = 1.6;  // a solid box of density 1 floats with 1/1.6 of its height under
   const FloatingEquilibrium f = floating_equilibrium(box, 48.0, options);
-  REQUIRE(f.status == FloatingEquilibrium::Status::kFloats);
+  REQUIRE(f.status == FloatingEquilibrium::Status::floats);
   CHECK(f.waterline == doctest::Approx(4.0 / 1.6).epsilon(1e-11));
   CHECK(f.center_of_buoyancy.z() == doctest::Approx(2.0 / 1.6).epsilon(1e-11));
   CHECK(f.iterations < 60);
   options.fluid_density = 0.9;
-  CHECK(floating_equilibrium(box, 48.0, options).status == FloatingEquilibrium::Status::kSinks);
+  CHECK(floating_equilibrium(box, 48.0, options).status == FloatingEquilibrium::Status::sinks);
   options.fluid_density = -1.0;
+  CHECK(options.check() == "fluid_density must be a positive number");
   CHECK_THROWS_AS(floating_equilibrium(box, 48.0, options), std::invalid_argument);
 }
 

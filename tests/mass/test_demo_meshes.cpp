@@ -171,7 +171,7 @@ TEST_CASE("buoy: sinks when solid in fluid 0.806, floats upright with a 20-50% v
   CHECK(solid(kMass) > fluid * solid(kMass));  // density 1 > 0.806: the solid sinks
   FloatingOptions options;
   options.fluid_density = fluid;
-  CHECK(floating_equilibrium(buoy, solid(kMass), options).status == FloatingEquilibrium::Status::kSinks);
+  CHECK(floating_equilibrium(buoy, solid(kMass), options).status == FloatingEquilibrium::Status::sinks);
 
   const Mesh cavity = make_demo_cavity("buoy");
   check_cavity_inside("buoy", buoy, cavity, 0.009 * bbox_diagonal(buoy));
@@ -182,7 +182,7 @@ TEST_CASE("buoy: sinks when solid in fluid 0.806, floats upright with a 20-50% v
                                << floating.center_of_buoyancy.z() << ", centre of mass z " << shell(kCz));
   CHECK(void_fraction > 0.2);
   CHECK(void_fraction < 0.5);
-  REQUIRE(floating.status == FloatingEquilibrium::Status::kFloats);
+  REQUIRE(floating.status == FloatingEquilibrium::Status::floats);
   CHECK(floating.displaced_volume * fluid == doctest::Approx(shell(kMass)).epsilon(1e-9));
   CHECK(shell(kCz) < floating.center_of_buoyancy.z() - 1.0);
   CHECK((floating.center_of_buoyancy.head<2>() - shell.segment<2>(kCx)).norm() < 1e-9);

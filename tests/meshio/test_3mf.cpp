@@ -65,7 +65,7 @@ TEST_CASE("3MF: a sphere-in-sphere solid keeps both shells and its mass properti
   write_mesh(path, solid);
   CHECK(read_file(path) == bytes);
   const RawMesh raw = read_raw_mesh(path);
-  CHECK(raw.format == MeshFormat::k3mf);
+  CHECK(raw.format == MeshFormat::three_mf);
   CHECK(raw.warnings.empty());
   CHECK(identical(from_raw(raw), solid));
   const Vector10d expected = mass_properties(volume_integrals(solid));

@@ -114,7 +114,7 @@ TEST_CASE("accepted corpus: load_mesh succeeds with the expected warning, and ch
     else CHECK(all_warnings.find(row[2]) != std::string::npos);
     // What load_mesh returns is a closed, oriented manifold of positive volume.
     const MeshValidation v = validate_mesh(loaded.mesh);
-    for (const Defect& d : v.defects) CHECK(d.kind == DefectKind::kSeveralComponents);
+    for (const Defect& d : v.defects) CHECK(d.kind == DefectKind::several_components);
     CHECK(v.volume > 0);
     CHECK(v.unreferenced_vertices == 0);
 

@@ -105,8 +105,8 @@ bool inside_polygon(const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d
 void check_triangulation(const std::vector<Eigen::Vector3d>& polygon, double analytic_area) {
   std::vector<int> triangles;
   long long budget = 1000000;
-  const PolygonTriangulation how = triangulate_polygon(polygon, triangles, budget);
-  CHECK(how == PolygonTriangulation::kEarClipping);
+  const PolygonTriangulationStatus how = triangulate_polygon(polygon, triangles, budget);
+  CHECK(how == PolygonTriangulationStatus::ear_clipping);
   REQUIRE(triangles.size() == 3 * (polygon.size() - 2));
   double sum = 0;
   for (std::size_t t = 0; t < triangles.size(); t += 3) {
@@ -155,7 +155,7 @@ TEST_CASE("zero-area slivers with distinct corners: valid, counted, and exactly 
   CHECK(q(0) == doctest::Approx(48.0));
   CHECK(max_abs_difference(p, q) <= 1e-12 * q.cwiseAbs().maxCoeff());
 
-  const LoadedMesh loaded = load_raw_mesh("slivers.obj", RawMesh{MeshFormat::kObj, box.V, box.F, {}, {}, {}});
+  const LoadedMesh loaded = load_raw_mesh("slivers.obj", RawMesh{MeshFormat::obj, box.V, box.F, {}, {}, {}});
   REQUIRE(loaded.warnings.size() == 1);
   CHECK(loaded.warnings[0].find("2 zero-area faces with three distinct collinear corners (first: face 13)") == 0);
   CHECK(loaded.mesh.F.rows() == box.F.rows());  // nothing dropped or flipped
@@ -251,7 +251,7 @@ TEST_CASE("ear clipping: clockwise outlines keep their orientation, convex ones 
   std::vector<Eigen::Vector3d> ell = {{0, 3, 0}, {1, 3, 0}, {1, 1, 0}, {3, 1, 0}, {3, 0, 0}, {0, 0, 0}};
   std::vector<int> triangles;
   long long budget = 1000000;
-  REQUIRE(triangulate_polygon(ell, triangles, budget) == PolygonTriangulation::kEarClipping);
+  REQUIRE(triangulate_polygon(ell, triangles, budget) == PolygonTriangulationStatus::ear_clipping);
   double area = 0;
   for (std::size_t t = 0; t < triangles.size(); t += 3) {
     const double z = (ell[static_cast<std::size_t>(triangles[t + 1])] - ell[static_cast<std::size_t>(triangles[t])])
@@ -263,7 +263,7 @@ TEST_CASE("ear clipping: clockwise outlines keep their orientation, convex ones 
   CHECK(area == doctest::Approx(5.0).epsilon(1e-15));
   // A convex hexagon: the fan from corner 0, as the other readers triangulate.
   const std::vector<Eigen::Vector3d> hexagon = {{2, 0, 1}, {1, 2, 1}, {-1, 2, 1}, {-2, 0, 1}, {-1, -2, 1}, {1, -2, 1}};
-  REQUIRE(triangulate_polygon(hexagon, triangles, budget) == PolygonTriangulation::kFan);
+  REQUIRE(triangulate_polygon(hexagon, triangles, budget) == PolygonTriangulationStatus::fan);
   CHECK(triangles == std::vector<int>{0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 5});
   // A comb of 400 teeth with a budget of 1000 point tests runs out and returns no triangles.
   std::vector<Eigen::Vector3d> comb = {{0, -1, 0}};
@@ -274,10 +274,10 @@ TEST_CASE("ear clipping: clockwise outlines keep their orientation, convex ones 
   }
   comb.emplace_back(801, -1, 0);
   budget = 1000;
-  CHECK(triangulate_polygon(comb, triangles, budget) == PolygonTriangulation::kBudgetExhausted);
+  CHECK(triangulate_polygon(comb, triangles, budget) == PolygonTriangulationStatus::budget_exhausted);
   CHECK(triangles.empty());
   budget = 100000000;
-  REQUIRE(triangulate_polygon(comb, triangles, budget) == PolygonTriangulation::kEarClipping);
+  REQUIRE(triangulate_polygon(comb, triangles, budget) == PolygonTriangulationStatus::ear_clipping);
   CHECK(triangles.size() == 3 * (comb.size() - 2));
 }
 

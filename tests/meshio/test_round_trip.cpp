@@ -205,7 +205,7 @@ TEST_CASE("STL welding merges exactly coincident corners only, including -0 with
   write_file(dir.file("tet.stl"), stl);
   const RawMesh raw = read_raw_mesh(dir.file("tet.stl"));
   CHECK(raw.V.rows() == 4);
-  CHECK(raw.format == MeshFormat::kStlAscii);
+  CHECK(raw.format == MeshFormat::stl_ascii);
   CHECK(raw.face_line == std::vector<int>({2, 9, 16, 23}));
   const std::string near = "solid n\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
                            "endloop\nendfacet\nfacet normal 0 0 0\nouter loop\nvertex 1.0000001 0 0\nvertex 0 0 0\n"
@@ -221,17 +221,17 @@ TEST_CASE("binary STL is recognised by size, not by the word solid") {
   bytes.replace(0, 11, "solid ascii");  // a binary file pretending to be ASCII in its header
   write_file(dir.file("solid.stl"), bytes);
   const RawMesh raw = read_raw_mesh(dir.file("solid.stl"));
-  CHECK(raw.format == MeshFormat::kStlBinary);
+  CHECK(raw.format == MeshFormat::stl_binary);
   CHECK(identical(Mesh{raw.V, raw.F}, first_use_order(float_rounded(mesh))));
   // Unknown extension: recognised by content.
   write_file(dir.file("mesh.bin"), bytes);
-  CHECK(read_raw_mesh(dir.file("mesh.bin")).format == MeshFormat::kStlBinary);
+  CHECK(read_raw_mesh(dir.file("mesh.bin")).format == MeshFormat::stl_binary);
   write_file(dir.file("mesh.dat"), mesh_to_bytes(".ply", mesh));
-  CHECK(read_raw_mesh(dir.file("mesh.dat")).format == MeshFormat::kPlyBinaryLittle);
+  CHECK(read_raw_mesh(dir.file("mesh.dat")).format == MeshFormat::ply_binary_little);
   write_file(dir.file("mesh.txt"), off_text(mesh));
-  CHECK(read_raw_mesh(dir.file("mesh.txt")).format == MeshFormat::kOff);
+  CHECK(read_raw_mesh(dir.file("mesh.txt")).format == MeshFormat::off);
   write_file(dir.file("mesh"), mesh_to_bytes(".obj", mesh));
-  CHECK(read_raw_mesh(dir.file("mesh")).format == MeshFormat::kObj);
+  CHECK(read_raw_mesh(dir.file("mesh")).format == MeshFormat::obj);
   write_file(dir.file("notes.txt"), "hello\n");
   CHECK_THROWS_WITH_AS(read_raw_mesh(dir.file("notes.txt")), doctest::Contains("unrecognised mesh format"), MeshInputError);
 }

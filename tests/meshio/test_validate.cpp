@@ -113,7 +113,7 @@ TEST_CASE("empty mesh, non-finite and too large coordinates, indices out of rang
   Mesh empty;
   empty.V = unit_box().V;
   MeshValidation v = validate_mesh(empty);
-  REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::kEmptyMesh});
+  REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::empty_mesh});
   CHECK(v.defects[0].bound == 8);
 
   Mesh m = unit_box();
@@ -122,12 +122,12 @@ TEST_CASE("empty mesh, non-finite and too large coordinates, indices out of rang
   m.V(6, 2) = 1e13;
   m.V(7, 0) = -1e12;  // exactly at the limit: fine
   v = validate_mesh(m);
-  const Defect* nf = v.find(DefectKind::kNonFiniteCoordinate);
+  const Defect* nf = v.find(DefectKind::non_finite_coordinate);
   REQUIRE(nf);
   CHECK(nf->count == 2);
   CHECK(nf->vertex == 3);
   CHECK(std::isnan(nf->value));
-  const Defect* large = v.find(DefectKind::kCoordinateTooLarge);
+  const Defect* large = v.find(DefectKind::coordinate_too_large);
   REQUIRE(large);
   CHECK(large->count == 1);
   CHECK(large->vertex == 6);
@@ -140,7 +140,7 @@ TEST_CASE("empty mesh, non-finite and too large coordinates, indices out of rang
   m.F(7, 0) = -1;
   m.F(9, 2) = kIndexOverflow;
   v = validate_mesh(m);
-  REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::kIndexOutOfRange});
+  REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::index_out_of_range});
   CHECK(v.defects[0].count == 3);
   CHECK(v.defects[0].face == 4);
   CHECK(v.defects[0].value == 8);
@@ -151,7 +151,7 @@ TEST_CASE("degenerate faces: a repeated vertex is a defect, exactly zero area wi
   Mesh m = unit_box();
   m.F(5, 2) = m.F(5, 0);
   MeshValidation v = validate_mesh(m);
-  const Defect* d = v.find(DefectKind::kDegenerateFace);
+  const Defect* d = v.find(DefectKind::degenerate_face);
   REQUIRE(d);
   CHECK(d->count == 1);
   CHECK(d->face == 5);
@@ -177,7 +177,7 @@ TEST_CASE("degenerate faces: a repeated vertex is a defect, exactly zero area wi
 TEST_CASE("duplicate faces in either orientation") {
   Mesh m = with_face(with_face(unit_box(), 2, 6, 3), 5, 7, 3);  // copy of face 6, reversed copy of face 11
   const MeshValidation v = validate_mesh(m);
-  const Defect* d = v.find(DefectKind::kDuplicateFace);
+  const Defect* d = v.find(DefectKind::duplicate_face);
   REQUIRE(d);
   CHECK(d->count == 2);
   CHECK(d->face == 12);
@@ -185,7 +185,7 @@ TEST_CASE("duplicate faces in either orientation") {
   CHECK(d->value == 1);
   CHECK(v.same_orientation_duplicates == 1);
   CHECK(v.droppable_faces == std::vector<long long>{12});
-  CHECK(v.find(DefectKind::kNonManifoldEdge));  // each copy puts a third face on three edges
+  CHECK(v.find(DefectKind::non_manifold_edge));  // each copy puts a third face on three edges
 }
 
 TEST_CASE("edge defects agree with an independent census") {
@@ -193,7 +193,7 @@ TEST_CASE("edge defects agree with an independent census") {
     const Mesh m = without_faces(unit_box(), {10, 11});
     const MeshValidation v = validate_mesh(m);
     const EdgeCensus census = edge_census(m);
-    const Defect* d = v.find(DefectKind::kBoundaryEdge);
+    const Defect* d = v.find(DefectKind::boundary_edge);
     REQUIRE(d);
     CHECK(census.boundary == 4);
     CHECK(d->count == census.boundary);
@@ -207,12 +207,12 @@ TEST_CASE("edge defects agree with an independent census") {
     std::swap(m.F(7, 1), m.F(7, 2));
     const MeshValidation v = validate_mesh(m);
     const EdgeCensus census = edge_census(m);
-    const Defect* d = v.find(DefectKind::kInconsistentOrientation);
+    const Defect* d = v.find(DefectKind::inconsistent_orientation);
     REQUIRE(d);
     CHECK(census.inconsistent == 3);
     CHECK(d->count == 3);
     CHECK(d->face == census.first_inconsistent_face);
-    CHECK(kinds(v) == std::vector<DefectKind>{DefectKind::kInconsistentOrientation});
+    CHECK(kinds(v) == std::vector<DefectKind>{DefectKind::inconsistent_orientation});
   }
   SUBCASE("non-manifold edge: two tetrahedra sharing an edge") {
     Mesh m = tetrahedron();
@@ -226,7 +226,7 @@ TEST_CASE("edge defects agree with an independent census") {
         else if (both.F(f, k) == 5) both.F(f, k) = 1;
     const MeshValidation v = validate_mesh(both);
     const EdgeCensus census = edge_census(both);
-    REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::kNonManifoldEdge});
+    REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::non_manifold_edge});
     CHECK(v.defects[0].count == 1);
     CHECK(census.non_manifold == 1);
     CHECK(v.defects[0].face == census.first_non_manifold_face);
@@ -246,8 +246,8 @@ TEST_CASE("edge defects agree with an independent census") {
       m = without_faces(m, drop);
       const MeshValidation v = validate_mesh(m);
       const EdgeCensus census = edge_census(m);
-      const Defect* boundary = v.find(DefectKind::kBoundaryEdge);
-      const Defect* inconsistent = v.find(DefectKind::kInconsistentOrientation);
+      const Defect* boundary = v.find(DefectKind::boundary_edge);
+      const Defect* inconsistent = v.find(DefectKind::inconsistent_orientation);
       CHECK((boundary ? boundary->count : 0) == census.boundary);
       CHECK((boundary ? boundary->face : -1) == census.first_boundary_face);
       CHECK((inconsistent ? inconsistent->count : 0) == census.inconsistent);
@@ -266,9 +266,9 @@ TEST_CASE("non-manifold vertex: two tetrahedra touching at one corner") {
     for (int k = 0; k < 3; ++k)
       if (both.F(f, k) == 4) both.F(f, k) = 0;  // share the origin
   const MeshValidation v = validate_mesh(both);
-  const std::vector<DefectKind> expected = {DefectKind::kNonManifoldVertex};
+  const std::vector<DefectKind> expected = {DefectKind::non_manifold_vertex};
   CHECK(kinds(v) == expected);
-  REQUIRE(v.find(DefectKind::kNonManifoldVertex));
+  REQUIRE(v.find(DefectKind::non_manifold_vertex));
   CHECK(v.defects[0].count == 1);
   CHECK(v.defects[0].vertex == 0);
   CHECK(v.defects[0].value == 2);
@@ -277,7 +277,7 @@ TEST_CASE("non-manifold vertex: two tetrahedra touching at one corner") {
 
 TEST_CASE("inside-out, zero volume and nested shells") {
   MeshValidation v = validate_mesh(flipped(unit_box()));
-  REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::kInsideOut});
+  REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::inside_out});
   CHECK(v.volume == -6.0);
   CHECK(v.defects[0].face == 0);
   CHECK(v.defects[0].value == -6.0);
@@ -288,14 +288,14 @@ TEST_CASE("inside-out, zero volume and nested shells") {
   pillow.F.resize(4, 3);
   pillow.F << 0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2;
   v = validate_mesh(pillow);
-  REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::kZeroVolume});
+  REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::zero_volume});
   CHECK(v.genus == 0);
 
   const Mesh outer = make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(4, 4, 4));
   const Mesh inner = make_box(Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(2, 3, 3));
   SUBCASE("two separate parts") {
     v = validate_mesh(join(outer, inner, Eigen::RowVector3d(10, 0, 0)));
-    REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::kSeveralComponents});
+    REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::several_components});
     CHECK(v.defects[0].count == 2);
     CHECK(v.defects[0].face == 12);
     CHECK(v.component_depth == std::vector<int>({0, 0}));
@@ -304,14 +304,14 @@ TEST_CASE("inside-out, zero volume and nested shells") {
   }
   SUBCASE("a cavity facing inwards is right") {
     v = validate_mesh(join(outer, flipped(inner), Eigen::RowVector3d::Zero()));
-    REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::kSeveralComponents});
+    REQUIRE(kinds(v) == std::vector<DefectKind>{DefectKind::several_components});
     CHECK(v.component_depth == std::vector<int>({0, 1}));
     CHECK(v.component_volume == std::vector<double>({64.0, -4.0}));
     CHECK(v.volume == 60.0);
   }
   SUBCASE("a cavity facing outwards is inside-out") {
     v = validate_mesh(join(outer, inner, Eigen::RowVector3d::Zero()));
-    const Defect* d = v.find(DefectKind::kInsideOut);
+    const Defect* d = v.find(DefectKind::inside_out);
     REQUIRE(d);
     CHECK(d->count == 1);
     CHECK(d->face == 12);
@@ -325,21 +325,21 @@ TEST_CASE("inside-out, zero volume and nested shells") {
     const Mesh crossed = join(slab, flipped(box), Eigen::RowVector3d::Zero());
     v = validate_mesh(crossed);
     CHECK(v.component_depth == std::vector<int>({0, 1}));
-    CHECK(kinds(v) == std::vector<DefectKind>{DefectKind::kOverlappingShells, DefectKind::kSeveralComponents});
-    const Defect* d = v.find(DefectKind::kOverlappingShells);
+    CHECK(kinds(v) == std::vector<DefectKind>{DefectKind::overlapping_shells, DefectKind::several_components});
+    const Defect* d = v.find(DefectKind::overlapping_shells);
     REQUIRE(d);
     CHECK(d->count == 1);
     CHECK(d->face == 12);
     CHECK(d->value == doctest::Approx(48.0 - 72.5));
-    CHECK_THROWS_WITH_AS(load_raw_mesh("crossed.obj", RawMesh{MeshFormat::kObj, crossed.V, crossed.F, {}, {}, {}}),
+    CHECK_THROWS_WITH_AS(load_raw_mesh("crossed.obj", RawMesh{MeshFormat::obj, crossed.V, crossed.F, {}, {}, {}}),
                          "crossed.obj: cavity shell encloses more than the shells around it: the signed volumes sum to -24.5 (shells cross each other), face 12",
                          MeshInputError);
     // Every face reversed: both shells are inside-out, and flipping them back (what loading does
     // for inside-out meshes) would give the same crossed shells.
     const MeshValidation reversed = validate_mesh(flipped(crossed));
-    CHECK(kinds(reversed) == std::vector<DefectKind>{DefectKind::kInsideOut, DefectKind::kOverlappingShells,
-                                                     DefectKind::kSeveralComponents});
-    CHECK_THROWS_WITH_AS(load_raw_mesh("reversed.obj", RawMesh{MeshFormat::kObj, crossed.V, flipped(crossed).F, {}, {}, {}}),
+    CHECK(kinds(reversed) == std::vector<DefectKind>{DefectKind::inside_out, DefectKind::overlapping_shells,
+                                                     DefectKind::several_components});
+    CHECK_THROWS_WITH_AS(load_raw_mesh("reversed.obj", RawMesh{MeshFormat::obj, crossed.V, flipped(crossed).F, {}, {}, {}}),
                          "reversed.obj: cavity shell encloses more than the shells around it: the signed volumes sum to "
                          "-24.5 once every face is flipped (shells cross each other), face 12",
                          MeshInputError);
@@ -347,7 +347,7 @@ TEST_CASE("inside-out, zero volume and nested shells") {
   SUBCASE("a part inside a cavity inside a part") {
     const Mesh core = make_box(Eigen::Vector3d(1.25, 1.5, 1.5), Eigen::Vector3d(1.75, 2.5, 2.5));
     v = validate_mesh(join(join(outer, flipped(inner), Eigen::RowVector3d::Zero()), core, Eigen::RowVector3d::Zero()));
-    CHECK(kinds(v) == std::vector<DefectKind>{DefectKind::kSeveralComponents});
+    CHECK(kinds(v) == std::vector<DefectKind>{DefectKind::several_components});
     CHECK(v.component_depth == std::vector<int>({0, 1, 2}));
   }
 }
@@ -360,15 +360,15 @@ TEST_CASE("unreferenced vertices are a note, not a defect") {
   const MeshValidation v = validate_mesh(m);
   CHECK(v.unreferenced_vertices == 2);
   CHECK(v.first_unreferenced == 8);
-  CHECK(kinds(v) == std::vector<DefectKind>{DefectKind::kNonFiniteCoordinate});  // check reports it
-  const LoadedMesh loaded = load_raw_mesh("m.obj", RawMesh{MeshFormat::kObj, m.V, m.F, {}, {}, {}});
+  CHECK(kinds(v) == std::vector<DefectKind>{DefectKind::non_finite_coordinate});  // check reports it
+  const LoadedMesh loaded = load_raw_mesh("m.obj", RawMesh{MeshFormat::obj, m.V, m.F, {}, {}, {}});
   REQUIRE(loaded.warnings.size() == 1);
   CHECK(loaded.warnings[0] == "dropped 2 unreferenced vertices (first: vertex 8)");
   CHECK(loaded.mesh.V.rows() == 8);
 }
 
 TEST_CASE("load_mesh repairs what is safe and refuses the rest, naming file faces") {
-  auto raw_of = [](const Mesh& m) { return RawMesh{MeshFormat::kStlBinary, m.V, m.F, {}, {}, {}}; };
+  auto raw_of = [](const Mesh& m) { return RawMesh{MeshFormat::stl_binary, m.V, m.F, {}, {}, {}}; };
   SUBCASE("inside-out is flipped with a warning, or refused on request") {
     const LoadedMesh loaded = load_raw_mesh("scan.stl", raw_of(flipped(unit_box())));
     REQUIRE(loaded.warnings.size() == 1);
@@ -423,7 +423,7 @@ TEST_CASE("load_mesh repairs what is safe and refuses the rest, naming file face
   }
   SUBCASE("text formats name the line") {
     Mesh m = without_faces(unit_box(), {11});
-    RawMesh raw{MeshFormat::kObj, m.V, m.F, {}, {}, {}};
+    RawMesh raw{MeshFormat::obj, m.V, m.F, {}, {}, {}};
     for (int i = 0; i < 8; ++i) raw.vertex_line.push_back(i + 1);
     for (int f = 0; f < 11; ++f) raw.face_line.push_back(f + 20);
     const EdgeCensus census = edge_census(m);

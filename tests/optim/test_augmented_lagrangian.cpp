@@ -43,7 +43,7 @@ TEST_CASE("augmented-lagrangian: 100,000 linear rows, 36 variables, solution kno
 
   const AlResult r = augmented_lagrangian_minimize(p, VectorXd::Zero(36));
   MESSAGE(describe(r));
-  CHECK(r.status == AlStatus::Converged);
+  CHECK(r.status == AlStatus::converged);
   // x is determined to (stationarity 1e-8) / (smallest curvature of σH on the free subspace,
   // ≈ 2e-3): a few 1e-6; the objective much more tightly.
   CHECK((r.x - lb.x_star).lpNorm<Eigen::Infinity>() < 1e-5);
@@ -80,7 +80,7 @@ TEST_CASE("augmented-lagrangian: contradictory linear rows end Infeasible at the
   p.linear_upper = Eigen::Vector2d(kInf, 1.0);
   const AlResult r = augmented_lagrangian_minimize(p, Eigen::Vector2d(3.0, -1.0));
   MESSAGE(describe(r));
-  CHECK(r.status == AlStatus::Infeasible);
+  CHECK(r.status == AlStatus::infeasible);
   CHECK(r.x(0) + r.x(1) == doctest::Approx(1.5).epsilon(1e-7));
   CHECK(r.max_violation == doctest::Approx(0.5).epsilon(1e-7));
   CHECK(r.outer_iterations < 20);
@@ -103,18 +103,18 @@ TEST_CASE("augmented-lagrangian: nonlinear constraint out of reach of the bounds
   p.upper = Eigen::Vector2d(3.0, 5.0);
   const AlResult r = augmented_lagrangian_minimize(p, Eigen::Vector2d(2.5, 4.0));
   MESSAGE(describe(r));
-  CHECK(r.status == AlStatus::Infeasible);
+  CHECK(r.status == AlStatus::infeasible);
   CHECK(r.x(0) == 2.0);
   CHECK(std::fabs(r.x(1)) < 1e-6);
   CHECK(r.max_violation == doctest::Approx(3.0).epsilon(1e-9));
   CHECK(r.outer_iterations < 20);
   // A clearly infeasible problem (violation far above the tolerance) is checked after one
   // stagnant outer iteration: the same answer, sooner.
-  AlParams quick;
+  AlOptions quick;
   quick.clear_violation_factor = 1e4;
   const AlResult q = augmented_lagrangian_minimize(p, Eigen::Vector2d(2.5, 4.0), quick);
   MESSAGE(describe(q));
-  CHECK(q.status == AlStatus::Infeasible);
+  CHECK(q.status == AlStatus::infeasible);
   CHECK(q.max_violation == doctest::Approx(3.0).epsilon(1e-9));
   CHECK(q.outer_iterations < r.outer_iterations);
 }
@@ -137,7 +137,7 @@ TEST_CASE("augmented-lagrangian: identical iterates on repeated runs") {
   std::vector<double> t1, t2;
   const AlResult a = run(t1);
   const AlResult b = run(t2);
-  CHECK(a.status == AlStatus::Converged);
+  CHECK(a.status == AlStatus::converged);
   CHECK(t1.size() > 100);
   CHECK(t1 == t2);
   CHECK(a.x == b.x);
@@ -177,7 +177,7 @@ TEST_CASE("augmented-lagrangian: KKT residual with the returned multipliers (HS0
   x0 << 1.0, 5.0, 5.0, 1.0;
   const AlResult r = augmented_lagrangian_minimize(p, x0);
   MESSAGE(describe(r));
-  REQUIRE(r.status == AlStatus::Converged);
+  REQUIRE(r.status == AlStatus::converged);
   CHECK(r.x(1) - r.x(2) == doctest::Approx(0.8).epsilon(1e-8));
   CHECK(r.linear_multipliers(0) > 0.0);
   VectorXd g(4), ce(1), ci(1);
@@ -215,7 +215,7 @@ TEST_CASE("augmented-lagrangian: a noisy gradient ends Stalled at a feasible poi
   };
   const AlResult r = augmented_lagrangian_minimize(p, Eigen::Vector2d(3.0, 3.0));
   MESSAGE(describe(r));
-  CHECK(r.status == AlStatus::Stalled);
+  CHECK(r.status == AlStatus::stalled);
   CHECK(r.max_violation <= 1e-8);
   CHECK((r.x - Eigen::Vector2d(0.0, 1.0)).lpNorm<Eigen::Infinity>() < 1e-5);
   CHECK(r.outer_iterations < 30);
@@ -237,12 +237,12 @@ TEST_CASE("augmented-lagrangian: a feasible problem with a flat constraint is no
     c(0) = 1e-4 * (x(0) + x(1) - 1.0);
     j << 1e-4, 1e-4;
   };
-  AlParams params;
+  AlOptions params;
   params.feasibility_tolerance = 1e-12;
   params.stationarity_tolerance = 1e-6;
   const AlResult r = augmented_lagrangian_minimize(p, Eigen::Vector2d(0.0, 0.0), params);
   MESSAGE(describe(r));
-  CHECK(r.status != AlStatus::Infeasible);
+  CHECK(r.status != AlStatus::infeasible);
   CHECK(r.max_violation <= 1e-12);
   CHECK((r.x - Eigen::Vector2d(0.5, 0.5)).lpNorm<Eigen::Infinity>() < 1e-4);
 }
@@ -273,24 +273,24 @@ TEST_CASE("augmented-lagrangian: a warm start with the solution's multipliers ne
   VectorXd x0(4);
   x0 << 1.0, 5.0, 5.0, 1.0;
   const AlResult cold = augmented_lagrangian_minimize(p, x0);
-  REQUIRE(cold.status == AlStatus::Converged);
+  REQUIRE(cold.status == AlStatus::converged);
   const VectorXd nearby = cold.x + VectorXd::Constant(4, 1e-3);
   const AlResult cold_again = augmented_lagrangian_minimize(p, nearby);
-  AlParams warm_params;
+  AlOptions warm_params;
   warm_params.initial_equality_multipliers = cold.equality_multipliers;
   warm_params.initial_inequality_multipliers = cold.inequality_multipliers;
   warm_params.initial_penalty = cold.penalty;
   const AlResult warm = augmented_lagrangian_minimize(p, nearby, warm_params);
   MESSAGE("cold " << describe(cold_again) << "; warm " << describe(warm));
-  REQUIRE(warm.status == AlStatus::Converged);
+  REQUIRE(warm.status == AlStatus::converged);
   CHECK((warm.x - cold.x).lpNorm<Eigen::Infinity>() < 1e-6);
   CHECK(warm.evaluations < cold_again.evaluations);
   CHECK(warm.equality_multipliers(0) == doctest::Approx(cold.equality_multipliers(0)).epsilon(1e-4));
 
-  AlParams wrong;
+  AlOptions wrong;
   wrong.initial_inequality_multipliers = VectorXd::Zero(2);
   const AlResult refused = augmented_lagrangian_minimize(p, x0, wrong);
-  CHECK(refused.status == AlStatus::InvalidInput);
+  CHECK(refused.status == AlStatus::invalid_input);
   CHECK(refused.message.find("initial_inequality_multipliers") != std::string::npos);
 }
 
@@ -304,7 +304,7 @@ TEST_CASE("augmented-lagrangian: no constraints is a plain bound-constrained sol
   p.upper = Eigen::Vector3d(kInf, 1.5, kInf);
   p.lower = Eigen::Vector3d(-kInf, -kInf, -kInf);
   const AlResult r = augmented_lagrangian_minimize(p, VectorXd::Zero(3));
-  CHECK(r.status == AlStatus::Converged);
+  CHECK(r.status == AlStatus::converged);
   CHECK((r.x - Eigen::Vector3d(1.0, 1.5, 3.0)).lpNorm<Eigen::Infinity>() < 1e-8);
   CHECK(r.outer_iterations <= 2);
 }
@@ -316,37 +316,37 @@ TEST_CASE("augmented-lagrangian: bad input and non-finite start are reported, no
     g = 2.0 * x;
     return x.squaredNorm();
   };
-  CHECK(augmented_lagrangian_minimize(p, VectorXd::Zero(3)).status == AlStatus::InvalidInput);
+  CHECK(augmented_lagrangian_minimize(p, VectorXd::Zero(3)).status == AlStatus::invalid_input);
   ConstrainedProblem q = p;
   q.num_equality = 1;  // no function
-  CHECK(augmented_lagrangian_minimize(q, VectorXd::Zero(2)).status == AlStatus::InvalidInput);
+  CHECK(augmented_lagrangian_minimize(q, VectorXd::Zero(2)).status == AlStatus::invalid_input);
   MatrixXd a = MatrixXd::Ones(3, 2);
   ConstrainedProblem r = p;
   r.linear_matrix = &a;
   r.linear_lower = VectorXd::Zero(3);
   r.linear_upper = VectorXd::Zero(2);
-  CHECK(augmented_lagrangian_minimize(r, VectorXd::Zero(2)).status == AlStatus::InvalidInput);
+  CHECK(augmented_lagrangian_minimize(r, VectorXd::Zero(2)).status == AlStatus::invalid_input);
   r.linear_upper = VectorXd::Constant(3, -1.0);  // lower > upper
   const AlResult bad_rows = augmented_lagrangian_minimize(r, VectorXd::Zero(2));
-  CHECK(bad_rows.status == AlStatus::InvalidInput);
+  CHECK(bad_rows.status == AlStatus::invalid_input);
   CHECK(bad_rows.message.find("row 0") != std::string::npos);
   CHECK(bad_rows.x.size() == 2);  // the start point comes back: callers may use x regardless
   ConstrainedProblem empty_box = p;
   empty_box.lower = Eigen::Vector2d(0.0, 1.0);
   empty_box.upper = Eigen::Vector2d(1.0, 0.5);
   const AlResult empty = augmented_lagrangian_minimize(empty_box, Eigen::Vector2d(0.5, 0.75));
-  CHECK(empty.status == AlStatus::InvalidInput);
+  CHECK(empty.status == AlStatus::invalid_input);
   CHECK(empty.message.find("variable 1") != std::string::npos);
   CHECK(empty.x == Eigen::Vector2d(0.5, 0.75));
-  AlParams params;
+  AlOptions params;
   params.feasibility_tolerance = 0.0;
-  CHECK(augmented_lagrangian_minimize(p, VectorXd::Zero(2), params).status == AlStatus::InvalidInput);
+  CHECK(augmented_lagrangian_minimize(p, VectorXd::Zero(2), params).status == AlStatus::invalid_input);
   ConstrainedProblem s = p;
   s.objective = [](const VectorXd&, VectorXd& g) {
     g.setZero();
     return std::numeric_limits<double>::infinity();
   };
-  CHECK(augmented_lagrangian_minimize(s, VectorXd::Zero(2)).status == AlStatus::NumericalIssue);
+  CHECK(augmented_lagrangian_minimize(s, VectorXd::Zero(2)).status == AlStatus::numerical_issue);
 }
 
 TEST_CASE("gradient-check: accepts exact derivatives and pinpoints a wrong component") {
@@ -363,7 +363,7 @@ TEST_CASE("gradient-check: accepts exact derivatives and pinpoints a wrong compo
   const GradientCheckResult ok4 = check_gradient(good, x);
   CHECK(ok4.passed);
   CHECK(ok4.normalized_error < 1e-10);
-  GradientCheckParams second;
+  GradientCheckOptions second;
   second.order = 2;
   second.relative_step = 1e-6;
   CHECK(check_gradient(good, x, second).passed);
@@ -380,13 +380,13 @@ TEST_CASE("gradient-check: accepts exact derivatives and pinpoints a wrong compo
   CHECK_FALSE(jr.passed);
   CHECK(jr.worst_row == 1);
   CHECK(jr.worst_col == 2);
-  GradientCheckParams invalid;
+  GradientCheckOptions invalid;
   invalid.order = 3;
   CHECK_FALSE(check_gradient(good, x, invalid).passed);
   CHECK_FALSE(check_gradient(good, x, invalid).message.empty());
 }
 
-TEST_CASE("augmented-lagrangian: an exhausted evaluation budget ends MaxEvaluations at once") {
+TEST_CASE("augmented-lagrangian: an exhausted evaluation budget ends max_evaluations at once") {
   // Rosenbrock in 10 variables on the sphere |x|² = 4: far more than the budget allows. When the
   // budget runs out inside a subproblem, the next subproblem's only evaluation is the cached
   // start point, so no outer iteration can move: the solve must stop there, not raise the
@@ -411,11 +411,11 @@ TEST_CASE("augmented-lagrangian: an exhausted evaluation budget ends MaxEvaluati
   };
   for (int budget : {7, 25, 60}) {
     CAPTURE(budget);
-    AlParams params;
+    AlOptions params;
     params.max_evaluations = budget;
     const AlResult r = augmented_lagrangian_minimize(p, VectorXd::Constant(10, -1.0), params);
     MESSAGE(describe(r));
-    CHECK(r.status == AlStatus::MaxEvaluations);
+    CHECK(r.status == AlStatus::max_evaluations);
     CHECK(r.evaluations <= budget);
     // Each budget runs out inside the first subproblem: the solve ends with it.
     CHECK(r.outer_iterations == 1);

@@ -277,7 +277,7 @@ TEST_CASE("hock-schittkowski: published optima to 1e-6 relative, constraints to 
   for (const HsProblem& h : all_problems()) {
     CAPTURE(h.name);
     std::string trace;
-    AlParams params;
+    AlOptions params;
     params.on_outer_iteration = [&trace](const AlIterationInfo& it) {
       trace += "\n  outer " + std::to_string(it.outer_iteration) + " f=" + std::to_string(it.f) +
                " viol=" + std::to_string(it.max_violation) + " stat=" +
@@ -286,12 +286,12 @@ TEST_CASE("hock-schittkowski: published optima to 1e-6 relative, constraints to 
                "/" + std::to_string(it.inner_iterations);
     };
     const AlResult r = augmented_lagrangian_minimize(h.problem, h.x0, params);
-    if (r.status != AlStatus::Converged) MESSAGE(trace);
+    if (r.status != AlStatus::converged) MESSAGE(trace);
     MESSAGE(h.name << ": " << std::string(to_string(r.status)) << " f=" << r.f
                    << " f*=" << h.f_star << " viol=" << r.max_violation
                    << " stat=" << r.stationarity << " outer=" << r.outer_iterations
                    << " inner=" << r.inner_iterations << " evals=" << r.evaluations);
-    CHECK(r.status == AlStatus::Converged);
+    CHECK(r.status == AlStatus::converged);
     CHECK(std::fabs(r.f - h.f_star) <= 1e-6 * std::fabs(h.f_star));
     CHECK(r.max_violation <= 1e-8);
     const auto& p = h.problem;

@@ -61,14 +61,14 @@ VectorXd rosenbrock_start(int n) {
 TEST_CASE("lbfgsb: unconstrained chained Rosenbrock reaches (1,...,1) for n = 2, 10, 100") {
   for (int n : {2, 10, 100}) {
     CAPTURE(n);
-    LbfgsbParams params;
+    LbfgsbOptions params;
     params.gradient_tolerance = 1e-10;
     params.function_tolerance = 0.0;
     const LbfgsbResult r = lbfgsb_minimize(chained_rosenbrock, rosenbrock_start(n), VectorXd(),
                                            VectorXd(), params);
     MESSAGE("n=" << n << " status=" << std::string(to_string(r.status)) << " it=" << r.iterations
                  << " ev=" << r.evaluations << " f=" << r.f << " pg=" << r.projected_gradient_norm);
-    CHECK(r.status == LbfgsbStatus::Converged);
+    CHECK(r.status == LbfgsbStatus::converged);
     CHECK((r.x.array() - 1.0).abs().maxCoeff() < 1e-7);
     CHECK(r.f < 1e-15);
   }
@@ -96,13 +96,13 @@ TEST_CASE("lbfgsb: bounded Rosenbrock pairs stop on the bounds with the known mi
       expected(j + 1) = b * b;
       f_star += (1.0 - b) * (1.0 - b);
     }
-    LbfgsbParams params;
+    LbfgsbOptions params;
     params.gradient_tolerance = 1e-10;
     params.function_tolerance = 0.0;
     const LbfgsbResult r = lbfgsb_minimize(pair_rosenbrock, rosenbrock_start(n), lower, upper, params);
     MESSAGE("n=" << n << " status=" << std::string(to_string(r.status)) << " it=" << r.iterations
                  << " ev=" << r.evaluations);
-    CHECK(r.status == LbfgsbStatus::Converged);
+    CHECK(r.status == LbfgsbStatus::converged);
     CHECK((r.x - expected).lpNorm<Eigen::Infinity>() < 1e-7);
     CHECK(std::fabs(r.f - f_star) < 1e-10 * std::max(1.0, f_star));
     // Active set: exactly the bounded variables sit exactly on their bound; nothing else does.
@@ -208,14 +208,14 @@ TEST_CASE("lbfgsb: random bounded convex quadratics match brute-force active-set
       grad = qp.h * x + qp.q;
       return qp.value(x);
     };
-    LbfgsbParams params;
+    LbfgsbOptions params;
     params.gradient_tolerance = 1e-12;
     params.function_tolerance = 0.0;
     params.memory = 5;
     VectorXd x0(n);
     for (int i = 0; i < n; ++i) x0(i) = rng.uniform(-2.0, 2.0);  // outside the box at times
     const LbfgsbResult r = lbfgsb_minimize(f, x0, qp.lower, qp.upper, params);
-    CHECK(r.status == LbfgsbStatus::Converged);
+    CHECK(r.status == LbfgsbStatus::converged);
     CHECK((r.x - expected).lpNorm<Eigen::Infinity>() < 1e-8);
     // Compare active sets where the solution is not degenerate (clear multiplier or slack).
     const VectorXd grad = qp.h * expected + qp.q;
@@ -267,13 +267,13 @@ TEST_CASE("lbfgsb: constructed ill-conditioned bounded quadratic, n = 100, 40 ac
     grad = h * x + q;
     return 0.5 * x.dot(h * x) + q.dot(x);
   };
-  LbfgsbParams params;
+  LbfgsbOptions params;
   params.gradient_tolerance = 1e-11;
   params.function_tolerance = 0.0;
   const LbfgsbResult r = lbfgsb_minimize(f, VectorXd::Zero(n), lower, upper, params);
   MESSAGE("status=" << std::string(to_string(r.status)) << " it=" << r.iterations
                     << " ev=" << r.evaluations << " pg=" << r.projected_gradient_norm);
-  CHECK(r.status == LbfgsbStatus::Converged);
+  CHECK(r.status == LbfgsbStatus::converged);
   CHECK((r.x - x_star).lpNorm<Eigen::Infinity>() < 1e-8);
   for (int i = 0; i < n; ++i) {
     const bool should = i % 5 <= 1;
@@ -283,24 +283,24 @@ TEST_CASE("lbfgsb: constructed ill-conditioned bounded quadratic, n = 100, 40 ac
 
 TEST_CASE("lbfgsb: bad input is reported, not thrown") {
   ObjectiveFunction f = chained_rosenbrock;
-  LbfgsbParams bad;
+  LbfgsbOptions bad;
   bad.memory = 0;
   CHECK(lbfgsb_minimize(f, VectorXd::Zero(3), VectorXd(), VectorXd(), bad).status ==
-        LbfgsbStatus::InvalidInput);
-  CHECK(lbfgsb_minimize(f, VectorXd::Zero(3), VectorXd::Zero(2), VectorXd(), LbfgsbParams()).status ==
-        LbfgsbStatus::InvalidInput);
+        LbfgsbStatus::invalid_input);
+  CHECK(lbfgsb_minimize(f, VectorXd::Zero(3), VectorXd::Zero(2), VectorXd(), LbfgsbOptions()).status ==
+        LbfgsbStatus::invalid_input);
   CHECK(lbfgsb_minimize(f, VectorXd::Zero(2), VectorXd::Constant(2, 1.0), VectorXd::Zero(2),
-                        LbfgsbParams()).status == LbfgsbStatus::InvalidInput);
+                        LbfgsbOptions()).status == LbfgsbStatus::invalid_input);
   VectorXd nan_start = VectorXd::Zero(2);
   nan_start(1) = std::numeric_limits<double>::quiet_NaN();
-  CHECK(lbfgsb_minimize(f, nan_start, VectorXd(), VectorXd(), LbfgsbParams()).status ==
-        LbfgsbStatus::InvalidInput);
+  CHECK(lbfgsb_minimize(f, nan_start, VectorXd(), VectorXd(), LbfgsbOptions()).status ==
+        LbfgsbStatus::invalid_input);
   ObjectiveFunction nan_f = [](const VectorXd&, VectorXd& g) {
     g.setZero();
     return std::numeric_limits<double>::quiet_NaN();
   };
-  CHECK(lbfgsb_minimize(nan_f, VectorXd::Zero(2), VectorXd(), VectorXd(), LbfgsbParams()).status ==
-        LbfgsbStatus::NumericalIssue);
+  CHECK(lbfgsb_minimize(nan_f, VectorXd::Zero(2), VectorXd(), VectorXd(), LbfgsbOptions()).status ==
+        LbfgsbStatus::numerical_issue);
 }
 
 TEST_CASE("lbfgsb: non-finite trial values are backed off, and early stops keep the best iterate") {
@@ -320,30 +320,30 @@ TEST_CASE("lbfgsb: non-finite trial values are backed off, and early stops keep 
     return v;
   };
   VectorXd x0 = VectorXd::Constant(4, -30.0);
-  LbfgsbParams params;
+  LbfgsbOptions params;
   params.gradient_tolerance = 1e-10;
   const LbfgsbResult r = lbfgsb_minimize(f, x0, VectorXd(), VectorXd(), params);
-  CHECK(r.status == LbfgsbStatus::Converged);
+  CHECK(r.status == LbfgsbStatus::converged);
   VectorXd g(4);
   CHECK(std::isfinite(f(r.x, g)));
   CHECK(g.lpNorm<Eigen::Infinity>() < 1e-9);
 
   // Cap the iterations: the result is the best iterate, below the start value, and consistent.
-  LbfgsbParams capped;
+  LbfgsbOptions capped;
   capped.max_iterations = 3;
   const LbfgsbResult c = lbfgsb_minimize(chained_rosenbrock, rosenbrock_start(10), VectorXd(),
                                          VectorXd(), capped);
-  CHECK(c.status == LbfgsbStatus::MaxIterations);
+  CHECK(c.status == LbfgsbStatus::max_iterations);
   CHECK(c.iterations == 3);
   VectorXd g0(10), gc(10);
   CHECK(c.f < chained_rosenbrock(rosenbrock_start(10), g0));
   CHECK(chained_rosenbrock(c.x, gc) == c.f);
   CHECK(gc == c.grad);
-  LbfgsbParams few_evals;
+  LbfgsbOptions few_evals;
   few_evals.max_evaluations = 5;
   const LbfgsbResult e = lbfgsb_minimize(chained_rosenbrock, rosenbrock_start(10), VectorXd(),
                                          VectorXd(), few_evals);
-  CHECK(e.status == LbfgsbStatus::MaxEvaluations);
+  CHECK(e.status == LbfgsbStatus::max_evaluations);
   CHECK(e.evaluations <= 5);
   CHECK(e.f <= chained_rosenbrock(rosenbrock_start(10), g0));
 }

@@ -254,27 +254,42 @@ TEST_CASE("more-thuente: strong Wolfe steps with the paper's evaluation counts o
       double f0, g0;
       fn.phi(0.0, f0, g0);
       REQUIRE(g0 < 0.0);
-      MoreThuenteSettings st;
+      MoreThuenteOptions st;
       st.ftol = fn.ftol;
       st.gtol = fn.gtol;
       st.xtol = 1e-10;
       st.stpmin = 0.0;
       st.stpmax = 1e10;
       MoreThuenteSearch search;
-      MoreThuenteState state = search.start(f0, g0, a0, st);
+      MoreThuenteStatus state = search.start(f0, g0, a0, st);
       int evals = 0;
       double f = 0.0, g = 0.0, a = 0.0;
-      while (state == MoreThuenteState::Evaluate && evals < 50) {
+      while (state == MoreThuenteStatus::evaluate && evals < 50) {
         a = search.step();
         fn.phi(a, f, g);
         ++evals;
         state = search.advance(f, g);
       }
       MESSAGE(fn.name << " a0=" << a0 << " evals=" << evals << " a=" << a << " g=" << g);
-      CHECK(state == MoreThuenteState::Converged);
+      CHECK(state == MoreThuenteStatus::converged);
       CHECK(f <= f0 + fn.ftol * a * g0);
       CHECK(std::fabs(g) <= fn.gtol * std::fabs(g0));
       CHECK(evals == fn.published_evaluations[static_cast<size_t>(k)]);
     }
   }
+}
+
+TEST_CASE("more-thuente: bad options are named by check() and end the search with error") {
+  CHECK(MoreThuenteOptions{}.check().empty());
+  MoreThuenteOptions options;
+  options.stpmin = 2.0;
+  options.stpmax = 1.0;
+  CHECK(options.check() == "stpmax must be >= stpmin");
+  MoreThuenteSearch search;
+  CHECK(search.start(1.0, -1.0, 1.5, options) == MoreThuenteStatus::error);
+  options = MoreThuenteOptions{};
+  options.xtol = -1.0;
+  CHECK(options.check() == "xtol must be >= 0");
+  CHECK(search.start(1.0, -1.0, 1.0, options) == MoreThuenteStatus::error);
+  CHECK(search.start(1.0, -1.0, 1.0, MoreThuenteOptions{}) == MoreThuenteStatus::evaluate);
 }

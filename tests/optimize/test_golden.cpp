@@ -101,9 +101,9 @@ const std::set<std::string> kPathKeys = {"evaluations", "outer_iterations", "inn
 void compare_json(const Json& expected, const Json& actual, const std::string& where, double absolute,
                   std::vector<std::string>& differences) {
   if (differences.size() > 20) return;
-  const bool numbers = (expected.type() == Json::Type::Number || expected.type() == Json::Type::Integer) &&
-                       (actual.type() == Json::Type::Number || actual.type() == Json::Type::Integer);
-  if (expected.type() == Json::Type::Integer && actual.type() == Json::Type::Integer) {
+  const bool numbers = (expected.type() == Json::Type::number || expected.type() == Json::Type::integer) &&
+                       (actual.type() == Json::Type::number || actual.type() == Json::Type::integer);
+  if (expected.type() == Json::Type::integer && actual.type() == Json::Type::integer) {
     // Counts of vertices (clamped, left solid, ...): a vertex at a threshold may fall either way.
     const double a = expected.as_number(), b = actual.as_number();
     if (std::fabs(a - b) > std::max(3.0, 0.02 * std::max(std::fabs(a), std::fabs(b))))
@@ -121,7 +121,7 @@ void compare_json(const Json& expected, const Json& actual, const std::string& w
     return;
   }
   switch (expected.type()) {
-    case Json::Type::Object: {
+    case Json::Type::object: {
       if (expected.items().size() != actual.items().size()) differences.push_back(where + ": different keys");
       for (const auto& [key, value] : expected.items()) {
         if (kPathKeys.count(key)) continue;
@@ -133,7 +133,7 @@ void compare_json(const Json& expected, const Json& actual, const std::string& w
       }
       break;
     }
-    case Json::Type::Array:
+    case Json::Type::array:
       if (expected.size() != actual.size()) {
         differences.push_back(where + ": " + std::to_string(expected.size()) + " elements against " +
                               std::to_string(actual.size()));

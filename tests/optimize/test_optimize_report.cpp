@@ -39,12 +39,12 @@ bool same_build_as_golden() {
 
 // Every object's keys in order, recursively (array elements by index): the report's shape.
 void collect_keys(const Json& j, const std::string& path, std::vector<std::string>& out) {
-  if (j.type() == Json::Type::Object) {
+  if (j.type() == Json::Type::object) {
     for (const auto& [key, value] : j.items()) {
       out.push_back(path + "." + key);
       collect_keys(value, path + "." + key, out);
     }
-  } else if (j.type() == Json::Type::Array) {
+  } else if (j.type() == Json::Type::array) {
     for (std::size_t i = 0; i < j.size(); ++i) collect_keys(j.at(i), path + "[" + std::to_string(i) + "]", out);
   }
 }

@@ -19,7 +19,7 @@ TEST_CASE("optimize: a solve cut off by its evaluation budget says so") {
   const OptimizeResult r = optimize_offsets(bottle, options);
   MESSAGE(r.message);
   CHECK(r.status == OptimizeStatus::goal_not_met);
-  CHECK(r.solver.status == AlStatus::MaxEvaluations);
+  CHECK(r.solver.status == AlStatus::max_evaluations);
   CHECK(std::string(to_string(r.solver.status)) == "max-evaluations");
   CHECK(r.solver.evaluations <= 4);
   CHECK(r.message.find("the solver used its 4 evaluations before meeting the constraints") == 0);

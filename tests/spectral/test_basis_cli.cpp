@@ -139,7 +139,7 @@ TEST_CASE("basis CLI: report, vectors and PLY, and two runs write the same bytes
   CHECK(same);
   // CSV of the Laplacian basis reads back to the library's doubles.
   ManifoldHarmonicsOptions laplacian;
-  laplacian.kind = BasisKind::Laplacian;
+  laplacian.kind = BasisKind::laplacian;
   const LanczosResult standard = manifold_harmonics(loaded, k, laplacian);
   std::istringstream csv(read_file(dir / "v0.csv"));
   std::string line;

@@ -124,7 +124,7 @@ TEST_CASE("Lanczos agrees with Eigen's dense solvers on small meshes (standard a
       CAPTURE(generalised);
       const Eigen::VectorXd mass = generalised ? lumped_mass(mesh.V, mesh.F) : Eigen::VectorXd();
       const LanczosResult result = lanczos_eigensolver(L, mass, k, options, &mesh.V);
-      REQUIRE(result.status == LanczosStatus::Converged);
+      REQUIRE(result.status == LanczosStatus::converged);
       CHECK(result.converged == k);
       CHECK(result.dense == (mesh.V.rows() <= options.dense_below));
       check_pairs(result, L, mass, k, options.tolerance);
@@ -142,7 +142,7 @@ TEST_CASE("the icosphere's 36 eigenpairs end on a cluster boundary and none is d
     CAPTURE(generalised);
     const Eigen::VectorXd mass = generalised ? lumped_mass(mesh.V, mesh.F) : Eigen::VectorXd();
     const LanczosResult result = lanczos_eigensolver(L, mass, 36, {}, &mesh.V);
-    REQUIRE(result.status == LanczosStatus::Converged);
+    REQUIRE(result.status == LanczosStatus::converged);
     CHECK_FALSE(result.dense);
     check_pairs(result, L, mass, 36, LanczosOptions{}.tolerance);
     const Reference ref = dense_reference(L, mass);
@@ -158,7 +158,7 @@ TEST_CASE("generalised eigenvalues on refining icospheres approach l(l+1)/R^2 wi
     CAPTURE(subdivisions);
     const Mesh mesh = make_icosphere(R, subdivisions);
     const LanczosResult result = manifold_harmonics(mesh, 36);
-    REQUIRE(result.status == LanczosStatus::Converged);
+    REQUIRE(result.status == LanczosStatus::converged);
     CHECK(std::abs(result.eigenvalues(0)) <= 1e-10);
     double error = 0.0;
     int first = 0;
@@ -187,7 +187,7 @@ TEST_CASE("k = 1, k = n - 1 and k >= n") {
     for (bool generalised : {false, true}) {
       const Eigen::VectorXd m = generalised ? mass : Eigen::VectorXd();
       const LanczosResult result = lanczos_eigensolver(L, m, 1, {}, &bumpy.V);
-      REQUIRE(result.status == LanczosStatus::Converged);
+      REQUIRE(result.status == LanczosStatus::converged);
       check_pairs(result, L, m, 1, LanczosOptions{}.tolerance);
       const double constant = generalised ? 1.0 / std::sqrt(mass.sum()) : 1.0 / std::sqrt(static_cast<double>(L.rows()));
       CHECK((result.eigenvectors.col(0).array() - constant).abs().maxCoeff() <= 1e-8 * constant);
@@ -202,7 +202,7 @@ TEST_CASE("k = 1, k = n - 1 and k >= n") {
     for (bool generalised : {false, true}) {
       const Eigen::VectorXd m = generalised ? ms : Eigen::VectorXd();
       const LanczosResult result = lanczos_eigensolver(Ls, m, k, {}, &small.V);
-      REQUIRE(result.status == LanczosStatus::Converged);
+      REQUIRE(result.status == LanczosStatus::converged);
       check_pairs(result, Ls, m, k, LanczosOptions{}.tolerance);
       compare_with_dense(result, Ls, m, k);
     }
@@ -210,11 +210,11 @@ TEST_CASE("k = 1, k = n - 1 and k >= n") {
   SUBCASE("k >= n is refused with a message") {
     for (int k : {static_cast<int>(L.rows()), static_cast<int>(L.rows()) + 5}) {
       const LanczosResult result = lanczos_eigensolver(L, mass, k, {}, &bumpy.V);
-      CHECK(result.status == LanczosStatus::InvalidInput);
+      CHECK(result.status == LanczosStatus::invalid_input);
       CHECK(result.message.find("must be below") != std::string::npos);
       CHECK(result.eigenvalues.size() == 0);
     }
-    CHECK(lanczos_eigensolver(L, mass, 0).status == LanczosStatus::InvalidInput);
+    CHECK(lanczos_eigensolver(L, mass, 0).status == LanczosStatus::invalid_input);
   }
 }
 
@@ -230,7 +230,7 @@ TEST_CASE("two disconnected spheres: a double zero eigenvalue") {
   LanczosOptions options;
   options.tolerance = 1e-12;
   const LanczosResult result = lanczos_eigensolver(L, mass, 20, options, &both.V);
-  REQUIRE(result.status == LanczosStatus::Converged);
+  REQUIRE(result.status == LanczosStatus::converged);
   check_pairs(result, L, mass, 20, options.tolerance);
   compare_with_dense(result, L, mass, 20);
   CHECK(std::abs(result.eigenvalues(1)) <= 1e-10);
@@ -244,7 +244,7 @@ TEST_CASE("AMD ordering (no positions) gives the same pairs") {
   options.tolerance = 1e-12;
   const LanczosResult with_positions = lanczos_eigensolver(L, mass, 20, options, &mesh.V);
   const LanczosResult without = lanczos_eigensolver(L, mass, 20, options);
-  REQUIRE(without.status == LanczosStatus::Converged);
+  REQUIRE(without.status == LanczosStatus::converged);
   check_pairs(without, L, mass, 20, options.tolerance);
   for (int j = 1; j < 20; ++j) CHECK(without.eigenvalues(j) == doctest::Approx(with_positions.eigenvalues(j)).epsilon(1e-10));
 }
@@ -255,7 +255,7 @@ TEST_CASE("deterministic: the same input gives the same bits") {
   const Eigen::VectorXd mass = lumped_mass(mesh.V, mesh.F);
   const LanczosResult first = lanczos_eigensolver(L, mass, 24, {}, &mesh.V);
   const LanczosResult second = lanczos_eigensolver(L, mass, 24, {}, &mesh.V);
-  REQUIRE(first.status == LanczosStatus::Converged);
+  REQUIRE(first.status == LanczosStatus::converged);
   CHECK(first.operator_applications == second.operator_applications);
   CHECK((first.eigenvalues.array() == second.eigenvalues.array()).all());
   CHECK((first.eigenvectors.array() == second.eigenvectors.array()).all());
@@ -273,13 +273,13 @@ TEST_CASE("deterministic: the same input gives the same bits") {
   }
 }
 
-TEST_CASE("the cap on operator applications ends the run with NotConverged and the best pairs") {
+TEST_CASE("the cap on operator applications ends the run with not_converged and the best pairs") {
   const Mesh mesh = test::bumpy_icosphere(3);
   const Eigen::SparseMatrix<double> L = cotan_laplacian(mesh.V, mesh.F);
   LanczosOptions options;
   options.max_operator_applications = 3 * options.block_size;
   const LanczosResult result = lanczos_eigensolver(L, Eigen::VectorXd(), 10, options, &mesh.V);
-  CHECK(result.status == LanczosStatus::NotConverged);
+  CHECK(result.status == LanczosStatus::not_converged);
   CHECK(result.operator_applications <= options.max_operator_applications);
   CHECK(result.converged < 10);
   REQUIRE(result.eigenvectors.cols() == 10);
@@ -294,18 +294,18 @@ TEST_CASE("invalid input and options are refused, not thrown") {
   Eigen::VectorXd mass = lumped_mass(mesh.V, mesh.F);
   LanczosOptions bad;
   bad.tolerance = 0.0;
-  CHECK(lanczos_eigensolver(L, mass, 5, bad).status == LanczosStatus::InvalidInput);
+  CHECK(lanczos_eigensolver(L, mass, 5, bad).status == LanczosStatus::invalid_input);
   bad = {};
   bad.block_size = 0;
-  CHECK(lanczos_eigensolver(L, mass, 5, bad).status == LanczosStatus::InvalidInput);
+  CHECK(lanczos_eigensolver(L, mass, 5, bad).status == LanczosStatus::invalid_input);
   mass(7) = 0.0;
   const LanczosResult zero_mass = lanczos_eigensolver(L, mass, 5);
-  CHECK(zero_mass.status == LanczosStatus::InvalidInput);
+  CHECK(zero_mass.status == LanczosStatus::invalid_input);
   CHECK(zero_mass.message.find("row 7") != std::string::npos);
-  CHECK(lanczos_eigensolver(L, Eigen::VectorXd::Ones(3), 5).status == LanczosStatus::InvalidInput);
+  CHECK(lanczos_eigensolver(L, Eigen::VectorXd::Ones(3), 5).status == LanczosStatus::invalid_input);
   // Not positive semi-definite: -L.
   const Eigen::SparseMatrix<double> negative = -L;
-  CHECK(lanczos_eigensolver(negative, Eigen::VectorXd(), 5, {}, &mesh.V).status != LanczosStatus::Converged);
+  CHECK(lanczos_eigensolver(negative, Eigen::VectorXd(), 5, {}, &mesh.V).status != LanczosStatus::converged);
 }
 
 TEST_CASE("a small basis forces thick restarts and locking, and the pairs are the same") {
@@ -319,7 +319,7 @@ TEST_CASE("a small basis forces thick restarts and locking, and the pairs are th
     options.block_size = block;
     options.max_basis = 30 + 3 * block;
     const LanczosResult result = lanczos_eigensolver(L, mass, 24, options, &mesh.V);
-    REQUIRE(result.status == LanczosStatus::Converged);
+    REQUIRE(result.status == LanczosStatus::converged);
     CHECK(result.restarts > 0);
     check_pairs(result, L, mass, 24, options.tolerance);
     compare_with_dense(result, L, mass, 24);

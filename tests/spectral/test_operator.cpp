@@ -40,7 +40,7 @@ TEST_CASE("shift-invert operator equals D (L + sM)^-1 D on blocks of any width")
       CAPTURE(geometric);
       const Eigen::VectorXd m = generalised ? mass : Eigen::VectorXd();
       const ShiftInvertOperator op(L, m, shift, geometric ? &mesh.V : nullptr);
-      REQUIRE(op.status() == ShiftInvertOperator::Status::Ok);
+      REQUIRE(op.status() == ShiftInvertOperator::Status::ok);
       const Eigen::VectorXd d = generalised ? Eigen::VectorXd(mass.cwiseSqrt()) : Eigen::VectorXd::Ones(n);
       const Eigen::MatrixXd K = Eigen::MatrixXd(L) + shift * Eigen::MatrixXd(d.cwiseProduct(d).asDiagonal());
       const Eigen::MatrixXd dense = d.asDiagonal() * K.inverse() * d.asDiagonal();
@@ -62,7 +62,7 @@ TEST_CASE("shift-invert operator equals D (L + sM)^-1 D on blocks of any width")
   }
   // Not positive definite (a negative shift far below -λ_max): reported, not thrown.
   const ShiftInvertOperator bad(L, Eigen::VectorXd(), -1e6, &mesh.V);
-  CHECK(bad.status() == ShiftInvertOperator::Status::NotPositiveDefinite);
+  CHECK(bad.status() == ShiftInvertOperator::Status::not_positive_definite);
 }
 
 TEST_CASE("panel kernels match dense products, with and without threads") {
@@ -132,8 +132,8 @@ TEST_CASE("the factorisation on two threads gives the same operator, in either o
   const ShiftInvertOperator divided(L, mass, 0.3, &mesh.V, &pool);
   const ShiftInvertOperator serial(L, mass, 0.3, &mesh.V);
   const ShiftInvertOperator whole(L, mass, 0.3, nullptr);  // minimum degree only
-  REQUIRE(divided.status() == ShiftInvertOperator::Status::Ok);
-  REQUIRE(whole.status() == ShiftInvertOperator::Status::Ok);
+  REQUIRE(divided.status() == ShiftInvertOperator::Status::ok);
+  REQUIRE(whole.status() == ShiftInvertOperator::Status::ok);
   const RowMatrix X = random_block(L.rows(), 6, 9);
   RowMatrix a, b, c;
   divided.apply(X.data(), 6, 6, a, &pool);
