@@ -1,3 +1,8 @@
+// src/cli (this is the folder's main header): the command line, the top layer and the only code
+// that prints: one option table per command (help and parser from the same rows), the optimize
+// report written from the typed result (optimize_report.h), reading a report back for `preview`,
+// and `batch`. It may include every folder; nothing includes it.
+//
 // The subcommands of the offsetopt binary. Each takes the arguments after its name and returns
 // the process exit code (see ExitCode). Only this layer and main print.
 #pragma once

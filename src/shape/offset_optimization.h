@@ -1,3 +1,10 @@
+// src/shape (this is the folder's main header): the paper's method and what makes its result
+// printable: the offset field, smooth clamp, goals, reduced problem, the contoured cavity, the
+// printable solid, verification, the pipeline in named stages returning typed results, and the
+// preview picture. It builds no JSON and prints nothing. It may include every folder below it
+// (util, optim, mesh, geometry, io, meshio, sparse, spectral, skeleton, mass) and itself; only
+// src/cli sits above it.
+//
 // The whole optimisation of DESIGN.md's pipeline for one input mesh (Musialski et al. 2015):
 //   frame (ground, support) -> contraction meso-skeleton -> offset directions and bounds
 //   -> manifold-harmonic basis Γk -> reduced problem in α (and β with outer offsets),
