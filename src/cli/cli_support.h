@@ -6,12 +6,18 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "cli/commands.h"
 #include "geometry/mesh_defects.h"
+#include "io/json.h"
 #include "meshio/load_mesh.h"
 #include "util/seconds_since.h"
 
 namespace offsetopt::cli {
+
+// A point or vector as the reports write it: [x, y, z].
+inline Json vec3(const Eigen::Vector3d& v) { return Json::array_of({v.x(), v.y(), v.z()}); }
 
 // A usage or bad-input problem found by the CLI layer: printed as "Error: <what>", exit 2.
 class UsageError : public std::runtime_error {

@@ -37,8 +37,6 @@ const CommandHelp kHelp = {
     },
     ""};
 
-Json vec3(const Eigen::Vector3d& v) { return Json::array_of({v.x(), v.y(), v.z()}); }
-
 // Six significant digits for people; the JSON report carries the full round-trip values.
 std::string text(double value) {
   char buffer[32];

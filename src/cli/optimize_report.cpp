@@ -7,13 +7,12 @@
 #include <utility>
 #include <vector>
 
+#include "cli/cli_support.h"
 #include "mass/mass_properties.h"
 
 namespace offsetopt::cli {
 
 namespace {
-
-Json vec3(const Eigen::Vector3d& v) { return Json::array_of({v.x(), v.y(), v.z()}); }
 
 Json strings(const std::vector<std::string>& lines) {
   Json out = Json::array();

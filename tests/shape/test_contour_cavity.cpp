@@ -43,13 +43,22 @@ void check_printable(const Mesh& outer, const TriangleBvh& outer_bvh, const Cont
     CHECK(test::winding_number(outer, c.cavity.V.row(v).transpose()) > 0.5);
 }
 
+// An icosphere of radius 7 inside one of radius 10: the cavity is known to lie near radius 7.
+struct SphereInSphere {
+  double R = 10.0, r = 7.0;
+  Mesh outer = make_icosphere(R, 4);
+  Mesh inner = make_icosphere(r, 4);
+  TriangleBvh outer_bvh{outer.V, outer.F};
+};
+
 }  // namespace
 
 TEST_CASE("a sphere inside a sphere: one closed cavity within the grid's error bound, the wall kept") {
-  const double R = 10.0, r = 7.0, wall = 1.0;
-  const Mesh outer = make_icosphere(R, 4);
-  const Mesh inner = make_icosphere(r, 4);
-  const TriangleBvh outer_bvh(outer.V, outer.F);
+  const SphereInSphere spheres;
+  const double r = spheres.r, wall = 1.0;
+  const Mesh& outer = spheres.outer;
+  const Mesh& inner = spheres.inner;
+  const TriangleBvh& outer_bvh = spheres.outer_bvh;
   ContourCavityOptions options;
   options.wall = wall;
   for (int threads : {1, 2}) {
@@ -140,16 +149,14 @@ TEST_CASE("the contoured cavity is the same for any thread count") {
 TEST_CASE("a node cap that forces a grid coarser than the wall still gives a printable cavity") {
   // At 1500 nodes the spacing grows past the wall (√3·h > wall), and the margin grows with it so
   // that no grid edge reaches from a cavity node to the outer surface.
-  const double R = 10.0, r = 7.0, wall = 1.0;
-  const Mesh outer = make_icosphere(R, 4);
-  const Mesh inner = make_icosphere(r, 4);
-  const TriangleBvh outer_bvh(outer.V, outer.F);
+  const SphereInSphere spheres;
+  const double wall = 1.0;
   ContourCavityOptions options;
   options.wall = wall;
   options.max_nodes = 1500;
-  const ContourCavity c = contour_cavity(outer, outer_bvh, inner, options);
+  const ContourCavity c = contour_cavity(spheres.outer, spheres.outer_bvh, spheres.inner, options);
   REQUIRE(c.ok);
   CHECK(std::sqrt(3.0) * c.grid.spacing > wall);
-  check_printable(outer, outer_bvh, c, wall);
+  check_printable(spheres.outer, spheres.outer_bvh, c, wall);
   CHECK(c.shells == 1);
 }
