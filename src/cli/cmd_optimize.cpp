@@ -1,6 +1,6 @@
 // offsetopt optimize: the mission (Musialski et al. 2015): carve (and optionally thicken) the
 // input with smooth offset surfaces so the printed solid meets a mass-property goal, verify the
-// result and write the meshes and a JSON report (shape/offset_optimization.h).
+// result and write the meshes and a JSON report (optimize/offset_optimization.h).
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -13,7 +13,7 @@
 #include "io/json.h"
 #include "meshio/load_mesh.h"
 #include "meshio/write_mesh.h"
-#include "shape/offset_optimization.h"
+#include "optimize/offset_optimization.h"
 
 namespace offsetopt::cli {
 

@@ -1,7 +1,7 @@
 // offsetopt preview: the picture of a result already written by `optimize` (issue 14): the solid
 // is read in any supported format, the goal and its parameters come from the optimize report, the
 // rest (sections, stability, waterline, moments) is recomputed from the solid
-// (shape/preview_svg.h).
+// (optimize/preview_svg.h).
 #include <cstdio>
 #include <fstream>
 #include <sstream>

@@ -1,9 +1,9 @@
 // The JSON report of `offsetopt optimize` (README "The report"), written from the typed result of
-// shape/offset_optimization.h: the library returns values, the command line chooses the keys,
+// optimize/offset_optimization.h: the library returns values, the command line chooses the keys,
 // their order and the text (io/json.h, numbers by util/format_double).
 #pragma once
 #include "io/json.h"
-#include "shape/offset_optimization.h"
+#include "optimize/offset_optimization.h"
 
 namespace offsetopt::cli {
 

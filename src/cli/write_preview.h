@@ -1,13 +1,13 @@
 // The preview picture from the command line: shared by `offsetopt preview` (a result already
 // written) and `optimize --preview` (the result in memory), so both draw the same SVG
-// (shape/preview_svg.h).
+// (optimize/preview_svg.h).
 #pragma once
 #include <string>
 #include <vector>
 
 #include "io/json.h"
 #include "mesh/mesh.h"
-#include "shape/preview_svg.h"
+#include "optimize/preview_svg.h"
 
 namespace offsetopt::cli {
 

@@ -1,3 +1,8 @@
+// src/shape (this is the folder's main header): the offset model and the goals: the offset
+// field, smooth clamp, --fix regions, goals and the reduced problem. It may include every folder
+// below it (util, optim, mesh, geometry, io, meshio, sparse, spectral, skeleton, mass) and itself;
+// src/cavity and src/optimize sit above it.
+//
 // The reduced-order offset problem (Musialski et al. 2015, eq. 3, in the form DESIGN.md "Reduced
 // problem" fixes). With Γ the #V by k basis (manifold harmonics; rows of fixed vertices zeroed,
 // paper 5.2) the variables are x = [α] or, with outer offsets, x = [α; β]:

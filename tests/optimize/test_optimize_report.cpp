@@ -14,7 +14,7 @@
 #include "cli/cli_support.h"
 #include "cli/optimize_report.h"
 #include "io/json.h"
-#include "shape/offset_optimization.h"
+#include "optimize/offset_optimization.h"
 
 using namespace offsetopt;
 

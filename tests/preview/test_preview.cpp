@@ -25,7 +25,7 @@
 #include "mass/mass_properties.h"
 #include "mesh/primitives.h"
 #include "meshio/write_mesh.h"
-#include "shape/preview_svg.h"
+#include "optimize/preview_svg.h"
 #include "util/det_math.h"
 #include "util/format_double.h"
 

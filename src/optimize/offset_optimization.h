@@ -1,9 +1,7 @@
-// src/shape (this is the folder's main header): the paper's method and what makes its result
-// printable: the offset field, smooth clamp, goals, reduced problem, the contoured cavity, the
-// printable solid, verification, the pipeline in named stages returning typed results, and the
-// preview picture. It builds no JSON and prints nothing. It may include every folder below it
-// (util, optim, mesh, geometry, io, meshio, sparse, spectral, skeleton, mass) and itself; only
-// src/cli sits above it.
+// src/optimize (this is the folder's main header): the pipeline on top of the offset model
+// (src/shape) and what is written (src/cavity), in named stages returning typed results, and the
+// preview picture. It builds no JSON and prints nothing. It may include every folder below it;
+// only src/cli sits above it.
 //
 // The whole optimisation of DESIGN.md's pipeline for one input mesh (Musialski et al. 2015):
 //   frame (ground, support) -> contraction meso-skeleton -> offset directions and bounds
@@ -22,7 +20,7 @@
 #include "shape/fix_region.h"
 #include "shape/goal.h"
 #include "shape/reduced_problem.h"
-#include "shape/verify_offsets.h"
+#include "cavity/verify_offsets.h"
 #include "skeleton/laplacian_contraction.h"
 #include "spectral/lanczos_eigensolver.h"
 #include "spectral/manifold_harmonics.h"
@@ -31,7 +29,7 @@ namespace offsetopt {
 
 // Which cavity is written (DESIGN.md "The written cavity"): the smooth inner offset surface
 // (the paper's result, the input's connectivity), the contour of the implicit cavity
-// (shape/contour_cavity.h, corrected in moment space), or the offset surface when it verifies as
+// (cavity/contour_cavity.h, corrected in moment space), or the offset surface when it verifies as
 // it is and the contour otherwise.
 enum class CavityMode { automatic, offset, contour };
 const char* to_string(CavityMode mode);
@@ -60,7 +58,7 @@ struct OptimizeOptions {
   double start_fraction = 0.5;   // start inside the band (see ReducedOptions)
   CavityMode cavity = CavityMode::automatic;
   // The contoured cavity: grid spacing wall / cavity_cells_per_wall, interpolation margin
-  // cavity_margin_cells · h (shape/contour_cavity.h); at most max_correction_rounds solves again
+  // cavity_margin_cells · h (cavity/contour_cavity.h); at most max_correction_rounds solves again
   // with the contour's moments.
   double cavity_cells_per_wall = 1.5;
   double cavity_margin_cells = 0.25;
@@ -195,7 +193,7 @@ struct InputSummary {
   bool self_intersections_truncated = false;
 };
 
-// One round of the contoured cavity (shape/contour_cavity.h) and its verification.
+// One round of the contoured cavity (cavity/contour_cavity.h) and its verification.
 struct ContourRound {
   Vector10d delta_in_frame = Vector10d::Zero();  // contour minus offset model, inner integrals
   double void_volume_offset = 0.0, void_volume_contour = 0.0;

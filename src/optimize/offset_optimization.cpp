@@ -1,4 +1,4 @@
-#include "shape/offset_optimization.h"
+#include "optimize/offset_optimization.h"
 
 #include <chrono>
 #include <cmath>
@@ -15,10 +15,10 @@
 #include "mass/mass_properties.h"
 #include "mass/stability.h"
 #include "mass/volume_integrals.h"
-#include "shape/contour_cavity.h"
+#include "cavity/contour_cavity.h"
 #include "shape/offset_field.h"
-#include "shape/printable_solid.h"
-#include "shape/verify_offsets.h"
+#include "cavity/printable_solid.h"
+#include "cavity/verify_offsets.h"
 #include "skeleton/laplacian_contraction.h"
 #include "util/format_double.h"
 #include "util/seconds_since.h"

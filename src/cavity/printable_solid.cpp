@@ -1,4 +1,4 @@
-#include "shape/printable_solid.h"
+#include "cavity/printable_solid.h"
 
 namespace offsetopt {
 

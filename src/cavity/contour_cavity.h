@@ -1,3 +1,7 @@
+// src/cavity (this is the folder's main header): what is written and its checks: the contoured
+// cavity, the printable solid and the verification of the written surfaces. It may include
+// src/shape and every folder below it; src/optimize and src/cli sit above it.
+//
 // The written cavity, valid by construction (DESIGN.md "The written cavity"): the optimised inner
 // offset surface may fold, cross itself or cross the outer surface, and keeps no wall in parts
 // left solid, so the cavity that is written is the contour of

@@ -1,4 +1,4 @@
-#include "shape/contour_cavity.h"
+#include "cavity/contour_cavity.h"
 
 #include <algorithm>
 #include <cmath>

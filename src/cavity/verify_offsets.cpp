@@ -1,4 +1,4 @@
-#include "shape/verify_offsets.h"
+#include "cavity/verify_offsets.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // geometry/plane_section.h, stability from mass/stability.h (Prévost et al. 2013), the waterline
 // from mass/buoyancy.h; goals as in Musialski et al. 2015, section 6. Every number in the file is
 // written by std::to_chars (no locale), so the same solid and input give the same bytes.
-#include "shape/preview_svg.h"
+#include "optimize/preview_svg.h"
 
 #include <algorithm>
 #include <charconv>

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "mesh/demo_meshes.h"
-#include "shape/offset_optimization.h"
+#include "optimize/offset_optimization.h"
 
 using namespace offsetopt;
 

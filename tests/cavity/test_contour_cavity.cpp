@@ -1,4 +1,4 @@
-// The contoured cavity (shape/contour_cavity.h) against geometric answers: a sphere inside a
+// The contoured cavity (cavity/contour_cavity.h) against geometric answers: a sphere inside a
 // sphere gives one closed cavity whose volume lies between the balls shrunk and grown by the grid's
 // error bound, and whose smallest wall (measured exactly, vertex by vertex) is at least the one
 // requested; an inner offset surface that folds through itself and crosses the outer surface
@@ -16,7 +16,7 @@
 #include "geometry/intersecting_faces.h"
 #include "mass/volume_integrals.h"
 #include "mesh/primitives.h"
-#include "shape/contour_cavity.h"
+#include "cavity/contour_cavity.h"
 
 using namespace offsetopt;
 using offsetopt::test::closed_and_oriented;

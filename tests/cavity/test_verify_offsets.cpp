@@ -1,4 +1,4 @@
-// verify_offsets (shape/verify_offsets.h) on a box-shaped cavity inside a box, where every figure
+// verify_offsets (cavity/verify_offsets.h) on a box-shaped cavity inside a box, where every figure
 // is known: the cavity's closedness count against hand-counted defects (a missing face leaves 3
 // directed edges without their opposite; a duplicated face uses 3 edges twice one way; a flipped
 // face leaves 3 edges used twice one way and never the other, 3 each), the wall against the
@@ -6,7 +6,7 @@
 #include <doctest/doctest.h>
 
 #include "mesh/primitives.h"
-#include "shape/verify_offsets.h"
+#include "cavity/verify_offsets.h"
 
 using namespace offsetopt;
 
