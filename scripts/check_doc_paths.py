@@ -10,9 +10,12 @@ What is checked, in each page:
   repository root. A trailing ":LINE" or ":LINE-LINE" is dropped, "*" matches as in a shell glob,
   and "<name>" stands for one path component (`tests/<module>`). Words under ../shared (or any
   "../" path) are outside the repository and skipped; so are build outputs (build/, build-asan/:
-  not in the list above).
-- links: every [text](target) and ![alt](target) whose target is not a URL or an anchor, relative
-  to the page's own folder, as Markdown resolves it.
+  not in the list above). Indented (four-space) code blocks are not read: write commands that
+  name paths in fenced blocks.
+- links: every [text](target) and ![alt](target) whose target is not a URL, relative to the
+  page's own folder, as Markdown resolves it. A "#section" part must name a heading of the target
+  page (or of the page itself), as GitHub makes its anchors: lower case, punctuation dropped,
+  spaces turned into "-".
 
 The escape, for paths that a command in the page creates (an output name in an example, a folder
 a script makes): an HTML comment in the same page, invisible in the rendered page,
@@ -79,6 +82,23 @@ def code_pieces(text):
     return pieces, joined
 
 
+def anchors(page):
+    """The GitHub anchors of a Markdown page's headings."""
+    found, seen = set(), {}
+    inside = False
+    for line in page.read_text(encoding="utf-8").split("\n"):
+        if FENCE.match(line.lstrip()):
+            inside = not inside
+        m = None if inside else re.match(r"^#{1,6}\s+(.*?)\s*#*\s*$", line)
+        if not m:
+            continue
+        slug = re.sub(r"[^\w\- ]", "", m.group(1).lower()).replace(" ", "-")
+        n = seen.get(slug, 0)
+        seen[slug] = n + 1
+        found.add(slug if n == 0 else f"{slug}-{n}")
+    return found
+
+
 def check_page(root, page):
     errors = []
     text = page.read_text(encoding="utf-8")
@@ -94,11 +114,15 @@ def check_page(root, page):
             if path not in created and not exists(root, path):
                 errors.append(f"{name}:{number}: `{path}` does not exist")
     for m in LINK.finditer(prose):
-        target = m.group(1).split("#")[0]
-        if not target or re.match(r"^[a-z][a-z0-9+.-]*:", target) or target.startswith("../shared"):
+        target, _, anchor = m.group(1).partition("#")
+        if re.match(r"^[a-z][a-z0-9+.-]*:", target) or target.startswith("../shared"):
             continue
         number = prose.count("\n", 0, m.start()) + 1
-        resolved = (page.parent / target).resolve()
+        resolved = (page.parent / target).resolve() if target else page.resolve()
+        if anchor and resolved.suffix == ".md" and resolved.exists() and anchor not in anchors(resolved):
+            errors.append(f"{name}:{number}: link to {m.group(1)}: no such heading in {target or 'this page'}")
+        if not target:
+            continue
         try:
             relative = resolved.relative_to(root.resolve())
         except ValueError:

@@ -1,7 +1,8 @@
 #!/bin/sh
 # The documentation path check (scripts/check_doc_paths.py) on made-up trees: it must pass pages
 # whose paths and links exist (and skip ../shared), and fail, naming page and line, on a missing
-# path in a code span, in a fenced block or in a link, and on an escape that has gone stale.
+# path in a code span, in a fenced block or in a link, a link to a missing heading, and on an
+# escape that has gone stale.
 #   tests/check_doc_paths_selftest.sh REPOSITORY_ROOT
 set -u
 script=$1/scripts/check_doc_paths.py
@@ -26,7 +27,7 @@ build/offsetopt optimize x --report tests/golden/new.json
 ```
 <!-- check_doc_paths: created tests/golden/new.json -->
 EOF
-printf '# Page\n\nBack to the [README](../README.md), and `docs/page.md`.\n' >"$tree/docs/page.md"
+printf '# Page\n\nBack to the [README](../README.md#demo), and `docs/page.md`.\n' >"$tree/docs/page.md"
 python3 "$script" "$tree" >/dev/null 2>&1 || { echo "selftest: pages whose paths exist were refused: $(python3 "$script" "$tree" 2>&1)" >&2; exit 1; }
 
 fails() {  # $1: what the page holds, $2: the report expected
@@ -45,6 +46,10 @@ fails "a missing path in a fenced block" 'docs/page.md:6: `tests/golden/case.ply
 cp "$tree/page.bak" "$tree/docs/page.md"
 printf '\nSee [the picture](../meshes/none.svg).\n' >>"$tree/docs/page.md"
 fails "a broken link" 'docs/page.md:5: link to ../meshes/none.svg does not exist'
+
+cp "$tree/page.bak" "$tree/docs/page.md"
+printf '\nSee [the start](../README.md#nowhere).\n' >>"$tree/docs/page.md"
+fails "a link to a heading that is not there" 'docs/page.md:5: link to ../README.md#nowhere: no such heading in ../README.md'
 
 cp "$tree/page.bak" "$tree/docs/page.md"
 printf '\nA span over two lines: `build/offsetopt preview\ntests/golden/case.ply`.\n' >>"$tree/docs/page.md"
