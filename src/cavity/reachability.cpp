@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstdio>
+#include <cstdlib>
 
 #include "mass/volume_integrals.h"
 #include "util/det_math.h"
@@ -238,8 +240,58 @@ class Solver {
 
   // max z (with_z) or max objective, s.t. rows (ratio rows minus z when with_z) >= 0, over the
   // partition, splitting blocks until the duals agree with every cell. `warm` per group.
+  // Row generation over solve_rows: most rows (a round base has dozens of support edges) never
+  // bind, so the LP starts with the rows lowest at the warm start and adds the most violated ones
+  // until the solution meets every row. A subset that is infeasible proves the whole set is.
   LpRun solve(Partition& p, const std::vector<Form>& rows, int ratio_rows, bool with_z, const Form* objective,
               std::vector<double>& warm) {
+    const int m = static_cast<int>(rows.size());
+    const double V0 = f_.P0(kIntVolume);
+    std::vector<char> active(static_cast<std::size_t>(m), 0);
+    auto values_at = [&](const std::vector<double>& u) {
+      std::vector<double> v(static_cast<std::size_t>(m));
+      for (int k = 0; k < m; ++k) v[static_cast<std::size_t>(k)] = form_value(rows[static_cast<std::size_t>(k)], f_.P0, p, u) / V0;
+      return v;
+    };
+    auto add_lowest = [&](const std::vector<double>& v, double z, int count, double below) {
+      std::vector<std::pair<double, int>> order;
+      for (int k = 0; k < m; ++k)
+        if (!active[static_cast<std::size_t>(k)]) order.emplace_back(v[static_cast<std::size_t>(k)] - (k < ratio_rows ? z : 0.0), k);
+      std::sort(order.begin(), order.end());
+      int added = 0;
+      for (const auto& [value, k] : order) {
+        if (added == count || value >= below) break;
+        active[static_cast<std::size_t>(k)] = 1;
+        ++added;
+      }
+      return added;
+    };
+    if (warm.size() != p.groups.size()) warm.assign(p.groups.size(), 0.0);
+    add_lowest(values_at(warm), 0.0, 6, kInf);
+    for (int pass = 0;; ++pass) {
+      std::vector<int> index;
+      for (int k = 0; k < m; ++k)
+        if (active[static_cast<std::size_t>(k)] && k < ratio_rows) index.push_back(k);
+      const int active_ratio = static_cast<int>(index.size());
+      for (int k = ratio_rows; k < m; ++k)
+        if (active[static_cast<std::size_t>(k)]) index.push_back(k);
+      std::vector<Form> subset;
+      for (int k : index) subset.push_back(rows[static_cast<std::size_t>(k)]);
+      LpRun run = solve_rows(p, subset, active_ratio, with_z, objective, warm);
+      // Back to every row: the inactive ones weigh nothing.
+      Eigen::VectorXd weights = Eigen::VectorXd::Zero(m);
+      for (std::size_t i = 0; i < index.size() && static_cast<Eigen::Index>(i) < run.weights.size(); ++i)
+        weights(index[i]) = run.weights(static_cast<Eigen::Index>(i));
+      run.weights = weights;
+      run.rows = rows;
+      run.ratio_rows = ratio_rows;
+      if (run.status != LpStatus::optimal || pass >= 100) return run;
+      if (add_lowest(values_at(run.u), with_z && active_ratio > 0 ? run.z : 0.0, 8, -1e-12) == 0) return run;
+    }
+  }
+
+  LpRun solve_rows(Partition& p, const std::vector<Form>& rows, int ratio_rows, bool with_z, const Form* objective,
+                   std::vector<double>& warm) {
     LpRun run;
     run.rows = rows;
     run.ratio_rows = ratio_rows;
@@ -278,6 +330,7 @@ class Solver {
       ++out_.lps;
       out_.lp_iterations += r.iterations;
       out_.columns = static_cast<int>(lp.A.cols());
+      if (std::getenv("REACH_DEBUG")) std::fprintf(stderr, "lp rows %d cols %d status %s it %d passes %d z %.6g round %d\n", m, (int)lp.A.cols(), to_string(r.status), r.iterations, r.pricing_passes, with_z ? r.x(G) : r.objective, round);
       run.status = r.status;
       run.weights = (-r.y).cwiseMax(0.0);
       if (r.status != LpStatus::optimal) {

@@ -12,6 +12,7 @@ namespace offsetopt {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr std::size_t kCandidatesPerPass = 64;
 
 // The simplex state over n structural columns, m slacks and m artificials (index n + i and
 // n + m + i for row i).
@@ -148,9 +149,10 @@ class Simplex {
       const Eigen::VectorXd y = duals();
       ++r.pricing_passes;
       candidates.clear();
+      const Eigen::VectorXd priced = lp_.A.transpose() * y;  // one product for every structural column
       for (int var = 0; var < n_ + 2 * m_; ++var) {
         if (position_[static_cast<std::size_t>(var)] >= 0 || lo_[var] == hi_[var]) continue;
-        const double d = cost_[var] - column_dot(var, y);
+        const double d = cost_[var] - (var < n_ ? priced(var) : column_dot(var, y));
         const bool up = d > tol && value_[var] < hi_[var], down = d < -tol && value_[var] > lo_[var];
         if (!up && !down) continue;
         candidates.emplace_back(std::fabs(d) * (up ? 1.0 : -1.0), var);
@@ -162,10 +164,15 @@ class Simplex {
         if (!refactor()) return LpStatus::numerical;
         continue;
       }
-      std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
+      // The best few in order (a full sort of thousands of candidates per pass costs more than
+      // the pass); when they all flip, the next pass brings the rest.
+      const auto first = [](const std::pair<double, int>& a, const std::pair<double, int>& b) {
         const double fa = std::fabs(a.first), fb = std::fabs(b.first);
         return fa != fb ? fa > fb : a.second < b.second;
-      });
+      };
+      const std::size_t keep = std::min<std::size_t>(candidates.size(), kCandidatesPerPass);
+      std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(keep), candidates.end(), first);
+      candidates.resize(keep);
       bool pivoted = false;
       for (const auto& [signed_d, var] : candidates) {
         if (r.iterations >= o_.max_iterations) return LpStatus::iteration_cap;
