@@ -1,0 +1,219 @@
+#include "cavity/carvable_cells.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geometry/aabb.h"
+#include "geometry/closest_point.h"
+#include "geometry/grid_winding.h"
+#include "util/parallel.h"
+
+namespace offsetopt {
+
+namespace {
+
+constexpr int kBlock = 4;  // points per block side in the distance passes
+constexpr int kParts = 2;  // every parallel loop is cut into this many fixed parts
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Per point of `g` where mask != 0: how many of the ascending `thresholds` its unsigned distance to
+// the surface reaches (d >= t). One capped query per block of 4³ points, its centre's distance
+// bounding every point's by the Lipschitz bound; exact queries only where a threshold lies within
+// that bound (widened by rounding).
+std::vector<std::int8_t> distance_band(const NodeGrid& g, const std::vector<std::int8_t>& mask, const TriangleBvh& bvh,
+                                       const std::vector<double>& thresholds, int threads, std::int64_t& queries) {
+  std::vector<std::int8_t> band(static_cast<std::size_t>(g.node_count()), 0);
+  if (thresholds.empty()) return band;
+  const int k = static_cast<int>(thresholds.size());
+  const double top = thresholds.back();
+  const double rounding = 1e-9 * g.spacing;
+  auto count_below = [&](double d) {
+    int c = 0;
+    while (c < k && thresholds[static_cast<std::size_t>(c)] <= d) ++c;
+    return static_cast<std::int8_t>(c);
+  };
+  const std::int64_t bx = (g.nx + kBlock - 1) / kBlock, by = (g.ny + kBlock - 1) / kBlock, bz = (g.nz + kBlock - 1) / kBlock;
+  std::int64_t per_part[kParts] = {0, 0};
+  WorkerPool pool(std::max(1, std::min(threads, kParts)));
+  pool.run_parts(kParts, [&](int part) {
+    for (std::int64_t kb = split_point(bz, kParts, part); kb < split_point(bz, kParts, part + 1); ++kb)
+      for (std::int64_t jb = 0; jb < by; ++jb)
+        for (std::int64_t ib = 0; ib < bx; ++ib) {
+          const std::int64_t i0 = ib * kBlock, j0 = jb * kBlock, k0 = kb * kBlock;
+          const std::int64_t i1 = std::min(i0 + kBlock, g.nx), j1 = std::min(j0 + kBlock, g.ny), k1 = std::min(k0 + kBlock, g.nz);
+          bool any = false;
+          for (std::int64_t kk = k0; kk < k1 && !any; ++kk)
+            for (std::int64_t j = j0; j < j1 && !any; ++j)
+              for (std::int64_t i = i0; i < i1 && !any; ++i) any = mask[static_cast<std::size_t>(g.index(i, j, kk))] != 0;
+          if (!any) continue;
+          const Eigen::Vector3d lo(g.x(i0), g.y(j0), g.z(k0)), hi(g.x(i1 - 1), g.y(j1 - 1), g.z(k1 - 1));
+          const Eigen::Vector3d mid = 0.5 * (lo + hi);
+          const double half_diagonal = 0.5 * (hi - lo).norm();
+          const ClosestPoint c = closest_point(bvh, mid, top + half_diagonal + g.spacing);
+          const double D = c.found ? c.distance : kInf;
+          for (std::int64_t kk = k0; kk < k1; ++kk)
+            for (std::int64_t j = j0; j < j1; ++j)
+              for (std::int64_t i = i0; i < i1; ++i) {
+                const std::size_t v = static_cast<std::size_t>(g.index(i, j, kk));
+                if (!mask[v]) continue;
+                const Eigen::Vector3d p(g.x(i), g.y(j), g.z(kk));
+                const double r = (p - mid).norm();
+                const std::int8_t low = count_below(D - r - rounding), high = count_below(D + r + rounding);
+                if (low == high) {
+                  band[v] = low;
+                  continue;
+                }
+                ++per_part[part];
+                const ClosestPoint e = closest_point(bvh, p, top + g.spacing);
+                band[v] = count_below(e.found ? e.distance : kInf);
+              }
+        }
+  });
+  queries += per_part[0] + per_part[1];
+  return band;
+}
+
+Aabb mesh_box(const Mesh& mesh) {
+  Aabb box;
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) box.extend(mesh.V.row(i).transpose());
+  return box;
+}
+
+}  // namespace
+
+std::string CarvableCellsOptions::check() const {
+  const CarvableCellsOptions& o = *this;
+  if (!(o.wall > 0.0) || !std::isfinite(o.wall)) return "the wall must be > 0";
+  if (!(o.cells_per_wall >= 1.25 && o.cells_per_wall <= 8.0)) return "cells per wall must be in [1.25, 8]";
+  if (!(o.margin_cells >= 0.25 && o.margin_cells <= 2.0)) return "the margin must be in [0.25, 2] cells";
+  if (o.max_nodes < 1000) return "the node cap must be >= 1000";
+  if (o.band && (!(o.outer_max > 0.0) || !std::isfinite(o.outer_max))) return "the band needs outer_max > 0";
+  if (o.band && (!(o.ground_tol >= 0.0) || !std::isfinite(o.ground_z))) return "the band needs a ground and ground_tol >= 0";
+  if (o.threads < 1 || o.threads > 64) return "threads must be in [1, 64]";
+  return "";
+}
+
+Eigen::Vector3d CarvableCells::centre(std::int64_t cell) const {
+  const double half = 0.5 * grid.spacing;
+  return grid.position(cell) + Eigen::Vector3d(half, half, half);
+}
+
+Vector10d cube_integrals(const Eigen::Vector3d& centre, double h, const Eigen::Vector3d& origin) {
+  const Eigen::Vector3d p = centre - origin;
+  const double v = h * h * h, s = h * h / 12.0;
+  Vector10d out;
+  out << v, v * p.x(), v * p.y(), v * p.z(), v * (p.x() * p.x() + s), v * (p.y() * p.y() + s), v * (p.z() * p.z() + s),
+      v * p.x() * p.y(), v * p.y() * p.z(), v * p.z() * p.x();
+  return out;
+}
+
+CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, const CarvableCellsOptions& options) {
+  CarvableCells out;
+  if (const std::string problem = options.check(); !problem.empty()) {
+    out.message = problem;
+    return out;
+  }
+  const double wall = options.wall;
+  Aabb box = mesh_box(outer);
+  if (box.empty()) {
+    out.message = "the mesh has no vertex";
+    return out;
+  }
+  if (options.band) {
+    box.lo -= Eigen::Vector3d::Constant(options.outer_max);
+    box.hi += Eigen::Vector3d::Constant(options.outer_max);
+  }
+  // The contour's spacing and margin (cavity/contour_cavity.cpp), so the inner cells are ones it
+  // can write.
+  double h = wall / options.cells_per_wall;
+  const Eigen::Vector3d extent = box.hi - box.lo;
+  auto nodes_for = [&](double spacing) {
+    double count = 1.0;
+    for (int a = 0; a < 3; ++a) count *= std::ceil(extent(a) / spacing) + 6.0;
+    return count;
+  };
+  for (int grow = 0; grow < 60 && nodes_for(h) > static_cast<double>(options.max_nodes); ++grow) h *= 1.05;
+  if (nodes_for(h) > static_cast<double>(options.max_nodes)) {
+    out.message = "the cell grid would need more than " + std::to_string(options.max_nodes) + " nodes";
+    return out;
+  }
+  out.margin = std::max(options.margin_cells * h, 1.01 * std::sqrt(3.0) * h - wall);
+  NodeGrid& grid = out.grid;
+  grid.spacing = h;
+  grid.origin = box.lo - Eigen::Vector3d(2.2371, 2.3119, 2.4243) * h;
+  grid.nx = static_cast<std::int64_t>(std::ceil(extent.x() / h)) + 6;
+  grid.ny = static_cast<std::int64_t>(std::ceil(extent.y() / h)) + 6;
+  grid.nz = static_cast<std::int64_t>(std::ceil(extent.z() / h)) + 6;
+  NodeGrid centres;
+  centres.spacing = h;
+  centres.origin = grid.origin + Eigen::Vector3d::Constant(0.5 * h);
+  centres.nx = grid.nx - 1;
+  centres.ny = grid.ny - 1;
+  centres.nz = grid.nz - 1;
+
+  // Nodes: inside with distance >= wall + margin (the contour's cavity nodes).
+  const std::vector<std::int8_t> node_winding = grid_winding(outer, grid, options.threads);
+  std::vector<std::int8_t> node_inside(node_winding.size());
+  for (std::size_t v = 0; v < node_winding.size(); ++v) node_inside[v] = node_winding[v] >= 1;
+  const std::vector<std::int8_t> deep =
+      distance_band(grid, node_inside, outer_bvh, {wall + out.margin}, options.threads, out.distance_queries);
+
+  // Centres: the thresholds every reading needs, each answered by one band count.
+  const double r = 0.5 * std::sqrt(3.0) * h;
+  const double level = wall - r - (options.band ? options.outer_max : 0.0);  // signed, outer void cells
+  std::vector<double> thresholds;
+  if (level > 0.0) thresholds.push_back(level);
+  if (level < 0.0) thresholds.push_back(-level);
+  if (options.band) {
+    thresholds.push_back(r);
+    if (options.outer_max - r > r) thresholds.push_back(options.outer_max - r);
+    thresholds.push_back(options.outer_max + r);
+  }
+  std::sort(thresholds.begin(), thresholds.end());
+  thresholds.erase(std::unique(thresholds.begin(), thresholds.end()), thresholds.end());
+  const std::vector<std::int8_t> centre_winding = grid_winding(outer, centres, options.threads);
+  std::vector<std::int8_t> centre_mask(centre_winding.size());
+  const bool outside_matters = options.band || level < 0.0;
+  for (std::size_t v = 0; v < centre_winding.size(); ++v) centre_mask[v] = centre_winding[v] >= 1 || outside_matters;
+  const std::vector<std::int8_t> centre_band =
+      distance_band(centres, centre_mask, outer_bvh, thresholds, options.threads, out.distance_queries);
+  // d >= t for one of the thresholds (by its position in the sorted list).
+  auto reaches = [&](std::size_t v, double t) {
+    const auto at = std::lower_bound(thresholds.begin(), thresholds.end(), t) - thresholds.begin();
+    return centre_band[v] > at;
+  };
+
+  const double base = options.ground_z + 2.0 * options.outer_max + options.ground_tol;
+  std::vector<std::int64_t> lists[kParts][4];
+  WorkerPool pool(std::max(1, std::min(options.threads, kParts)));
+  pool.run_parts(kParts, [&](int part) {
+    const std::int64_t nxy = grid.nx * grid.ny;
+    for (std::int64_t k = split_point(centres.nz, kParts, part); k < split_point(centres.nz, kParts, part + 1); ++k)
+      for (std::int64_t j = 0; j < centres.ny; ++j)
+        for (std::int64_t i = 0; i < centres.nx; ++i) {
+          const std::int64_t cell = grid.index(i, j, k);
+          const std::size_t c = static_cast<std::size_t>(centres.index(i, j, k));
+          bool whole = true;
+          for (int corner = 0; corner < 8 && whole; ++corner)
+            whole = deep[static_cast<std::size_t>(cell + (corner & 1) + ((corner >> 1) & 1) * grid.nx + ((corner >> 2) & 1) * nxy)] > 0;
+          const bool inside = centre_winding[c] >= 1;
+          const bool may = whole || (inside ? (level <= 0.0 || reaches(c, level)) : (level < 0.0 && !reaches(c, -level)));
+          if (whole) lists[part][0].push_back(cell);
+          if (may) lists[part][1].push_back(cell);
+          if (!options.band) continue;
+          const double z = centres.z(k);
+          if (!inside && reaches(c, r) && (options.outer_max - r > r && !reaches(c, options.outer_max - r)) && z - 0.5 * h >= base)
+            lists[part][2].push_back(cell);
+          if ((inside ? !reaches(c, r) : !reaches(c, options.outer_max + r)) && z + 0.5 * h > options.ground_z + options.ground_tol)
+            lists[part][3].push_back(cell);
+        }
+  });
+  std::vector<std::int64_t>* targets[4] = {&out.inner, &out.outer, &out.band_inner, &out.band_outer};
+  for (int l = 0; l < 4; ++l)
+    for (int part = 0; part < kParts; ++part) targets[l]->insert(targets[l]->end(), lists[part][l].begin(), lists[part][l].end());
+  out.ok = true;
+  return out;
+}
+
+}  // namespace offsetopt

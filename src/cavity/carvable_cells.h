@@ -1,0 +1,70 @@
+// The cells of a regular grid that a void may occupy (DESIGN.md "Reachability: what any void can
+// do"), read two ways so that both of reachability's answers are honest:
+// - inner: cells the contoured cavity can write whole: all 8 nodes inside the outer surface with
+//   distance >= wall + margin (the contour's own node test, cavity/contour_cavity.h, with its
+//   spacing h = wall / cells_per_wall and margin max(c·h, 1.01·√3·h − wall)). A void made of inner
+//   cells is one the tool can write, so it backs the claim "reachable";
+// - outer: every cell that may contain a point at least `wall` inside: the signed distance of its
+//   centre (positive inside) plus half its diagonal r = √3·h/2 is >= wall (with --outer, the wall
+//   may be measured from material added outside, so >= wall − outer_max). Every point of any
+//   void keeping the wall lies in an outer cell, so it backs the claim "unreachable". inner ⊆ outer.
+// With `band`, also the cells the outer offset may fill (material ADDED, DESIGN.md; the base is kept
+// as cli --outer keeps it: nothing within 2·outer_max + ground_tol of the ground):
+// - band_inner: the whole cell outside, within outer_max (centre outside at distance in
+//   [r, outer_max − r]), its bottom above the kept base;
+// - band_outer: any cell that may hold such a point (centre distance <= outer_max + r outside or
+//   <= r inside), its top above the ground contacts.
+// Cell (i, j, k) is the cube [node (i, j, k), node (i+1, j+1, k+1)] of `grid`, named by the lowest
+// node's index (NodeGrid::index); lists are ascending. Input units throughout.
+//
+// Signs from grid winding numbers (geometry/grid_winding.h) at the nodes and at the cell centres;
+// distances from the BVH only where a block of 4³ points has a threshold within the Lipschitz
+// bound of its centre's distance (most of the interior needs one query per block).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "geometry/bvh.h"
+#include "geometry/node_grid.h"
+#include "mass/volume_integrals.h"
+#include "mesh/mesh.h"
+
+namespace offsetopt {
+
+struct CarvableCellsOptions {
+  double wall = 0.0;                 // input units, > 0
+  double cells_per_wall = 1.5;       // h = wall / cells_per_wall (the contour's), in [1.25, 8]
+  double margin_cells = 0.25;        // c, in [0.25, 2]
+  std::int64_t max_nodes = std::int64_t{1} << 25;  // h grows (×1.05 steps) when the box needs more
+  bool band = false;                 // also the outer band (--outer)
+  double outer_max = 0.0;            // band: how far outside material may be added, > 0
+  double ground_z = 0.0;             // band: the ground plane (lowest vertex)
+  double ground_tol = 0.0;           // band: >= 0
+  int threads = 2;                   // 1..64; the result is the same for any count
+
+  std::string check() const;
+};
+
+struct CarvableCells {
+  bool ok = false;
+  std::string message;               // why not, when !ok
+  NodeGrid grid;
+  double margin = 0.0;               // the contour's interpolation margin at this spacing
+  std::vector<std::int64_t> inner, outer;            // void cells (see above)
+  std::vector<std::int64_t> band_inner, band_outer;  // --outer: cells that add material
+  std::int64_t distance_queries = 0;                 // exact point queries (blocks not counted)
+
+  Eigen::Vector3d centre(std::int64_t cell) const;
+  double cell_volume() const { return grid.spacing * grid.spacing * grid.spacing; }
+};
+
+CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, const CarvableCellsOptions& options);
+
+// The 10 raw integrals (mass/volume_integrals.h order) of the axis-aligned cube of side h centred
+// at `centre`, coordinates measured from `origin`: exact (∫x² = h³ (p_x² + h²/12), ∫xy = h³ p_x p_y).
+Vector10d cube_integrals(const Eigen::Vector3d& centre, double h, const Eigen::Vector3d& origin);
+
+}  // namespace offsetopt

@@ -1,0 +1,714 @@
+#include "cavity/reachability.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <cstdio>
+#include <cstdlib>
+
+#include "mass/volume_integrals.h"
+#include "util/det_math.h"
+#include "util/neumaier_sum.h"
+
+namespace offsetopt {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Vector10d unit(int k) {
+  Vector10d e = Vector10d::Zero();
+  e(k) = 1.0;
+  return e;
+}
+
+// An affine function of the occupancy: constant + solid·S + hollow·Q, S the solid's integrals and Q
+// the void's (normalised frame). A void cell moves its integrals from S to Q, a band cell adds them
+// to S.
+struct Form {
+  Vector10d solid = Vector10d::Zero(), hollow = Vector10d::Zero();
+  double constant = 0.0;
+  Vector10d void_coefficients() const { return hollow - solid; }
+};
+
+Form solid_form(const Vector10d& g, double constant = 0.0) {
+  Form f;
+  f.solid = g;
+  f.constant = constant;
+  return f;
+}
+
+Form minus(const Form& a, double t, const Form& b) {
+  Form f;
+  f.solid = a.solid - t * b.solid;
+  f.hollow = a.hollow - t * b.hollow;
+  f.constant = a.constant - t * b.constant;
+  return f;
+}
+
+struct GoalRows {
+  std::vector<Form> numerators, denominators;  // ratio rows N_j >= t D_j (D_j > 0)
+  std::vector<std::string> ratio_names;
+  std::vector<Form> plain;                     // rows F >= 0
+  std::vector<std::string> plain_names;
+};
+
+// The goal's rows in the normalised frame (x̃ = s (R p − o)). `tau` is the axis tolerance
+// (fraction of the diagonal), `volume_tau` and `inertia_tau` the float and spin ones; `level` the
+// spin's height c (negative: no "Izz largest" rows).
+struct Frame {
+  double scale = 1.0;                 // 1 / diagonal
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // o, rotated input units
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Vector10d P0 = Vector10d::Zero();   // the input's integrals, normalised frame
+  double top = 1.0;                   // highest point over the ground, normalised
+  Eigen::Vector3d to_frame(const Eigen::Vector3d& posed) const { return (posed - origin) * scale; }
+};
+
+void add_axis_rows(GoalRows& rows, double x0, double y0, double tau, const std::string& what) {
+  const Vector10d e0 = unit(kIntVolume);
+  const Vector10d gx = unit(kIntX) - x0 * e0, gy = unit(kIntY) - y0 * e0;
+  rows.plain.push_back(solid_form(tau * e0 - gx));
+  rows.plain.push_back(solid_form(tau * e0 + gx));
+  rows.plain.push_back(solid_form(tau * e0 - gy));
+  rows.plain.push_back(solid_form(tau * e0 + gy));
+  rows.plain_names.insert(rows.plain_names.end(), {what + " x", what + " x", what + " y", what + " y"});
+}
+
+GoalRows goal_rows(const GoalSpec& goal, const Frame& f, double tau, double volume_tau, double inertia_tau, double level) {
+  GoalRows rows;
+  const Vector10d e0 = unit(kIntVolume);
+  const double V0 = f.P0(kIntVolume);
+  switch (goal.kind) {
+    case GoalKind::stand:
+    case GoalKind::stand_filled: {
+      const std::size_t n = goal.support_polygon.size();
+      for (int filled = 0; filled < (goal.kind == GoalKind::stand_filled ? 2 : 1); ++filled)
+        for (std::size_t e = 0; e < n; ++e) {
+          const Eigen::Vector3d a3 = f.to_frame(Eigen::Vector3d(goal.support_polygon[e].x(), goal.support_polygon[e].y(), 0.0));
+          const Eigen::Vector3d b3 =
+              f.to_frame(Eigen::Vector3d(goal.support_polygon[(e + 1) % n].x(), goal.support_polygon[(e + 1) % n].y(), 0.0));
+          const Eigen::Vector2d a = a3.head<2>(), edge = b3.head<2>() - a;
+          const Eigen::Vector2d inward = Eigen::Vector2d(-edge.y(), edge.x()) / edge.norm();
+          const Vector10d g = -inward.dot(a) * e0 + inward.x() * unit(kIntX) + inward.y() * unit(kIntY);
+          Form N = solid_form(g), D = solid_form(e0);
+          if (filled) {
+            N.hollow = goal.fill_density * g;
+            D.hollow = goal.fill_density * e0;
+          }
+          rows.numerators.push_back(N);
+          rows.denominators.push_back(D);
+          rows.ratio_names.push_back(std::string(filled ? "filled, support edge " : "support edge ") + std::to_string(e));
+        }
+      break;
+    }
+    case GoalKind::roly_poly: {
+      const Eigen::Vector3d c = f.to_frame(goal.axis_point);
+      add_axis_rows(rows, c.x(), c.y(), tau, "sphere axis");
+      rows.numerators.push_back(solid_form(c.z() * e0 - unit(kIntZ)));
+      rows.denominators.push_back(solid_form(e0));
+      rows.ratio_names.push_back("height below the sphere centre");
+      break;
+    }
+    case GoalKind::floating: {
+      const double rho = goal.fluid_density;
+      rows.plain.push_back(solid_form((volume_tau + 1.0) * e0, -rho * V0));
+      rows.plain.push_back(solid_form((volume_tau - 1.0) * e0, rho * V0));
+      rows.plain_names.insert(rows.plain_names.end(), {"buoyancy equals weight", "buoyancy equals weight"});
+      const Eigen::Vector3d cb = f.P0.segment<3>(kIntX) / V0;
+      add_axis_rows(rows, cb.x(), cb.y(), tau, "buoyancy axis");
+      rows.numerators.push_back(solid_form(cb.z() * e0 - unit(kIntZ)));
+      rows.denominators.push_back(solid_form(e0));
+      rows.ratio_names.push_back("depth below the centre of buoyancy");
+      break;
+    }
+    case GoalKind::spin: {
+      const Eigen::Vector3d tip = f.to_frame(goal.axis_point);
+      const double x0 = tip.x(), y0 = tip.y();
+      add_axis_rows(rows, x0, y0, tau, "spin axis");
+      const Vector10d xx = unit(kIntXX) - 2.0 * x0 * unit(kIntX) + x0 * x0 * e0;
+      const Vector10d yy = unit(kIntYY) - 2.0 * y0 * unit(kIntY) + y0 * y0 * e0;
+      const Vector10d xy = unit(kIntXY) - x0 * unit(kIntY) - y0 * unit(kIntX) + x0 * y0 * e0;
+      const Vector10d J = xx + yy;
+      for (const Vector10d& p : {Vector10d(unit(kIntZX) - x0 * unit(kIntZ)), Vector10d(unit(kIntYZ) - y0 * unit(kIntZ))}) {
+        rows.plain.push_back(solid_form(inertia_tau * J - p));
+        rows.plain.push_back(solid_form(inertia_tau * J + p));
+        rows.plain_names.insert(rows.plain_names.end(), {"inertia product", "inertia product"});
+      }
+      if (level >= 0.0) {
+        const Vector10d zz = unit(kIntZZ) - 2.0 * level * unit(kIntZ) + level * level * e0;
+        // Directions ((1 − t²), 2t) / (1 + t²) for t in [−1, 1]: half the circle, enough (±e).
+        const int k = 24;
+        for (int i = 0; i < k; ++i) {
+          const double t = -1.0 + 2.0 * i / k;
+          const double ax = (1.0 - t * t) / (1.0 + t * t), ay = 2.0 * t / (1.0 + t * t);
+          rows.plain.push_back(solid_form(ax * ax * xx + 2.0 * ax * ay * xy + ay * ay * yy - zz));
+          rows.plain_names.push_back("z the largest moment");
+        }
+      }
+      break;
+    }
+    case GoalKind::volume: break;
+  }
+  return rows;
+}
+
+// The fine cells of one reading, in the normalised frame, grouped into LP columns.
+struct FineCell {
+  Eigen::Vector3d x;     // centre, normalised frame
+  std::int8_t sign = -1; // −1 void, +1 band
+  int source = 0;        // index in its CarvableCells list
+};
+
+struct Group {
+  int begin = 0, end = 0;          // into Partition::order
+  Vector10d integrals = Vector10d::Zero();
+  std::int8_t sign = -1;
+};
+
+struct Partition {
+  std::vector<FineCell> cells;
+  std::vector<int> order;          // cells, block by block
+  std::vector<Group> groups;
+  double h = 0.0;                  // cell side, normalised
+  Vector10d cell_integrals(int c) const { return cube_integrals(cells[static_cast<std::size_t>(c)].x, h, Eigen::Vector3d::Zero()); }
+};
+
+Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t>& voids, const std::vector<std::int64_t>& band,
+                         const Frame& f, int block) {
+  Partition p;
+  p.h = cc.grid.spacing * f.scale;
+  const NodeGrid& g = cc.grid;
+  const std::int64_t bx = (g.nx + block - 1) / block, by = (g.ny + block - 1) / block, bz = (g.nz + block - 1) / block;
+  std::vector<std::int64_t> key;
+  for (int sign : {-1, 1}) {
+    const std::vector<std::int64_t>& list = sign < 0 ? voids : band;
+    for (std::size_t s = 0; s < list.size(); ++s) {
+      const std::int64_t cell = list[s];
+      const std::int64_t i = cell % g.nx, j = (cell / g.nx) % g.ny, k = cell / (g.nx * g.ny);
+      p.cells.push_back({f.to_frame(f.rotation * cc.centre(cell)), static_cast<std::int8_t>(sign), static_cast<int>(s)});
+      key.push_back(((sign < 0 ? 0 : 1) * bz + k / block) * bx * by + (j / block) * bx + i / block);
+    }
+  }
+  // Counting sort by block (stable: cells keep their order inside a block).
+  const std::int64_t blocks = 2 * bx * by * bz;
+  std::vector<int> start(static_cast<std::size_t>(blocks) + 1, 0);
+  for (std::int64_t k : key) ++start[static_cast<std::size_t>(k) + 1];
+  for (std::int64_t b = 0; b < blocks; ++b) start[static_cast<std::size_t>(b) + 1] += start[static_cast<std::size_t>(b)];
+  p.order.resize(p.cells.size());
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (std::size_t c = 0; c < key.size(); ++c) p.order[static_cast<std::size_t>(fill[static_cast<std::size_t>(key[c])]++)] = static_cast<int>(c);
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const int s = start[static_cast<std::size_t>(b)], e = start[static_cast<std::size_t>(b) + 1];
+    if (s == e) continue;
+    Group grp;
+    grp.begin = s;
+    grp.end = e;
+    grp.sign = p.cells[static_cast<std::size_t>(p.order[static_cast<std::size_t>(s)])].sign;
+    for (int q = s; q < e; ++q) grp.integrals += p.cell_integrals(p.order[static_cast<std::size_t>(q)]);
+    p.groups.push_back(grp);
+  }
+  return p;
+}
+
+// Coefficient of a form on a column of integrals I with sign s.
+double form_on(const Form& f, const Vector10d& I, int sign) {
+  return sign < 0 ? f.void_coefficients().dot(I) : f.solid.dot(I);
+}
+
+double form_value(const Form& f, const Vector10d& P0, const Partition& p, const std::vector<double>& u) {
+  NeumaierSum sum;
+  sum.add(f.constant);
+  sum.add(f.solid.dot(P0));
+  for (std::size_t g = 0; g < p.groups.size(); ++g)
+    if (u[g] != 0.0) sum.add(u[g] * form_on(f, p.groups[g].integrals, p.groups[g].sign));
+  return sum.value();
+}
+
+struct LpRun {
+  LpStatus status = LpStatus::numerical;
+  std::vector<double> u;           // per group
+  double z = 0.0;
+  std::vector<Form> rows;          // the rows as solved (each >= 0, ratio rows minus z)
+  int ratio_rows = 0;
+  Eigen::VectorXd weights;         // w >= 0 per row (from the duals or the Farkas certificate)
+};
+
+class Solver {
+ public:
+  Solver(const Frame& f, const ReachabilityOptions& o, Reachability& out) : f_(f), o_(o), out_(out) {}
+
+  // max z (with_z) or max objective, s.t. rows (ratio rows minus z when with_z) >= 0, over the
+  // partition, splitting blocks until the duals agree with every cell. `warm` per group.
+  // Row generation over solve_rows: most rows (a round base has dozens of support edges) never
+  // bind, so the LP starts with the rows lowest at the warm start and adds the most violated ones
+  // until the solution meets every row. A subset that is infeasible proves the whole set is.
+  LpRun solve(Partition& p, const std::vector<Form>& rows, int ratio_rows, bool with_z, const Form* objective,
+              std::vector<double>& warm) {
+    const int m = static_cast<int>(rows.size());
+    const double V0 = f_.P0(kIntVolume);
+    std::vector<char> active(static_cast<std::size_t>(m), 0);
+    auto values_at = [&](const std::vector<double>& u) {
+      std::vector<double> v(static_cast<std::size_t>(m));
+      for (int k = 0; k < m; ++k) v[static_cast<std::size_t>(k)] = form_value(rows[static_cast<std::size_t>(k)], f_.P0, p, u) / V0;
+      return v;
+    };
+    auto add_lowest = [&](const std::vector<double>& v, double z, int count, double below) {
+      std::vector<std::pair<double, int>> order;
+      for (int k = 0; k < m; ++k)
+        if (!active[static_cast<std::size_t>(k)]) order.emplace_back(v[static_cast<std::size_t>(k)] - (k < ratio_rows ? z : 0.0), k);
+      std::sort(order.begin(), order.end());
+      int added = 0;
+      for (const auto& [value, k] : order) {
+        if (added == count || value >= below) break;
+        active[static_cast<std::size_t>(k)] = 1;
+        ++added;
+      }
+      return added;
+    };
+    if (warm.size() != p.groups.size()) warm.assign(p.groups.size(), 0.0);
+    add_lowest(values_at(warm), 0.0, 6, kInf);
+    for (int pass = 0;; ++pass) {
+      std::vector<int> index;
+      for (int k = 0; k < m; ++k)
+        if (active[static_cast<std::size_t>(k)] && k < ratio_rows) index.push_back(k);
+      const int active_ratio = static_cast<int>(index.size());
+      for (int k = ratio_rows; k < m; ++k)
+        if (active[static_cast<std::size_t>(k)]) index.push_back(k);
+      std::vector<Form> subset;
+      for (int k : index) subset.push_back(rows[static_cast<std::size_t>(k)]);
+      LpRun run = solve_rows(p, subset, active_ratio, with_z, objective, warm);
+      // Back to every row: the inactive ones weigh nothing.
+      Eigen::VectorXd weights = Eigen::VectorXd::Zero(m);
+      for (std::size_t i = 0; i < index.size() && static_cast<Eigen::Index>(i) < run.weights.size(); ++i)
+        weights(index[i]) = run.weights(static_cast<Eigen::Index>(i));
+      run.weights = weights;
+      run.rows = rows;
+      run.ratio_rows = ratio_rows;
+      if (run.status != LpStatus::optimal || pass >= 100) return run;
+      if (add_lowest(values_at(run.u), with_z && active_ratio > 0 ? run.z : 0.0, 8, -1e-12) == 0) return run;
+    }
+  }
+
+  LpRun solve_rows(Partition& p, const std::vector<Form>& rows, int ratio_rows, bool with_z, const Form* objective,
+                   std::vector<double>& warm) {
+    LpRun run;
+    run.rows = rows;
+    run.ratio_rows = ratio_rows;
+    const double V0 = f_.P0(kIntVolume);
+    const int m = static_cast<int>(rows.size());
+    for (int round = 0;; ++round) {
+      const int G = static_cast<int>(p.groups.size());
+      LinearProgram lp;
+      lp.A.resize(m, G + (with_z ? 1 : 0));
+      lp.b.resize(m);
+      lp.sense.assign(static_cast<std::size_t>(m), RowSense::greater_equal);
+      lp.c = Eigen::VectorXd::Zero(lp.A.cols());
+      lp.lower = Eigen::VectorXd::Zero(lp.A.cols());
+      lp.upper = Eigen::VectorXd::Ones(lp.A.cols());
+      Eigen::Matrix<double, 10, Eigen::Dynamic> cv(10, m), cb(10, m);
+      for (int k = 0; k < m; ++k) {
+        cv.col(k) = rows[static_cast<std::size_t>(k)].void_coefficients() / V0;
+        cb.col(k) = rows[static_cast<std::size_t>(k)].solid / V0;
+        lp.b(k) = -(rows[static_cast<std::size_t>(k)].constant + rows[static_cast<std::size_t>(k)].solid.dot(f_.P0)) / V0;
+      }
+      for (int g = 0; g < G; ++g) {
+        const Group& grp = p.groups[static_cast<std::size_t>(g)];
+        lp.A.col(g) = (grp.sign < 0 ? cv : cb).transpose() * grp.integrals;
+        if (objective) lp.c(g) = form_on(*objective, grp.integrals, grp.sign) / V0;
+      }
+      if (with_z) {
+        lp.A.col(G).setZero();
+        lp.A.col(G).head(ratio_rows).setConstant(-1.0);
+        lp.c(G) = 1.0;
+        lp.lower(G) = -kInf;
+        lp.upper(G) = kInf;
+      }
+      std::vector<std::int8_t> start(static_cast<std::size_t>(lp.A.cols()), 0);
+      for (int g = 0; g < G; ++g) start[static_cast<std::size_t>(g)] = warm[static_cast<std::size_t>(g)] > 0.5;
+      const LpResult r = bounded_simplex(lp, o_.lp, &start);
+      ++out_.lps;
+      out_.lp_iterations += r.iterations;
+      out_.columns = static_cast<int>(lp.A.cols());
+      if (std::getenv("REACH_DEBUG")) std::fprintf(stderr, "lp rows %d cols %d status %s it %d passes %d z %.6g round %d\n", m, (int)lp.A.cols(), to_string(r.status), r.iterations, r.pricing_passes, with_z ? r.x(G) : r.objective, round);
+      run.status = r.status;
+      run.weights = (-r.y).cwiseMax(0.0);
+      if (r.status != LpStatus::optimal) {
+        if (r.status == LpStatus::infeasible) run.u.assign(static_cast<std::size_t>(G), 0.0);
+        return run;
+      }
+      run.u.assign(static_cast<std::size_t>(G), 0.0);
+      for (int g = 0; g < G; ++g) run.u[static_cast<std::size_t>(g)] = std::min(1.0, std::max(0.0, r.x(g)));
+      run.z = with_z ? r.x(G) : 0.0;
+      // Reduced cost of a cell: objective − yᵀ column, a 10-vector dotted with its integrals.
+      Vector10d wv = cv * r.y, wb = cb * r.y;
+      wv = -wv;
+      wb = -wb;
+      if (objective) {
+        wv += objective->void_coefficients() / V0;
+        wb += objective->solid / V0;
+      }
+      const double tol = o_.lp.optimality_tolerance;
+      std::vector<char> split(static_cast<std::size_t>(G), 0);
+      bool any = false;
+      for (int g = 0; g < G; ++g) {
+        const Group& grp = p.groups[static_cast<std::size_t>(g)];
+        if (grp.end - grp.begin == 1) continue;
+        const double u = run.u[static_cast<std::size_t>(g)];
+        bool bad = false;
+        const Vector10d& w = grp.sign < 0 ? wv : wb;
+        for (int q = grp.begin; q < grp.end && !bad; ++q) {
+          const double d = w.dot(p.cell_integrals(p.order[static_cast<std::size_t>(q)]));
+          bad = u >= 1.0 - 1e-9 ? d < -tol : u <= 1e-9 ? d > tol : std::fabs(d) > tol;
+        }
+        split[static_cast<std::size_t>(g)] = bad;
+        any = any || bad;
+      }
+      if (!any || round >= o_.max_refinements) {
+        warm = run.u;
+        return run;
+      }
+      std::vector<Group> groups;
+      std::vector<double> next_warm;
+      for (int g = 0; g < G; ++g) {
+        const Group& grp = p.groups[static_cast<std::size_t>(g)];
+        if (!split[static_cast<std::size_t>(g)]) {
+          groups.push_back(grp);
+          next_warm.push_back(run.u[static_cast<std::size_t>(g)]);
+          continue;
+        }
+        const Vector10d& w = grp.sign < 0 ? wv : wb;
+        for (int q = grp.begin; q < grp.end; ++q) {
+          Group one;
+          one.begin = q;
+          one.end = q + 1;
+          one.sign = grp.sign;
+          one.integrals = p.cell_integrals(p.order[static_cast<std::size_t>(q)]);
+          groups.push_back(one);
+          next_warm.push_back(w.dot(one.integrals) > 0.0 ? 1.0 : 0.0);
+        }
+      }
+      p.groups = std::move(groups);
+      warm = std::move(next_warm);
+    }
+  }
+
+  const Frame& f_;
+  const ReachabilityOptions& o_;
+  Reachability& out_;
+};
+
+std::vector<Form> ratio_rows_at(const GoalRows& rows, double t) {
+  std::vector<Form> out;
+  for (std::size_t j = 0; j < rows.numerators.size(); ++j) out.push_back(minus(rows.numerators[j], t, rows.denominators[j]));
+  out.insert(out.end(), rows.plain.begin(), rows.plain.end());
+  return out;
+}
+
+struct MarginSearch {
+  bool feasible = false;
+  double best = -kInf;             // normalised
+  int binding = -1;                // ratio row index, or −(plain row + 2) when infeasible
+  std::vector<double> u;           // per group at the best
+  LpRun infeasible_run;
+};
+
+// Dinkelbach: t ← min_j N_j(u)/D_j(u) after each LP max_u min_j (N_j − t D_j).
+MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, const Frame& f, int cap) {
+  MarginSearch s;
+  std::vector<double> warm(p.groups.size(), 0.0);
+  double t = -1.0;
+  const int nr = static_cast<int>(rows.numerators.size());
+  for (int it = 0; it < cap; ++it) {
+    const LpRun run = solver.solve(p, ratio_rows_at(rows, t), nr, true, nullptr, warm);
+    if (run.status == LpStatus::infeasible) {
+      s.infeasible_run = run;
+      return s;
+    }
+    if (run.status != LpStatus::optimal) break;
+    s.feasible = true;
+    double t_new = kInf;
+    int arg = -1;
+    for (int j = 0; j < nr; ++j) {
+      const double ratio = form_value(rows.numerators[static_cast<std::size_t>(j)], f.P0, p, run.u) /
+                           form_value(rows.denominators[static_cast<std::size_t>(j)], f.P0, p, run.u);
+      if (ratio < t_new) {
+        t_new = ratio;
+        arg = j;
+      }
+    }
+    if (t_new > s.best) {
+      s.best = t_new;
+      s.binding = arg;
+      s.u = run.u;
+    }
+    if (run.z <= 1e-12 || t_new - t <= 1e-11) break;
+    t = t_new;
+  }
+  return s;
+}
+
+// The certificate: w >= 0 on rows (each >= 0 when met), checked on every cell of the outer reading
+// with a rigorous bound of the quadric over each cube.
+ReachCertificate certify(const LpRun& run, const Partition& outer, const Frame& f) {
+  ReachCertificate c;
+  const double V0 = f.P0(kIntVolume);
+  Vector10d gv = Vector10d::Zero(), gb = Vector10d::Zero();
+  NeumaierSum total, F0;
+  for (std::size_t k = 0; k < run.rows.size() && k < static_cast<std::size_t>(run.weights.size()); ++k) {
+    const double w = run.weights(static_cast<Eigen::Index>(k));
+    if (w == 0.0) continue;
+    const Form& r = run.rows[k];
+    gv += w * r.void_coefficients() / V0;
+    gb += w * r.solid / V0;
+    total.add(w * (r.constant + r.solid.dot(f.P0)) / V0);
+    F0.add(w * (r.constant + r.solid.dot(f.P0)) / V0);
+  }
+  const double h = outer.h, v = h * h * h, half = 0.5 * h;
+  for (const FineCell& cell : outer.cells) {
+    const Vector10d& g = cell.sign < 0 ? gv : gb;
+    const Eigen::Vector3d& x = cell.x;
+    const double q = g(0) + g(1) * x.x() + g(2) * x.y() + g(3) * x.z() + g(4) * x.x() * x.x() + g(5) * x.y() * x.y() +
+                     g(6) * x.z() * x.z() + g(7) * x.x() * x.y() + g(8) * x.y() * x.z() + g(9) * x.z() * x.x();
+    const Eigen::Vector3d grad(g(1) + 2.0 * g(4) * x.x() + g(7) * x.y() + g(9) * x.z(),
+                               g(2) + 2.0 * g(5) * x.y() + g(7) * x.x() + g(8) * x.z(),
+                               g(3) + 2.0 * g(6) * x.z() + g(8) * x.y() + g(9) * x.x());
+    const double hess = 2.0 * (std::fabs(g(4)) + std::fabs(g(5)) + std::fabs(g(6))) +
+                        2.0 * (std::fabs(g(7)) + std::fabs(g(8)) + std::fabs(g(9)));
+    const double most = q + half * grad.cwiseAbs().sum() + 0.5 * half * half * hess;
+    // Plus the integral's own rounding, far below any bound that decides.
+    if (most > 0.0) total.add(v * most * (1.0 + 1e-12));
+    ++c.cells_checked;
+  }
+  c.present = true;
+  c.bound = total.value();
+  c.proves = c.bound < -1e-13;
+  // The quadric in input units about the frame's origin (rotated pose): void = {q < 0} = {q_v > 0}.
+  const double s = f.scale;
+  const int degree[10] = {0, 1, 1, 1, 2, 2, 2, 2, 2, 2};
+  for (int k = 0; k < 10; ++k) c.quadric(k) = -gv(k) * (degree[k] == 0 ? 1.0 : degree[k] == 1 ? s : s * s);
+  c.origin = f.origin;
+  c.constant = F0.value() / (s * s * s);
+  return c;
+}
+
+std::string binding_name(const GoalRows& rows, int binding) {
+  if (binding >= 0 && binding < static_cast<int>(rows.ratio_names.size())) return rows.ratio_names[static_cast<std::size_t>(binding)];
+  return "";
+}
+
+// The name of the plain row with the largest weight in an infeasibility certificate.
+std::string heaviest_plain(const GoalRows& rows, const LpRun& run) {
+  int best = -1;
+  const int nr = static_cast<int>(rows.numerators.size());
+  for (int k = nr; k < static_cast<int>(run.weights.size()); ++k)
+    if (best < 0 || run.weights(k) > run.weights(best)) best = k;
+  return best >= 0 ? rows.plain_names[static_cast<std::size_t>(best - nr)] : "";
+}
+
+double user_margin(const GoalSpec& goal) {
+  return goal.kind == GoalKind::stand || goal.kind == GoalKind::stand_filled ? goal.margin : goal.epsilon;
+}
+
+// Lowest cz over the ground (normalised) with every row at the user's margin: Dinkelbach on ∫z / M.
+std::optional<double> lowest_cz(Solver& solver, Partition& p, const GoalRows& rows, const Frame& f, double margin,
+                                std::vector<double>& u, int cap) {
+  const std::vector<Form> constraints = ratio_rows_at(rows, margin);
+  const Form Z = solid_form(unit(kIntZ)), M = solid_form(unit(kIntVolume));
+  std::vector<double> warm = u;
+  double theta = form_value(Z, f.P0, p, u) / form_value(M, f.P0, p, u);
+  std::optional<double> best;
+  for (int it = 0; it < cap; ++it) {
+    Form obj;
+    obj.solid = -(Z.solid - theta * M.solid);
+    const LpRun run = solver.solve(p, constraints, 0, false, &obj, warm);
+    if (run.status != LpStatus::optimal) break;
+    const double next = form_value(Z, f.P0, p, run.u) / form_value(M, f.P0, p, run.u);
+    if (!best || next < *best) {
+      best = next;
+      u = run.u;
+    }
+    if (theta - next <= 1e-12) break;
+    theta = next;
+  }
+  return best;
+}
+
+std::vector<double> per_cell(const Partition& p, const std::vector<double>& u, int sign, std::size_t count) {
+  std::vector<double> out(count, 0.0);
+  for (std::size_t g = 0; g < p.groups.size() && g < u.size(); ++g)
+    for (int q = p.groups[g].begin; q < p.groups[g].end; ++q) {
+      const FineCell& c = p.cells[static_cast<std::size_t>(p.order[static_cast<std::size_t>(q)])];
+      if (c.sign == sign) out[static_cast<std::size_t>(c.source)] = u[g];
+    }
+  return out;
+}
+
+Frame make_frame(const VolumeIntegrals& input, const Eigen::Matrix3d& R, const Eigen::Vector3d& origin, double diagonal,
+                 double top) {
+  Frame f;
+  f.scale = 1.0 / diagonal;
+  f.origin = origin;
+  f.rotation = R;
+  // Rotate: first moments R m, second moments R S Rᵀ, about R·(the input's origin).
+  const Vector10d& v = input.values;
+  Eigen::Matrix3d S;
+  S << v(kIntXX), v(kIntXY), v(kIntZX), v(kIntXY), v(kIntYY), v(kIntYZ), v(kIntZX), v(kIntYZ), v(kIntZZ);
+  const Eigen::Vector3d m1 = R * v.segment<3>(kIntX);
+  const Eigen::Matrix3d S1 = R * S * R.transpose();
+  VolumeIntegrals rotated;
+  rotated.origin = R * input.origin;
+  rotated.values << v(kIntVolume), m1.x(), m1.y(), m1.z(), S1(0, 0), S1(1, 1), S1(2, 2), S1(0, 1), S1(1, 2), S1(2, 0);
+  const VolumeIntegrals shifted = shift_integrals(rotated, origin);
+  const double s = f.scale;
+  const int degree[10] = {0, 1, 1, 1, 2, 2, 2, 2, 2, 2};
+  for (int k = 0; k < 10; ++k) {
+    double factor = s * s * s;
+    for (int d = 0; d < degree[k]; ++d) factor *= s;
+    f.P0(k) = shifted.values(k) * factor;
+  }
+  f.top = top * s;
+  return f;
+}
+
+}  // namespace
+
+std::string ReachabilityOptions::check() const {
+  const ReachabilityOptions& o = *this;
+  if (!(o.wall > 0.0) || !std::isfinite(o.wall)) return "the wall must be > 0";
+  if (o.outer && !(o.outer_max > 0.0)) return "--outer needs outer_max > 0";
+  if (!(o.ground_tol >= 0.0)) return "the ground tolerance must be >= 0";
+  if (o.block < 1 || o.block > 16) return "the block must be in [1, 16] cells";
+  if (o.max_dinkelbach < 1 || o.max_dinkelbach > 200) return "max_dinkelbach must be in [1, 200]";
+  if (o.max_refinements < 0 || o.max_refinements > 200) return "max_refinements must be in [0, 200]";
+  if (!(o.axis_tolerance > 0.0 && o.axis_tolerance <= 0.7e-4)) return "the axis tolerance must be in (0, 0.7e-4]";
+  if (o.spin_levels < 1 || o.spin_levels > 200) return "spin_levels must be in [1, 200]";
+  if (o.threads < 1 || o.threads > 64) return "threads must be in [1, 64]";
+  return o.lp.check();
+}
+
+Reachability reachability(const Mesh& input, const TriangleBvh& input_bvh, const GoalSpec& goal, double ground_z,
+                          const Eigen::Vector3d& origin, const ReachabilityOptions& options) {
+  if (const std::string problem = options.check(); !problem.empty()) {
+    Reachability r;
+    r.message = problem;
+    return r;
+  }
+  CarvableCellsOptions co;
+  co.wall = options.wall;
+  co.cells_per_wall = options.cells_per_wall;
+  co.margin_cells = options.margin_cells;
+  co.max_nodes = options.max_nodes;
+  co.band = options.outer && goal.kind != GoalKind::floating;
+  co.outer_max = options.outer_max;
+  co.ground_z = ground_z;
+  co.ground_tol = options.ground_tol;
+  co.threads = options.threads;
+  auto cells = std::make_shared<CarvableCells>(carvable_cells(input, input_bvh, co));
+  if (!cells->ok) {
+    Reachability r;
+    r.message = cells->message;
+    return r;
+  }
+  const Eigen::Vector3d lo = input.V.colwise().minCoeff().transpose(), hi = input.V.colwise().maxCoeff().transpose();
+  return reachability(cells, volume_integrals(input), Eigen::Matrix3d::Identity(), goal, ground_z, origin, (hi - lo).norm(),
+                      options);
+}
+
+Reachability reachability(std::shared_ptr<const CarvableCells> cells, const VolumeIntegrals& input_integrals,
+                          const Eigen::Matrix3d& rotation, const GoalSpec& goal, double ground_z,
+                          const Eigen::Vector3d& origin, double diagonal, const ReachabilityOptions& options) {
+  Reachability out;
+  if (const std::string problem = options.check(); !problem.empty()) {
+    out.message = problem;
+    return out;
+  }
+  if (const std::string problem = check_goal_spec(goal); !problem.empty()) {
+    out.message = problem;
+    return out;
+  }
+  out.cells = cells;
+  const double v = cells->cell_volume();
+  out.carvable_volume = v * static_cast<double>(cells->inner.size());
+  out.carvable_volume_outer = v * static_cast<double>(cells->outer.size());
+  out.band_volume = v * static_cast<double>(cells->band_inner.size());
+  // The highest point over the ground, for the spin's levels: bounded by the cells' reach.
+  double top = 0.0;
+  for (std::int64_t c : cells->outer) top = std::max(top, (rotation * cells->centre(c)).z() - ground_z);
+  const Frame f = make_frame(input_integrals, rotation, origin, diagonal, top);
+  out.ok = true;
+  if (goal.kind == GoalKind::volume) {
+    out.reachable = goal.target_volume <= out.carvable_volume;
+    out.decided = out.reachable || goal.target_volume > out.carvable_volume_outer;
+    return out;
+  }
+  Solver solver(f, options, out);
+  const bool band = options.outer && goal.kind != GoalKind::floating;
+  Partition inner = make_partition(*cells, cells->inner, band ? cells->band_inner : std::vector<std::int64_t>{}, f, options.block);
+  const double margin = user_margin(goal) * f.scale;
+  const double tau_in = options.axis_tolerance, tau_out = 1e-4;
+
+  if (goal.kind == GoalKind::spin) {
+    std::vector<double> warm;
+    for (int l = 0; l < options.spin_levels && !out.reachable; ++l) {
+      const double level = f.top * (l + 1.0) / (options.spin_levels + 1.0);
+      const GoalRows rows = goal_rows(goal, f, tau_in, 0.0, 0.5e-4, level);
+      warm.assign(inner.groups.size(), 0.0);
+      const LpRun run = solver.solve(inner, rows.plain, 0, false, nullptr, warm);
+      if (run.status == LpStatus::optimal) {
+        out.reachable = out.decided = true;
+        out.occupancy = per_cell(inner, run.u, -1, cells->inner.size());
+        out.band_occupancy = per_cell(inner, run.u, 1, cells->band_inner.size());
+      }
+    }
+    if (!out.reachable) {
+      Partition outer = make_partition(*cells, cells->outer, band ? cells->band_outer : std::vector<std::int64_t>{}, f, options.block);
+      const GoalRows rows = goal_rows(goal, f, tau_out, 0.0, 2e-4, -1.0);
+      warm.assign(outer.groups.size(), 0.0);
+      const LpRun run = solver.solve(outer, rows.plain, 0, false, nullptr, warm);
+      if (run.status == LpStatus::infeasible) {
+        out.certificate = certify(run, outer, f);
+        out.decided = out.certificate.proves;
+        out.binding = heaviest_plain(rows, run);
+      }
+    }
+    return out;
+  }
+
+  const GoalRows rows = goal_rows(goal, f, tau_in, 1e-4, 0.0, -1.0);
+  MarginSearch s = best_margin(solver, inner, rows, f, options.max_dinkelbach);
+  if (s.feasible) {
+    out.best_margin = s.best / f.scale;
+    out.binding = binding_name(rows, s.binding);
+    out.reachable = s.best >= margin;
+  } else if (s.infeasible_run.status == LpStatus::infeasible) {
+    out.binding = heaviest_plain(rows, s.infeasible_run);
+  }
+  if (out.reachable) {
+    out.decided = true;
+    std::vector<double> u = s.u;
+    if (options.lowest_cz) {
+      const std::optional<double> cz = lowest_cz(solver, inner, rows, f, margin, u, options.max_dinkelbach);
+      if (cz) out.lowest_cz = *cz / f.scale;
+    }
+    out.occupancy = per_cell(inner, u, -1, cells->inner.size());
+    out.band_occupancy = per_cell(inner, u, 1, cells->band_inner.size());
+    return out;
+  }
+  // Not reached on the inner reading: the outer reading's best, and a certificate at the user's margin.
+  Partition outer = make_partition(*cells, cells->outer, band ? cells->band_outer : std::vector<std::int64_t>{}, f, options.block);
+  const GoalRows loose = goal_rows(goal, f, tau_out, 1e-3, 0.0, -1.0);
+  const MarginSearch upper = best_margin(solver, outer, loose, f, options.max_dinkelbach);
+  if (upper.feasible) out.best_margin_upper = upper.best / f.scale;
+  std::vector<double> warm(outer.groups.size(), 0.0);
+  const LpRun at_margin = solver.solve(outer, ratio_rows_at(loose, margin), static_cast<int>(loose.numerators.size()), true,
+                                       nullptr, warm);
+  if (at_margin.status == LpStatus::infeasible || (at_margin.status == LpStatus::optimal && at_margin.z < 0.0)) {
+    out.certificate = certify(at_margin, outer, f);
+    out.decided = out.certificate.proves;
+  }
+  if (out.binding.empty() && upper.feasible) out.binding = binding_name(loose, upper.binding);
+  return out;
+}
+
+}  // namespace offsetopt

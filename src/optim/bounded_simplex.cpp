@@ -1,0 +1,337 @@
+#include "optim/bounded_simplex.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include <Eigen/LU>
+
+namespace offsetopt {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr std::size_t kCandidatesPerPass = 64;
+
+// The simplex state over n structural columns, m slacks and m artificials (index n + i and
+// n + m + i for row i).
+class Simplex {
+ public:
+  Simplex(const LinearProgram& lp, const BoundedSimplexOptions& o) : lp_(lp), o_(o) {
+    n_ = static_cast<int>(lp.A.cols());
+    m_ = static_cast<int>(lp.A.rows());
+    const int total = n_ + 2 * m_;
+    lo_.assign(static_cast<std::size_t>(total), 0.0);
+    hi_.assign(static_cast<std::size_t>(total), 0.0);
+    value_.assign(static_cast<std::size_t>(total), 0.0);
+    cost_.assign(static_cast<std::size_t>(total), 0.0);
+    position_.assign(static_cast<std::size_t>(total), -1);
+    sigma_.assign(static_cast<std::size_t>(m_), 1.0);
+    for (int j = 0; j < n_; ++j) {
+      lo_[j] = lp.lower(j);
+      hi_[j] = lp.upper(j);
+    }
+    for (int i = 0; i < m_; ++i) {
+      const RowSense s = lp.sense[static_cast<std::size_t>(i)];
+      lo_[n_ + i] = s == RowSense::greater_equal ? -kInf : 0.0;
+      hi_[n_ + i] = s == RowSense::less_equal ? kInf : 0.0;
+    }
+  }
+
+  LpResult solve(const std::vector<std::int8_t>* start) {
+    LpResult r;
+    for (int j = 0; j < n_; ++j) {
+      const bool up = start && (*start)[static_cast<std::size_t>(j)] == 1 && std::isfinite(hi_[j]);
+      value_[j] = up ? hi_[j] : std::isfinite(lo_[j]) ? lo_[j] : std::isfinite(hi_[j]) ? hi_[j] : 0.0;
+    }
+    // Slack basic where the start satisfies the row, else an artificial takes up the residual.
+    Eigen::VectorXd residual = lp_.b;
+    for (int j = 0; j < n_; ++j)
+      if (value_[j] != 0.0) residual -= value_[j] * lp_.A.col(j);
+    basis_.assign(static_cast<std::size_t>(m_), -1);
+    bool phase1 = false;
+    for (int i = 0; i < m_; ++i) {
+      const int s = n_ + i, a = n_ + m_ + i;
+      const double clipped = std::min(std::max(residual(i), lo_[s]), hi_[s]);
+      if (clipped == residual(i)) {
+        set_basic(i, s);
+        value_[s] = residual(i);
+      } else {
+        value_[s] = clipped;
+        sigma_[i] = residual(i) > clipped ? 1.0 : -1.0;
+        hi_[a] = kInf;
+        cost_[a] = -1.0;
+        value_[a] = std::fabs(residual(i) - clipped);
+        set_basic(i, a);
+        phase1 = true;
+      }
+    }
+    if (!refactor()) return finish(r, LpStatus::numerical, "singular starting basis");
+    if (phase1) {
+      const LpStatus s = run(r);
+      r.phase1_iterations = r.iterations;
+      if (s != LpStatus::optimal) return finish(r, s == LpStatus::unbounded ? LpStatus::numerical : s, "phase 1 did not end");
+      double artificial = 0.0;
+      for (int i = 0; i < m_; ++i) artificial += value_[n_ + m_ + i];
+      if (artificial > o_.feasibility_tolerance * std::max(1, m_)) {
+        r.y = duals();
+        return finish(r, LpStatus::infeasible, "the rows admit no point in the box", false);
+      }
+    }
+    for (int i = 0; i < m_; ++i) {  // artificials stay at 0 (basic ones leave when they block)
+      hi_[n_ + m_ + i] = 0.0;
+      cost_[n_ + m_ + i] = 0.0;
+    }
+    for (int j = 0; j < n_; ++j) cost_[j] = lp_.c(j);
+    if (!refactor()) return finish(r, LpStatus::numerical, "singular basis after phase 1");
+    const LpStatus s = run(r);
+    r.y = duals();
+    return finish(r, s, s == LpStatus::optimal ? "" : s == LpStatus::unbounded ? "the objective is unbounded" : "stopped early");
+  }
+
+ private:
+  void set_basic(int row, int var) {
+    basis_[static_cast<std::size_t>(row)] = var;
+    position_[static_cast<std::size_t>(var)] = row;
+  }
+
+  // Column `var` of [A I diag(σ)] times v (v of length m).
+  double column_dot(int var, const Eigen::VectorXd& v) const {
+    if (var < n_) return lp_.A.col(var).dot(v);
+    if (var < n_ + m_) return v(var - n_);
+    return sigma_[static_cast<std::size_t>(var - n_ - m_)] * v(var - n_ - m_);
+  }
+  Eigen::VectorXd binv_column(int var) const {
+    if (var < n_) return binv_ * lp_.A.col(var);
+    if (var < n_ + m_) return binv_.col(var - n_);
+    return sigma_[static_cast<std::size_t>(var - n_ - m_)] * binv_.col(var - n_ - m_);
+  }
+  Eigen::VectorXd duals() const {
+    Eigen::VectorXd cb(m_);
+    for (int i = 0; i < m_; ++i) cb(i) = cost_[static_cast<std::size_t>(basis_[static_cast<std::size_t>(i)])];
+    return binv_.transpose() * cb;
+  }
+
+  // B⁻¹ from scratch and the basic values from the nonbasic ones.
+  bool refactor() {
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(m_, m_);
+    for (int i = 0; i < m_; ++i) {
+      const int var = basis_[static_cast<std::size_t>(i)];
+      if (var < n_) B.col(i) = lp_.A.col(var);
+      else if (var < n_ + m_) B(var - n_, i) = 1.0;
+      else B(var - n_ - m_, i) = sigma_[static_cast<std::size_t>(var - n_ - m_)];
+    }
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(B);
+    if (m_ > 0 && !lu.isInvertible()) return false;
+    binv_ = m_ > 0 ? Eigen::MatrixXd(lu.inverse()) : Eigen::MatrixXd(0, 0);
+    Eigen::VectorXd rhs = lp_.b;
+    for (int var = 0; var < n_ + 2 * m_; ++var) {
+      if (position_[static_cast<std::size_t>(var)] >= 0 || value_[var] == 0.0) continue;
+      if (var < n_) rhs -= value_[var] * lp_.A.col(var);
+      else if (var < n_ + m_) rhs(var - n_) -= value_[var];
+      else rhs(var - n_ - m_) -= sigma_[static_cast<std::size_t>(var - n_ - m_)] * value_[var];
+    }
+    const Eigen::VectorXd xb = binv_ * rhs;
+    for (int i = 0; i < m_; ++i) value_[basis_[static_cast<std::size_t>(i)]] = xb(i);
+    pivots_since_refactor_ = 0;
+    flips_since_refactor_ = 0;
+    return xb.allFinite();
+  }
+
+  // The simplex loop on the current costs: optimal, unbounded, iteration_cap or numerical.
+  LpStatus run(LpResult& r) {
+    const double tol = o_.optimality_tolerance;
+    int degenerate_run = 0;
+    bool bland = false;
+    std::vector<std::pair<double, int>> candidates;
+    for (;;) {
+      const Eigen::VectorXd y = duals();
+      ++r.pricing_passes;
+      candidates.clear();
+      const Eigen::VectorXd priced = lp_.A.transpose() * y;  // one product for every structural column
+      for (int var = 0; var < n_ + 2 * m_; ++var) {
+        if (position_[static_cast<std::size_t>(var)] >= 0 || lo_[var] == hi_[var]) continue;
+        const double d = cost_[var] - (var < n_ ? priced(var) : column_dot(var, y));
+        const bool up = d > tol && value_[var] < hi_[var], down = d < -tol && value_[var] > lo_[var];
+        if (!up && !down) continue;
+        candidates.emplace_back(std::fabs(d) * (up ? 1.0 : -1.0), var);
+        if (bland) break;  // the lowest attractive index
+      }
+      if (candidates.empty()) {
+        // Confirm on a fresh factorisation before claiming optimality.
+        if (pivots_since_refactor_ == 0 && flips_since_refactor_ == 0) return LpStatus::optimal;
+        if (!refactor()) return LpStatus::numerical;
+        continue;
+      }
+      // The best few in order (a full sort of thousands of candidates per pass costs more than
+      // the pass); when they all flip, the next pass brings the rest.
+      const auto first = [](const std::pair<double, int>& a, const std::pair<double, int>& b) {
+        const double fa = std::fabs(a.first), fb = std::fabs(b.first);
+        return fa != fb ? fa > fb : a.second < b.second;
+      };
+      const std::size_t keep = std::min<std::size_t>(candidates.size(), kCandidatesPerPass);
+      std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(keep), candidates.end(), first);
+      candidates.resize(keep);
+      bool pivoted = false;
+      for (const auto& [signed_d, var] : candidates) {
+        if (r.iterations >= o_.max_iterations) return LpStatus::iteration_cap;
+        ++r.iterations;
+        const double dir = signed_d > 0.0 ? 1.0 : -1.0;
+        const Eigen::VectorXd alpha = binv_column(var);
+        int leave = -1;
+        const double theta_basis = ratio_test(alpha, dir, bland, leave);
+        const double flip = hi_[var] - lo_[var];
+        if (leave < 0 && !std::isfinite(flip)) return LpStatus::unbounded;
+        if (leave < 0 || flip <= theta_basis) {
+          // Bound flip: the duals stay, so the next candidate needs no new pricing.
+          for (int i = 0; i < m_; ++i) value_[basis_[static_cast<std::size_t>(i)]] -= dir * flip * alpha(i);
+          value_[var] = dir > 0.0 ? hi_[var] : lo_[var];
+          ++flips_since_refactor_;
+          continue;
+        }
+        const double theta = theta_basis;
+        const bool degenerate = theta * std::fabs(signed_d) <= 1e-14;
+        degenerate_run = degenerate ? degenerate_run + 1 : 0;
+        bland = degenerate_run >= o_.degenerate_before_bland;
+        pivot(var, leave, alpha, dir, theta);
+        pivoted = true;
+        break;
+      }
+      if (pivoted && pivots_since_refactor_ >= o_.refactor_every) {
+        if (!refactor()) return LpStatus::numerical;
+      }
+    }
+  }
+
+  // Harris's two-pass ratio test; returns the step and the leaving row (−1: nothing blocks).
+  double ratio_test(const Eigen::VectorXd& alpha, double dir, bool bland, int& leave) const {
+    const double ftol = o_.feasibility_tolerance, ptol = o_.pivot_tolerance;
+    auto room = [&](int i, double rate, double slack_tol) {
+      const int var = basis_[static_cast<std::size_t>(i)];
+      if (rate < 0.0) return std::isfinite(lo_[var]) ? (value_[var] - lo_[var] + slack_tol) / -rate : kInf;
+      return std::isfinite(hi_[var]) ? (hi_[var] - value_[var] + slack_tol) / rate : kInf;
+    };
+    double bound = kInf;
+    for (int i = 0; i < m_; ++i) {
+      const double rate = -dir * alpha(i);
+      if (std::fabs(rate) <= ptol) continue;
+      bound = std::min(bound, room(i, rate, ftol));
+    }
+    leave = -1;
+    if (!std::isfinite(bound)) return kInf;
+    double best_rate = 0.0, step = kInf;
+    for (int i = 0; i < m_; ++i) {
+      const double rate = -dir * alpha(i);
+      if (std::fabs(rate) <= ptol) continue;
+      const double t = room(i, rate, 0.0);
+      if (t > bound) continue;
+      const int var = basis_[static_cast<std::size_t>(i)];
+      const bool better = leave < 0 || (bland ? var < basis_[static_cast<std::size_t>(leave)]
+                                              : std::fabs(rate) > best_rate ||
+                                                    (std::fabs(rate) == best_rate && var < basis_[static_cast<std::size_t>(leave)]));
+      if (better) {
+        leave = i;
+        best_rate = std::fabs(rate);
+        step = std::max(t, 0.0);
+      }
+    }
+    return step;
+  }
+
+  void pivot(int enter, int row, const Eigen::VectorXd& alpha, double dir, double theta) {
+    for (int i = 0; i < m_; ++i) value_[basis_[static_cast<std::size_t>(i)]] -= dir * theta * alpha(i);
+    value_[enter] += dir * theta;
+    const int leaving = basis_[static_cast<std::size_t>(row)];
+    // The leaving column rests on the bound it reached.
+    value_[leaving] = -dir * alpha(row) < 0.0 ? lo_[leaving] : hi_[leaving];
+    position_[static_cast<std::size_t>(leaving)] = -1;
+    set_basic(row, enter);
+    const double p = alpha(row);
+    binv_.row(row) /= p;
+    for (int i = 0; i < m_; ++i)
+      if (i != row && alpha(i) != 0.0) binv_.row(i) -= alpha(i) * binv_.row(row);
+    ++pivots_since_refactor_;
+  }
+
+  LpResult& finish(LpResult& r, LpStatus status, const std::string& message, bool set_y = true) {
+    r.status = status;
+    r.message = message;
+    r.x.resize(n_);
+    for (int j = 0; j < n_; ++j) r.x(j) = value_[j];
+    r.objective = lp_.c.size() == n_ ? lp_.c.dot(r.x) : 0.0;
+    if (set_y && r.y.size() != m_) r.y = binv_.rows() == m_ ? duals() : Eigen::VectorXd::Zero(m_);
+    return r;
+  }
+
+  const LinearProgram& lp_;
+  const BoundedSimplexOptions& o_;
+  int n_ = 0, m_ = 0;
+  std::vector<double> lo_, hi_, value_, cost_, sigma_;
+  std::vector<int> position_, basis_;
+  Eigen::MatrixXd binv_;
+  int pivots_since_refactor_ = 0, flips_since_refactor_ = 0;
+};
+
+}  // namespace
+
+const char* to_string(LpStatus status) {
+  switch (status) {
+    case LpStatus::optimal: return "optimal";
+    case LpStatus::infeasible: return "infeasible";
+    case LpStatus::unbounded: return "unbounded";
+    case LpStatus::iteration_cap: return "iteration_cap";
+    case LpStatus::numerical: return "numerical";
+  }
+  return "numerical";
+}
+
+std::string BoundedSimplexOptions::check() const {
+  if (max_iterations < 1) return "the iteration cap must be >= 1";
+  if (refactor_every < 1) return "refactor_every must be >= 1";
+  if (!(feasibility_tolerance > 0.0 && feasibility_tolerance < 1e-2)) return "the feasibility tolerance must be in (0, 1e-2)";
+  if (!(optimality_tolerance > 0.0 && optimality_tolerance < 1e-2)) return "the optimality tolerance must be in (0, 1e-2)";
+  if (!(pivot_tolerance > 0.0 && pivot_tolerance < 1e-2)) return "the pivot tolerance must be in (0, 1e-2)";
+  if (degenerate_before_bland < 1) return "degenerate_before_bland must be >= 1";
+  return "";
+}
+
+LpResult bounded_simplex(const LinearProgram& lp, const BoundedSimplexOptions& options, const std::vector<std::int8_t>* start) {
+  LpResult r;
+  const Eigen::Index m = lp.A.rows(), n = lp.A.cols();
+  std::string problem = options.check();
+  if (problem.empty() && (lp.b.size() != m || static_cast<Eigen::Index>(lp.sense.size()) != m || lp.c.size() != n ||
+                          lp.lower.size() != n || lp.upper.size() != n || (start && static_cast<Eigen::Index>(start->size()) != n)))
+    problem = "the sizes of A, b, sense, c, lower, upper (and start) disagree";
+  for (Eigen::Index j = 0; problem.empty() && j < n; ++j)
+    if (!(lp.lower(j) <= lp.upper(j)) || lp.lower(j) == kInf || lp.upper(j) == -kInf) problem = "a column has empty bounds";
+  if (problem.empty() && (!lp.A.allFinite() || !lp.b.allFinite() || !lp.c.allFinite())) problem = "A, b and c must be finite";
+  if (!problem.empty()) {
+    r.status = LpStatus::numerical;
+    r.message = problem;
+    r.x = Eigen::VectorXd::Zero(n);
+    r.y = Eigen::VectorXd::Zero(m);
+    return r;
+  }
+  Simplex simplex(lp, options);
+  return simplex.solve(start);
+}
+
+double farkas_gap(const LinearProgram& lp, const Eigen::VectorXd& y) {
+  const Eigen::Index m = lp.A.rows();
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const RowSense s = lp.sense[static_cast<std::size_t>(i)];
+    if ((s == RowSense::less_equal && y(i) < 0.0) || (s == RowSense::greater_equal && y(i) > 0.0)) return -kInf;
+  }
+  const Eigen::VectorXd w = lp.A.transpose() * y;
+  double gap = -lp.b.dot(y);
+  for (Eigen::Index j = 0; j < w.size(); ++j) {
+    if (w(j) == 0.0) continue;
+    const double bound = w(j) > 0.0 ? lp.lower(j) : lp.upper(j);
+    if (!std::isfinite(bound)) return -kInf;
+    gap += w(j) * bound;
+  }
+  return gap;
+}
+
+}  // namespace offsetopt

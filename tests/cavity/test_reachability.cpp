@@ -1,0 +1,164 @@
+// Moment-space reachability (cavity/reachability.h) against closed forms:
+// - a box standing on a face whose support polygon is a strip at one end: the best any void can do
+//   is to carve the carvable box beyond the final centroid (a half-box cut by a plane), whose
+//   centroid solves x* = cx(x*) in closed form; the answer lies between the values for the box
+//   shrunk by the grid's two error bounds;
+// - the same box with a reachable strip: the occupancy the programme returns, integrated cell by
+//   cell here, meets the margin and gives the lowest centre of mass it reports;
+// - an unreachable strip: the certificate's quadric integrated over the outer cells proves it;
+// - a sphere floating: reachable at ρ = 0.8, unreachable at ρ = 0.05 (95% void with a wall).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "cavity/reachability.h"
+#include "geometry/bvh.h"
+#include "mesh/primitives.h"
+
+using namespace offsetopt;
+
+namespace {
+
+// Box [0,a]×[0,b]×[0,c]; the carvable box is it shrunk by `shrink` on every side. The smallest
+// centroid x any void reaches: carve {x > x*} of the carvable box, with x* the centroid itself.
+double min_centroid_x(double a, double b, double c, double shrink) {
+  const double V = a * b * c, area = (b - 2 * shrink) * (c - 2 * shrink), U = a - shrink;
+  double x = 0.5 * a;
+  for (int i = 0; i < 200; ++i) x = (V * 0.5 * a - area * 0.5 * (U * U - x * x)) / (V - area * (U - x));
+  return x;
+}
+
+GoalSpec strip_goal(double width, double b, double margin) {
+  GoalSpec g;
+  g.kind = GoalKind::stand;
+  g.support_polygon = {Eigen::Vector2d(0, 0), Eigen::Vector2d(width, 0), Eigen::Vector2d(width, b), Eigen::Vector2d(0, b)};
+  g.margin = margin;
+  return g;
+}
+
+ReachabilityOptions options_for(double wall) {
+  ReachabilityOptions o;
+  o.wall = wall;
+  o.ground_tol = 1e-3;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("reachability: a box on a strip: the best margin is the half-box cut by a plane") {
+  const double a = 10, b = 6, c = 4, wall = 0.5;
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(a, b, c));
+  const TriangleBvh bvh(box.V, box.F);
+  const Eigen::Vector3d origin(1.0, 0.5 * b, 0.0);
+  for (double width : {4.6, 2.0}) {
+    CAPTURE(width);
+    const Reachability r = reachability(box, bvh, strip_goal(width, b, 0.05), 0.0, origin, options_for(wall));
+    REQUIRE(r.ok);
+    REQUIRE(r.best_margin);
+    const double h = r.cells->grid.spacing, margin = r.cells->margin;
+    // Inner cells cover the box shrunk by wall + margin + √3 h and lie in the one shrunk by wall + margin.
+    const double worst = width - min_centroid_x(a, b, c, wall + margin + std::sqrt(3.0) * h);
+    const double best = width - min_centroid_x(a, b, c, wall + margin);
+    CHECK(*r.best_margin >= worst - 1e-9);
+    CHECK(*r.best_margin <= best + 1e-9);
+    CHECK(r.binding == "support edge 1");
+    CHECK(r.reachable == (width > 4.0));
+    CHECK(r.decided);
+    if (!r.reachable) {
+      REQUIRE(r.best_margin_upper);
+      // Outer cells lie in the box shrunk by wall − √3 h: no void does better than that.
+      CHECK(*r.best_margin_upper <= width - min_centroid_x(a, b, c, wall - std::sqrt(3.0) * h) + 1e-9);
+      CHECK(*r.best_margin_upper >= *r.best_margin - 1e-9);
+    }
+  }
+}
+
+TEST_CASE("reachability: the optimal void, integrated cell by cell, meets the margin at the lowest centre of mass") {
+  const double a = 10, b = 6, c = 4, wall = 0.5;
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(a, b, c));
+  const TriangleBvh bvh(box.V, box.F);
+  const double width = 5.2, margin = 0.2;
+  const Reachability r = reachability(box, bvh, strip_goal(width, b, margin), 0.0, Eigen::Vector3d(1, 3, 0), options_for(wall));
+  REQUIRE(r.reachable);
+  REQUIRE(r.lowest_cz);
+  REQUIRE(r.occupancy.size() == r.cells->inner.size());
+  double m = a * b * c, mx = m * 0.5 * a, my = m * 0.5 * b, mz = m * 0.5 * c;
+  const double v = r.cells->cell_volume();
+  int fractional = 0;
+  for (std::size_t i = 0; i < r.occupancy.size(); ++i) {
+    const double u = r.occupancy[i];
+    if (u > 1e-9 && u < 1 - 1e-9) ++fractional;
+    const Eigen::Vector3d p = r.cells->centre(r.cells->inner[i]);
+    m -= u * v;
+    mx -= u * v * p.x();
+    my -= u * v * p.y();
+    mz -= u * v * p.z();
+  }
+  // Distance inside the strip (the right edge binds), and the height the programme reports.
+  CHECK(width - mx / m >= margin - 1e-9);
+  CHECK(mx / m >= margin);
+  CHECK(mz / m == doctest::Approx(*r.lowest_cz).epsilon(1e-9));
+  CHECK(*r.lowest_cz < 0.5 * c);
+  // A vertex of the LP: at most as many fractional cells as rows.
+  CHECK(fractional <= 4);
+  CHECK(r.lps >= 2);
+}
+
+TEST_CASE("reachability: an unreachable stand is proved by its quadric integrated over the carvable cells") {
+  const double a = 10, b = 6, c = 4, wall = 0.5;
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(a, b, c));
+  const TriangleBvh bvh(box.V, box.F);
+  const Reachability r = reachability(box, bvh, strip_goal(2.0, b, 0.05), 0.0, Eigen::Vector3d(1, 3, 0), options_for(wall));
+  REQUIRE(r.ok);
+  CHECK(!r.reachable);
+  REQUIRE(r.certificate.present);
+  CHECK(r.certificate.proves);
+  // Farkas: the rows met would make constant − ∫_void q >= 0; the best void is {q < 0} over the
+  // outer cells, integrated exactly cell by cell here.
+  const CarvableCells& cells = *r.cells;
+  double best = r.certificate.constant;
+  for (std::int64_t cell : cells.outer) {
+    const double integral = r.certificate.quadric.dot(cube_integrals(cells.centre(cell), cells.grid.spacing, r.certificate.origin));
+    if (integral < 0.0) best -= integral;
+  }
+  CHECK(best < 0.0);
+  // The quadric prefers carving the far end: q is lower at x = 9 than at x = 1 (mid-height, mid-depth).
+  auto q_at = [&](const Eigen::Vector3d& p) {
+    return r.certificate.quadric.dot(cube_integrals(p, 1e-6, r.certificate.origin)) / 1e-18;
+  };
+  CHECK(q_at(Eigen::Vector3d(9, 3, 2)) < q_at(Eigen::Vector3d(1, 3, 2)));
+}
+
+TEST_CASE("reachability: a sphere floats at density 0.8 but not at 0.05 (the void cannot be 95% with the wall)") {
+  const Mesh sphere = make_icosphere(10.0, 3);
+  const TriangleBvh bvh(sphere.V, sphere.F);
+  const double zmin = sphere.V.col(2).minCoeff();
+  GoalSpec g;
+  g.kind = GoalKind::floating;
+  g.epsilon = 0.05;
+  ReachabilityOptions o = options_for(1.0);
+  g.fluid_density = 0.8;
+  const Reachability light = reachability(sphere, bvh, g, zmin, Eigen::Vector3d(0, 0, zmin), o);
+  REQUIRE(light.ok);
+  CHECK(light.reachable);
+  CHECK(light.decided);
+  REQUIRE(light.best_margin);
+  CHECK(*light.best_margin > 1.0);
+  g.fluid_density = 0.05;
+  const Reachability heavy = reachability(sphere, bvh, g, zmin, Eigen::Vector3d(0, 0, zmin), o);
+  REQUIRE(heavy.ok);
+  CHECK(!heavy.reachable);
+  CHECK(heavy.certificate.proves);
+  CHECK(heavy.decided);
+  CHECK(heavy.carvable_volume_outer < 0.95 * 4.0 / 3.0 * 3.14159265358979 * 1000.0);
+}
+
+TEST_CASE("reachability: options are checked") {
+  ReachabilityOptions o;
+  CHECK(!o.check().empty());
+  o.wall = 1.0;
+  CHECK(o.check().empty());
+  o.block = 0;
+  CHECK(!o.check().empty());
+}

@@ -1,0 +1,241 @@
+// The bounded-variable simplex against independent answers: a brute-force enumeration of every
+// vertex of small random boxed LPs (each vertex solved densely), the duality conditions on larger
+// ones, degenerate and equality-constrained cases, and an infeasible case whose Farkas
+// certificate is checked by its own inequality.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "optim/bounded_simplex.h"
+#include "util/rng.h"
+
+using namespace offsetopt;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+LinearProgram random_lp(Rng& rng, int m, int n, bool with_equalities) {
+  LinearProgram lp;
+  lp.A.resize(m, n);
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < n; ++j) lp.A(i, j) = rng.uniform(-1.0, 1.0);
+  lp.c.resize(n);
+  lp.lower.resize(n);
+  lp.upper.resize(n);
+  VectorXd inside(n);
+  for (int j = 0; j < n; ++j) {
+    lp.c(j) = rng.uniform(-1.0, 1.0);
+    lp.lower(j) = rng.uniform(-1.0, 0.0);
+    lp.upper(j) = lp.lower(j) + rng.uniform(0.2, 2.0);
+    inside(j) = rng.uniform(lp.lower(j), lp.upper(j));
+  }
+  // Right-hand sides around a point of the box: usually feasible, sometimes not.
+  lp.b = lp.A * inside;
+  for (int i = 0; i < m; ++i) {
+    const int kind = static_cast<int>(rng.below(with_equalities ? 3 : 2));
+    lp.sense.push_back(kind == 0 ? RowSense::less_equal : kind == 1 ? RowSense::greater_equal : RowSense::equal);
+    if (kind == 0) lp.b(i) += rng.uniform(-0.5, 0.5);
+    if (kind == 1) lp.b(i) -= rng.uniform(-0.5, 0.5);
+  }
+  return lp;
+}
+
+// Every vertex: n active constraints among the rows (as equalities) and the bounds, solved
+// densely; the best feasible one, or -inf when none is feasible.
+double brute_force_optimum(const LinearProgram& lp) {
+  const int m = static_cast<int>(lp.A.rows()), n = static_cast<int>(lp.A.cols());
+  const int total = m + 2 * n;
+  double best = -kInf;
+  std::vector<bool> mask(static_cast<std::size_t>(total), false);
+  std::fill(mask.begin(), mask.begin() + n, true);
+  do {
+    MatrixXd M(n, n);
+    VectorXd r(n);
+    int k = 0;
+    for (int c = 0; c < total; ++c) {
+      if (!mask[static_cast<std::size_t>(c)]) continue;
+      if (c < m) {
+        M.row(k) = lp.A.row(c);
+        r(k) = lp.b(c);
+      } else {
+        const int j = (c - m) / 2;
+        M.row(k).setZero();
+        M(k, j) = 1.0;
+        r(k) = (c - m) % 2 == 0 ? lp.lower(j) : lp.upper(j);
+      }
+      ++k;
+    }
+    Eigen::FullPivLU<MatrixXd> lu(M);
+    if (!lu.isInvertible()) continue;
+    const VectorXd x = lu.solve(r);
+    bool ok = true;
+    for (int j = 0; j < n && ok; ++j) ok = x(j) >= lp.lower(j) - 1e-9 && x(j) <= lp.upper(j) + 1e-9;
+    for (int i = 0; i < m && ok; ++i) {
+      const double v = lp.A.row(i).dot(x) - lp.b(i);
+      const RowSense s = lp.sense[static_cast<std::size_t>(i)];
+      ok = s == RowSense::less_equal ? v <= 1e-9 : s == RowSense::greater_equal ? v >= -1e-9 : std::fabs(v) <= 1e-9;
+    }
+    if (ok) best = std::max(best, lp.c.dot(x));
+  } while (std::prev_permutation(mask.begin(), mask.end()));
+  return best;
+}
+
+// Primal feasibility, the dual signs, reduced-cost signs at the bounds and a zero duality gap:
+// together they prove optimality without trusting the solver.
+void check_optimality(const LinearProgram& lp, const LpResult& r, double tol) {
+  const VectorXd row = lp.A * r.x;
+  for (Eigen::Index i = 0; i < lp.A.rows(); ++i) {
+    const RowSense s = lp.sense[static_cast<std::size_t>(i)];
+    const double v = row(i) - lp.b(i);
+    if (s == RowSense::less_equal) {
+      CHECK(v <= tol);
+      CHECK(r.y(i) >= -tol);
+    } else if (s == RowSense::greater_equal) {
+      CHECK(v >= -tol);
+      CHECK(r.y(i) <= tol);
+    } else {
+      CHECK(std::fabs(v) <= tol);
+    }
+  }
+  const VectorXd d = lp.c - lp.A.transpose() * r.y;
+  double dual = lp.b.dot(r.y);
+  for (Eigen::Index j = 0; j < lp.A.cols(); ++j) {
+    CHECK(r.x(j) >= lp.lower(j) - tol);
+    CHECK(r.x(j) <= lp.upper(j) + tol);
+    if (d(j) > tol) CHECK(r.x(j) >= lp.upper(j) - tol);
+    if (d(j) < -tol) CHECK(r.x(j) <= lp.lower(j) + tol);
+    if (d(j) != 0.0) dual += d(j) > 0.0 ? d(j) * lp.upper(j) : d(j) * lp.lower(j);
+  }
+  CHECK(dual == doctest::Approx(r.objective).epsilon(1e-7));
+}
+
+}  // namespace
+
+TEST_CASE("bounded simplex: small random LPs match the brute-force vertex enumeration") {
+  Rng rng(20261125);
+  int optimal = 0, infeasible = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 1 + static_cast<int>(rng.below(4)), m = 1 + static_cast<int>(rng.below(3));
+    const LinearProgram lp = random_lp(rng, m, n, trial % 2 == 1);
+    const double expected = brute_force_optimum(lp);
+    const LpResult r = bounded_simplex(lp);
+    if (expected == -kInf) {
+      CHECK(r.status == LpStatus::infeasible);
+      if (r.status == LpStatus::infeasible) CHECK(farkas_gap(lp, r.y) > 0.0);
+      ++infeasible;
+    } else {
+      REQUIRE(r.status == LpStatus::optimal);
+      CHECK(r.objective == doctest::Approx(expected).epsilon(1e-9).scale(1.0));
+      check_optimality(lp, r, 1e-8);
+      ++optimal;
+    }
+  }
+  CHECK(optimal > 100);
+  CHECK(infeasible > 10);
+}
+
+TEST_CASE("bounded simplex: many columns, few rows, warm start: the duality conditions hold") {
+  Rng rng(7);
+  const LinearProgram lp = random_lp(rng, 8, 3000, true);
+  const LpResult r = bounded_simplex(lp);
+  REQUIRE(r.status == LpStatus::optimal);
+  check_optimality(lp, r, 1e-8);
+  // Started from the optimum's bounds, the same answer in fewer steps.
+  std::vector<std::int8_t> start(3000);
+  for (int j = 0; j < 3000; ++j) start[static_cast<std::size_t>(j)] = r.x(j) > 0.5 * (lp.lower(j) + lp.upper(j));
+  const LpResult warm = bounded_simplex(lp, {}, &start);
+  REQUIRE(warm.status == LpStatus::optimal);
+  CHECK(warm.objective == doctest::Approx(r.objective).epsilon(1e-9));
+  CHECK(warm.iterations < r.iterations);
+}
+
+TEST_CASE("bounded simplex: a degenerate vertex (many rows through one point) and a free column") {
+  // max x + y + z s.t. x + y <= 1, y + z <= 1, x + z <= 1, x + y + z <= 1.5, x - y <= 0, y - x <= 0,
+  // 0 <= x, y, z <= 1: every row is active at (0.5, 0.5, 0.5); objective 1.5.
+  LinearProgram lp;
+  lp.A.resize(6, 4);
+  lp.A << 1, 1, 0, 0,  //
+      0, 1, 1, 0,      //
+      1, 0, 1, 0,      //
+      1, 1, 1, 0,      //
+      1, -1, 0, 0,     //
+      -1, 1, 0, 1;     // the free column w enters here only
+  lp.b.resize(6);
+  lp.b << 1, 1, 1, 1.5, 0, 0;
+  lp.sense.assign(6, RowSense::less_equal);
+  lp.c = Eigen::Vector4d(1, 1, 1, 0);
+  lp.lower = Eigen::Vector4d(0, 0, 0, -kInf);
+  lp.upper = Eigen::Vector4d(1, 1, 1, 0.0);  // w <= 0: y - x <= -w, one-sided
+  const LpResult r = bounded_simplex(lp);
+  REQUIRE(r.status == LpStatus::optimal);
+  CHECK(r.objective == doctest::Approx(1.5));
+  check_optimality(lp, r, 1e-9);
+}
+
+TEST_CASE("bounded simplex: equality rows and an unbounded free column") {
+  // max x0 + 2 x1 s.t. x0 + x1 = 1, x0 - x1 >= -0.5, 0 <= x <= 1: x1 = 0.75, x0 = 0.25, 1.75.
+  LinearProgram lp;
+  lp.A.resize(2, 2);
+  lp.A << 1, 1, 1, -1;
+  lp.b = Eigen::Vector2d(1, -0.5);
+  lp.sense = {RowSense::equal, RowSense::greater_equal};
+  lp.c = Eigen::Vector2d(1, 2);
+  lp.lower = Eigen::Vector2d(0, 0);
+  lp.upper = Eigen::Vector2d(1, 1);
+  const LpResult r = bounded_simplex(lp);
+  REQUIRE(r.status == LpStatus::optimal);
+  CHECK(r.x(0) == doctest::Approx(0.25));
+  CHECK(r.x(1) == doctest::Approx(0.75));
+  CHECK(r.objective == doctest::Approx(1.75));
+  check_optimality(lp, r, 1e-12);
+  // A free column that only raises the objective and meets no row: unbounded.
+  LinearProgram open = lp;
+  open.A.conservativeResize(2, 3);
+  open.A.col(2).setZero();
+  open.c = Eigen::Vector3d(1, 2, 1);
+  open.lower = Eigen::Vector3d(0, 0, -kInf);
+  open.upper = Eigen::Vector3d(1, 1, kInf);
+  CHECK(bounded_simplex(open).status == LpStatus::unbounded);
+}
+
+TEST_CASE("bounded simplex: an infeasible box gives a Farkas certificate that proves it") {
+  // x0 + x1 + x2 >= 2.5 and x0 - x1 = 0.9 with 0 <= x <= 1: x0 = 1, x1 = 0.1 at most gives 2.1.
+  LinearProgram lp;
+  lp.A.resize(2, 3);
+  lp.A << 1, 1, 1, 1, -1, 0;
+  lp.b = Eigen::Vector2d(2.5, 0.9);
+  lp.sense = {RowSense::greater_equal, RowSense::equal};
+  lp.c = Eigen::Vector3d(0, 0, 0);
+  lp.lower = Eigen::Vector3d::Zero();
+  lp.upper = Eigen::Vector3d::Ones();
+  const LpResult r = bounded_simplex(lp);
+  REQUIRE(r.status == LpStatus::infeasible);
+  CHECK(farkas_gap(lp, r.y) > 0.1);
+  // The same certificate on a feasible neighbour cannot be positive (weak duality).
+  LinearProgram feasible = lp;
+  feasible.b(0) = 2.0;
+  CHECK(bounded_simplex(feasible).status == LpStatus::optimal);
+  CHECK(farkas_gap(feasible, r.y) <= 1e-12);
+}
+
+TEST_CASE("bounded simplex: options are checked, and the iteration cap returns the iterate") {
+  BoundedSimplexOptions o;
+  CHECK(o.check().empty());
+  o.refactor_every = 0;
+  CHECK(!o.check().empty());
+  Rng rng(3);
+  const LinearProgram lp = random_lp(rng, 5, 400, false);
+  BoundedSimplexOptions capped;
+  capped.max_iterations = 3;
+  const LpResult r = bounded_simplex(lp, capped);
+  CHECK(r.status == LpStatus::iteration_cap);
+  CHECK(r.x.size() == 400);
+}
