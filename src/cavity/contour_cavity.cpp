@@ -26,6 +26,98 @@ Aabb mesh_box(const Mesh& mesh) {
   return box;
 }
 
+// The inner term of φ: which nodes lie inside the void it bounds, and a signed distance to its
+// boundary (positive inside), capped at ±cap.
+class InnerField {
+ public:
+  virtual ~InnerField() = default;
+  virtual Aabb box() const = 0;  // where the void can be
+  virtual std::vector<std::int8_t> inside(const NodeGrid& grid, const std::vector<std::int8_t>& outer_winding,
+                                          int threads) const = 0;
+  virtual double signed_distance(const Eigen::Vector3d& p, bool inside, double cap) const = 0;
+};
+
+// The inner offset surface: inside where its winding number is >= 1 (folds and overlaps resolve
+// themselves), the distance to its nearest face.
+class MeshField final : public InnerField {
+ public:
+  explicit MeshField(const Mesh& inner) : inner_(inner), bvh_(inner.V, inner.F) {}
+  Aabb box() const override { return mesh_box(inner_); }
+  std::vector<std::int8_t> inside(const NodeGrid& grid, const std::vector<std::int8_t>&, int threads) const override {
+    std::vector<std::int8_t> winding = grid_winding(inner_, grid, threads);
+    for (std::int8_t& w : winding) w = w >= 1;
+    return winding;
+  }
+  double signed_distance(const Eigen::Vector3d& p, bool inside, double cap) const override {
+    const ClosestPoint to_inner = closest_point(bvh_, p, cap);
+    const double d_in = to_inner.found ? to_inner.distance : cap;
+    return inside ? d_in : -d_in;
+  }
+
+ private:
+  const Mesh& inner_;
+  TriangleBvh bvh_;
+};
+
+// The quadric void { q < 0 }: its signed distance to first order, −q/|∇q| (Taubin's estimate,
+// exact for a plane, within O(distance²) of the true distance near the surface). The
+// coefficients are re-expanded about the centre of the outer box once, so that a model far from
+// the origin loses no digits to cancellation at every node.
+class QuadricField final : public InnerField {
+ public:
+  QuadricField(const Vector10d& c, const Aabb& outer_box) : box_(outer_box), centre_(0.5 * (outer_box.lo + outer_box.hi)) {
+    const Eigen::Vector3d& o = centre_;
+    // q(o + u) = q(o) + ∇q(o)·u + the same quadratic part.
+    a_ = c;
+    a_(0) = value_at(c, o);
+    a_(1) = c(1) + 2.0 * c(4) * o.x() + c(7) * o.y() + c(9) * o.z();
+    a_(2) = c(2) + 2.0 * c(5) * o.y() + c(7) * o.x() + c(8) * o.z();
+    a_(3) = c(3) + 2.0 * c(6) * o.z() + c(8) * o.y() + c(9) * o.x();
+  }
+  Aabb box() const override { return box_; }
+  std::vector<std::int8_t> inside(const NodeGrid& grid, const std::vector<std::int8_t>& outer_winding,
+                                  int threads) const override {
+    std::vector<std::int8_t> in(static_cast<std::size_t>(grid.node_count()), 0);
+    WorkerPool pool(std::max(1, std::min(threads, kParts)));
+    pool.run_parts(kParts, [&](int part) {
+      for (std::int64_t k = split_point(grid.nz, kParts, part); k < split_point(grid.nz, kParts, part + 1); ++k)
+        for (std::int64_t j = 0; j < grid.ny; ++j)
+          for (std::int64_t i = 0; i < grid.nx; ++i) {
+            const std::int64_t node = grid.index(i, j, k);
+            if (outer_winding[static_cast<std::size_t>(node)] < 1) continue;
+            in[static_cast<std::size_t>(node)] = local_value(Eigen::Vector3d(grid.x(i), grid.y(j), grid.z(k)) - centre_) < 0.0;
+          }
+    });
+    return in;
+  }
+  double signed_distance(const Eigen::Vector3d& p, bool inside, double cap) const override {
+    const Eigen::Vector3d u = p - centre_;
+    const double q = local_value(u);
+    const double gradient = local_gradient(u).norm();
+    // Where |∇q| vanishes (a centre, an apex) the estimate is unbounded: the cap stands in for it.
+    double s = std::fabs(q) >= cap * gradient ? cap : std::fabs(q) / gradient;
+    if (!inside) s = -s;
+    return s;
+  }
+
+ private:
+  static double value_at(const Vector10d& c, const Eigen::Vector3d& p) {
+    const double x = p.x(), y = p.y(), z = p.z();
+    return c(0) + c(1) * x + c(2) * y + c(3) * z + c(4) * x * x + c(5) * y * y + c(6) * z * z + c(7) * x * y +
+           c(8) * y * z + c(9) * z * x;
+  }
+  double local_value(const Eigen::Vector3d& u) const { return value_at(a_, u); }
+  Eigen::Vector3d local_gradient(const Eigen::Vector3d& u) const {
+    const double x = u.x(), y = u.y(), z = u.z();
+    return Eigen::Vector3d(a_(1) + 2.0 * a_(4) * x + a_(7) * y + a_(9) * z, a_(2) + 2.0 * a_(5) * y + a_(7) * x + a_(8) * z,
+                           a_(3) + 2.0 * a_(6) * z + a_(8) * y + a_(9) * x);
+  }
+
+  Aabb box_;
+  Eigen::Vector3d centre_;
+  Vector10d a_;
+};
+
 }  // namespace
 
 std::string ContourCavityOptions::check() const {
@@ -39,20 +131,22 @@ std::string ContourCavityOptions::check() const {
   return "";
 }
 
-ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Mesh& inner,
-                             const ContourCavityOptions& options) {
+namespace {
+
+ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, const InnerField& field,
+                            const ContourCavityOptions& options) {
   ContourCavity out;
   if (const std::string problem = options.check(); !problem.empty()) {
     out.message = problem;
     return out;
   }
   const double wall = options.wall;
-  Aabb box = mesh_box(inner);
+  Aabb box = field.box();
   const Aabb outer_box = mesh_box(outer);
   box.lo = box.lo.cwiseMax(outer_box.lo);
   box.hi = box.hi.cwiseMin(outer_box.hi);
   out.ok = true;
-  if (box.empty() || inner.F.rows() == 0) return out;  // no void
+  if (box.empty()) return out;  // no void
 
   // The spacing: wall / cells_per_wall, coarser when the box would need too many nodes.
   double h = wall / options.cells_per_wall;
@@ -85,10 +179,10 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
   WorkerPool pool(std::max(1, std::min(options.threads, kParts)));
   // Inside the outer surface and inside the inner one: the candidates for the cavity.
   const std::vector<std::int8_t> outer_winding = grid_winding(outer, grid, options.threads);
-  const std::vector<std::int8_t> inner_winding = grid_winding(inner, grid, options.threads);
+  const std::vector<std::int8_t> inner_inside = field.inside(grid, outer_winding, options.threads);
   std::vector<std::int8_t> sign(static_cast<std::size_t>(node_count));  // becomes 1: cavity
   for (std::int64_t v = 0; v < node_count; ++v)
-    sign[static_cast<std::size_t>(v)] = outer_winding[static_cast<std::size_t>(v)] >= 1 && inner_winding[static_cast<std::size_t>(v)] >= 1;
+    sign[static_cast<std::size_t>(v)] = outer_winding[static_cast<std::size_t>(v)] >= 1 && inner_inside[static_cast<std::size_t>(v)] != 0;
 
   // Distance pass: a candidate stays cavity when d_out >= wall + c·h. One query per block of 4³
   // nodes decides most of them by the Lipschitz bound.
@@ -168,7 +262,6 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
       nodes.push_back(c + (corner & 1) + ((corner >> 1) & 1) * grid.nx + ((corner >> 2) & 1) * grid.nx * grid.ny);
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  const TriangleBvh inner_bvh(inner.V, inner.F);
   std::vector<double> phi(nodes.size());
   std::vector<double> outer_distance(nodes.size());  // exact below level + cap, else that cap
   const double cap = 2.0 * h;
@@ -181,9 +274,7 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
       const double d_out = to_outer.found ? to_outer.distance : level + cap;
       outer_distance[static_cast<std::size_t>(n)] = d_out;
       const double signed_out = outer_winding[static_cast<std::size_t>(node)] >= 1 ? d_out : -d_out;
-      const ClosestPoint to_inner = closest_point(inner_bvh, p, cap);
-      const double d_in = to_inner.found ? to_inner.distance : cap;
-      const double signed_in = inner_winding[static_cast<std::size_t>(node)] >= 1 ? d_in : -d_in;
+      const double signed_in = field.signed_distance(p, inner_inside[static_cast<std::size_t>(node)] != 0, cap);
       double value = std::min(signed_out - level, signed_in);
       if (sign[static_cast<std::size_t>(node)]) value = std::max(value, 0.0);
       else value = std::min(value, -1e-9 * h);
@@ -257,6 +348,29 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
     ++row;
   }
   return out;
+}
+
+}  // namespace
+
+ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Mesh& inner,
+                             const ContourCavityOptions& options) {
+  if (inner.F.rows() == 0) {  // no void
+    ContourCavity out;
+    out.message = options.check();
+    out.ok = out.message.empty();
+    return out;
+  }
+  return contour_field(outer, outer_bvh, MeshField(inner), options);
+}
+
+ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Vector10d& quadric,
+                             const ContourCavityOptions& options) {
+  if (!quadric.allFinite()) {
+    ContourCavity out;
+    out.message = "the quadric's coefficients must be finite";
+    return out;
+  }
+  return contour_field(outer, outer_bvh, QuadricField(quadric, mesh_box(outer)), options);
 }
 
 }  // namespace offsetopt

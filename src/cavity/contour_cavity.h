@@ -7,7 +7,8 @@
 // left solid, so the cavity that is written is the contour of
 //   φ(p) = min( d_out(p) − wall − c·h ,  s_in(p) ),
 // d_out the distance to the outer surface (positive inside it), s_in the distance to the inner
-// offset surface with the sign of its winding number (inside where w >= 1), h the grid spacing,
+// offset surface with the sign of its winding number (inside where w >= 1), or the signed distance
+// to a quadric's zero set (the optimal void of DESIGN.md "Reachability"), h the grid spacing,
 // by marching tetrahedra (geometry/marching_tetrahedra.h) over the cells where φ changes sign.
 // Prusa's SLA hollowing contours a level set of the interior in the same spirit.
 //
@@ -32,6 +33,7 @@
 
 #include "geometry/bvh.h"
 #include "geometry/node_grid.h"
+#include "mass/volume_integrals.h"
 #include "mesh/mesh.h"
 
 namespace offsetopt {
@@ -64,6 +66,13 @@ struct ContourCavity {
 // `outer` is the closed outer surface and `outer_bvh` its tree; `inner` the inner offset surface
 // (closed as a mesh, possibly folded or crossing `outer`). Both in the same units as the wall.
 ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Mesh& inner,
+                             const ContourCavityOptions& options);
+
+// The same with a quadric for the inner term: the void is { q < 0 } with
+// q(x) = Σ quadric_i m_i(x) over the monomials m = [1, x, y, z, x², y², z², xy, yz, zx] (the order
+// of mass/volume_integrals.h), x in the outer surface's units, and s_in = −q/|∇q| (its signed
+// distance to first order; exact for a plane). The coefficients may have any common scale.
+ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Vector10d& quadric,
                              const ContourCavityOptions& options);
 
 }  // namespace offsetopt
