@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -10,6 +11,7 @@
 #include "geometry/grid_winding.h"
 #include "geometry/marching_tetrahedra.h"
 #include "geometry/mesh_shells.h"
+#include "geometry/triangle_distance.h"
 #include "util/parallel.h"
 
 namespace offsetopt {
@@ -19,6 +21,9 @@ namespace {
 constexpr double kMinFraction = 1e-3;  // marching tetrahedra: how close to a node a vertex may sit
 constexpr int kBlock = 4;              // nodes per block side in the distance pass
 constexpr int kParts = 2;              // every parallel loop is cut into this many fixed parts
+constexpr int kRaiseRounds = 6;        // rounds that lift the vertices of faces below the wall
+constexpr int kDemotions = 3;          // contours again with the void nodes of faces that stayed below
+constexpr int kRootSteps = 48;         // cap on the distance queries that put one vertex on the wall
 
 Aabb mesh_box(const Mesh& mesh) {
   Aabb box;
@@ -26,36 +31,252 @@ Aabb mesh_box(const Mesh& mesh) {
   return box;
 }
 
-}  // namespace
+// The inner term of φ: which nodes lie inside the void it bounds, and a signed distance to its
+// boundary (positive inside), capped at ±cap.
+class InnerField {
+ public:
+  virtual ~InnerField() = default;
+  virtual Aabb box() const = 0;  // where the void can be
+  virtual std::vector<std::int8_t> inside(const NodeGrid& grid, const std::vector<std::int8_t>& outer_winding,
+                                          int threads) const = 0;
+  virtual double signed_distance(const Eigen::Vector3d& p, bool inside, double cap) const = 0;
+  // Where the void's boundary first crosses the grid edge from p (a void node) towards q, as a
+  // fraction of the edge; 1 when it does not cross. s_p, s_q: signed_distance at p and q. By
+  // default the zero of the linear interpolation.
+  virtual double crossing(const Eigen::Vector3d& /*p*/, const Eigen::Vector3d& /*q*/, double s_p, double s_q) const {
+    return s_q < 0.0 ? s_p / (s_p - s_q) : 1.0;
+  }
+};
 
-std::string ContourCavityOptions::check() const {
-  const ContourCavityOptions& o = *this;
-  if (!(o.wall > 0.0) || !std::isfinite(o.wall)) return "the wall must be > 0";
-  if (!(o.cells_per_wall >= 1.25 && o.cells_per_wall <= 8.0)) return "cells per wall must be in [1.25, 8]";
-  if (!(o.margin_cells >= 0.25 && o.margin_cells <= 2.0)) return "the margin must be in [0.25, 2] cells";
-  if (o.max_nodes < 1000) return "the node cap must be >= 1000";
-  if (!(o.min_shell_fraction >= 0.0 && o.min_shell_fraction < 1.0)) return "the shell fraction must be in [0, 1)";
-  if (o.threads < 1 || o.threads > 64) return "threads must be in [1, 64]";
-  return "";
+// The inner offset surface: inside where its winding number is >= 1 (folds and overlaps resolve
+// themselves), the distance to its nearest face.
+class MeshField final : public InnerField {
+ public:
+  explicit MeshField(const Mesh& inner) : inner_(inner), bvh_(inner.V, inner.F) {}
+  Aabb box() const override { return mesh_box(inner_); }
+  std::vector<std::int8_t> inside(const NodeGrid& grid, const std::vector<std::int8_t>&, int threads) const override {
+    std::vector<std::int8_t> winding = grid_winding(inner_, grid, threads);
+    for (std::int8_t& w : winding) w = w >= 1;
+    return winding;
+  }
+  double signed_distance(const Eigen::Vector3d& p, bool inside, double cap) const override {
+    const ClosestPoint to_inner = closest_point(bvh_, p, cap);
+    const double d_in = to_inner.found ? to_inner.distance : cap;
+    return inside ? d_in : -d_in;
+  }
+
+ private:
+  const Mesh& inner_;
+  TriangleBvh bvh_;
+};
+
+// The quadric void { q < 0 }: its signed distance to first order, −q/|∇q| (Taubin's estimate,
+// exact for a plane, within O(distance²) of the true distance near the surface). The
+// coefficients are re-expanded about the centre of the outer box once, so that a model far from
+// the origin loses no digits to cancellation at every node.
+class QuadricField final : public InnerField {
+ public:
+  QuadricField(const Vector10d& c, const Aabb& outer_box) : box_(outer_box), centre_(0.5 * (outer_box.lo + outer_box.hi)) {
+    const Eigen::Vector3d& o = centre_;
+    // q(o + u) = q(o) + ∇q(o)·u + the same quadratic part.
+    a_ = c;
+    a_(0) = value_at(c, o);
+    a_(1) = c(1) + 2.0 * c(4) * o.x() + c(7) * o.y() + c(9) * o.z();
+    a_(2) = c(2) + 2.0 * c(5) * o.y() + c(7) * o.x() + c(8) * o.z();
+    a_(3) = c(3) + 2.0 * c(6) * o.z() + c(8) * o.y() + c(9) * o.x();
+  }
+  Aabb box() const override { return box_; }
+  std::vector<std::int8_t> inside(const NodeGrid& grid, const std::vector<std::int8_t>& outer_winding,
+                                  int threads) const override {
+    std::vector<std::int8_t> in(static_cast<std::size_t>(grid.node_count()), 0);
+    WorkerPool pool(std::max(1, std::min(threads, kParts)));
+    pool.run_parts(kParts, [&](int part) {
+      for (std::int64_t k = split_point(grid.nz, kParts, part); k < split_point(grid.nz, kParts, part + 1); ++k)
+        for (std::int64_t j = 0; j < grid.ny; ++j)
+          for (std::int64_t i = 0; i < grid.nx; ++i) {
+            const std::int64_t node = grid.index(i, j, k);
+            if (outer_winding[static_cast<std::size_t>(node)] < 1) continue;
+            in[static_cast<std::size_t>(node)] = local_value(Eigen::Vector3d(grid.x(i), grid.y(j), grid.z(k)) - centre_) < 0.0;
+          }
+    });
+    return in;
+  }
+  double signed_distance(const Eigen::Vector3d& p, bool inside, double cap) const override {
+    const Eigen::Vector3d u = p - centre_;
+    const double q = local_value(u);
+    const double gradient = local_gradient(u).norm();
+    // Where |∇q| vanishes (a centre, an apex) the estimate is unbounded: the cap stands in for it.
+    double s = std::fabs(q) >= cap * gradient ? cap : std::fabs(q) / gradient;
+    if (!inside) s = -s;
+    return s;
+  }
+  // The quadric along the edge is a quadratic in the fraction, so its first root is exact.
+  double crossing(const Eigen::Vector3d& p, const Eigen::Vector3d& q, double, double) const override {
+    const Eigen::Vector3d u = p - centre_, e = q - p;
+    const double c = local_value(u);
+    const double b = local_gradient(u).dot(e);
+    const double a = a_(4) * e.x() * e.x() + a_(5) * e.y() * e.y() + a_(6) * e.z() * e.z() + a_(7) * e.x() * e.y() +
+                     a_(8) * e.y() * e.z() + a_(9) * e.z() * e.x();
+    if (!(c < 0.0)) return 0.0;  // p is not inside after all (rounding): no void on this edge
+    double first = 1.0;
+    auto take = [&](double t) {
+      if (t > 0.0 && t < first) first = t;
+    };
+    if (a == 0.0) {
+      if (b > 0.0) take(-c / b);
+      return first;
+    }
+    const double discriminant = b * b - 4.0 * a * c;
+    if (discriminant < 0.0) return first;
+    // The two roots without cancellation: one from the quadratic formula, the other from the
+    // product of the roots (c / a).
+    const double s = b >= 0.0 ? -b - std::sqrt(discriminant) : -b + std::sqrt(discriminant);
+    take(s / (2.0 * a));
+    if (s != 0.0) take(2.0 * c / s);
+    return first;
+  }
+
+ private:
+  static double value_at(const Vector10d& c, const Eigen::Vector3d& p) {
+    const double x = p.x(), y = p.y(), z = p.z();
+    return c(0) + c(1) * x + c(2) * y + c(3) * z + c(4) * x * x + c(5) * y * y + c(6) * z * z + c(7) * x * y +
+           c(8) * y * z + c(9) * z * x;
+  }
+  double local_value(const Eigen::Vector3d& u) const { return value_at(a_, u); }
+  Eigen::Vector3d local_gradient(const Eigen::Vector3d& u) const {
+    const double x = u.x(), y = u.y(), z = u.z();
+    return Eigen::Vector3d(a_(1) + 2.0 * a_(4) * x + a_(7) * y + a_(9) * z, a_(2) + 2.0 * a_(5) * y + a_(7) * x + a_(8) * z,
+                           a_(3) + 2.0 * a_(6) * z + a_(8) * y + a_(9) * x);
+  }
+
+  Aabb box_;
+  Eigen::Vector3d centre_;
+  Vector10d a_;
+};
+
+
+// The exact distance to the outer surface (the verification's own measure).
+double outer_distance_at(const TriangleBvh& outer_bvh, const Eigen::Vector3d& x) {
+  return closest_point(outer_bvh, x).distance;
 }
 
-ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Mesh& inner,
-                             const ContourCavityOptions& options) {
-  ContourCavity out;
-  if (const std::string problem = options.check(); !problem.empty()) {
-    out.message = problem;
+// A vertex placed on its grid edge: the fraction, a lower bound of its distance to the outer
+// surface (exact where it was measured), and whether the wall put it there.
+struct Placement {
+  double fraction = kMinFraction;
+  double lower = 0.0;
+  bool on_wall = false;
+};
+
+// The first point of the edge p → q (p a void node, d_p its distance to the outer surface, exact
+// or a lower bound) where either the inner boundary is crossed (fraction t_in) or the distance
+// falls to `target`. The wall's point is found by regula falsi with the Illinois step on the exact
+// distance, and the vertex is left on the side that keeps the target, at most `hair` above it.
+// Vertices never come nearer the node than kMinFraction: `lower` then says what they keep.
+Placement place_on_edge(const TriangleBvh& outer_bvh, const Eigen::Vector3d& p, const Eigen::Vector3d& q, double d_p,
+                        double t_in, double target, double hair, double rounding) {
+  const Eigen::Vector3d e = q - p;
+  const double length = e.norm();
+  Placement out;
+  out.fraction = t_in;
+  if (d_p - t_in * length >= target + rounding) {  // 1-Lipschitz: the whole way keeps the target
+    out.lower = d_p - t_in * length;
     return out;
   }
-  const double wall = options.wall;
-  Aabb box = mesh_box(inner);
-  const Aabb outer_box = mesh_box(outer);
-  box.lo = box.lo.cwiseMax(outer_box.lo);
-  box.hi = box.hi.cwiseMin(outer_box.hi);
-  out.ok = true;
-  if (box.empty() || inner.F.rows() == 0) return out;  // no void
+  const double d_end = outer_distance_at(outer_bvh, p + t_in * e);
+  if (d_end >= target) {
+    out.lower = d_end;
+    return out;
+  }
+  out.on_wall = true;
+  double a = 0.0, fa = d_p - target, b = t_in, fb = d_end - target;  // fa, fb: scaled by Illinois
+  double fa_true = fa;
+  int side = 0;
+  for (int step = 0; step < kRootSteps && fa_true > hair && fa > 0.0; ++step) {
+    double t = (a * fb - b * fa) / (fb - fa);
+    if (!(t > a && t < b)) t = 0.5 * (a + b);
+    const double ft = outer_distance_at(outer_bvh, p + t * e) - target;
+    if (ft >= 0.0) {
+      a = t;
+      fa = fa_true = ft;
+      if (side == 1) fb *= 0.5;
+      side = 1;
+    } else {
+      b = t;
+      fb = ft;
+      if (side == -1) fa *= 0.5;
+      side = -1;
+    }
+    if (b - a <= 1e-15) break;
+  }
+  if (a >= kMinFraction && fa_true >= 0.0) {
+    out.fraction = a;
+    out.lower = target + fa_true;
+  } else {
+    out.fraction = kMinFraction;
+    out.lower = d_p - kMinFraction * length;
+  }
+  return out;
+}
 
-  // The spacing: wall / cells_per_wall, coarser when the box would need too many nodes.
-  double h = wall / options.cells_per_wall;
+// The smallest distance from triangle (a, b, c) to the outer surface when it is below `limit`,
+// else `limit`. Outer faces whose plane has the whole triangle on one side, `best` away, are
+// skipped without the exact test: the triangle is at least that far from them.
+double face_to_outer(const TriangleBvh& outer_bvh, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                     const Eigen::Vector3d& c, double limit) {
+  Aabb box;
+  box.extend(a);
+  box.extend(b);
+  box.extend(c);
+  double best = limit;
+  auto box_gap = [&](const Aabb& node) {
+    double squared = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double gap = std::max({0.0, node.lo(k) - box.hi(k), box.lo(k) - node.hi(k)});
+      squared += gap * gap;
+    }
+    return squared;
+  };
+  outer_bvh.traverse([&](const Aabb& node) { return box_gap(node) < best * best; },
+                     [&](int face) {
+                       const Eigen::Vector3d g0 = outer_bvh.corner(face, 0), g1 = outer_bvh.corner(face, 1),
+                                             g2 = outer_bvh.corner(face, 2);
+                       const Eigen::Vector3d n = (g1 - g0).cross(g2 - g0);
+                       const double scale = best * n.norm();
+                       const double sa = n.dot(a - g0), sb = n.dot(b - g0), sc = n.dot(c - g0);
+                       if ((sa >= scale && sb >= scale && sc >= scale) || (sa <= -scale && sb <= -scale && sc <= -scale))
+                         return true;
+                       best = std::min(best, triangle_distance(a, b, c, g0, g1, g2));
+                       return true;
+                     });
+  return best;
+}
+
+// The wall at every face: a face is accepted by its vertices' lower bounds when every point of it
+// lies within (longest edge)/√3 of a vertex (Jung's bound for a triangle), else measured
+// exactly. Returns, per face listed, the deficit below the wall (0 when it keeps it).
+std::vector<double> face_deficits(const TriangleBvh& outer_bvh, const Mesh& mesh, const std::vector<double>& lower,
+                                  const std::vector<int>& faces, double wall, WorkerPool& pool) {
+  std::vector<double> deficit(faces.size(), 0.0);
+  pool.run_parts(kParts, [&](int part) {
+    const long count = static_cast<long>(faces.size());
+    for (long i = split_point(count, kParts, part); i < split_point(count, kParts, part + 1); ++i) {
+      const int f = faces[static_cast<std::size_t>(i)];
+      const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)).transpose(), b = mesh.V.row(mesh.F(f, 1)).transpose(),
+                            c = mesh.V.row(mesh.F(f, 2)).transpose();
+      const double longest = std::max({(a - b).norm(), (b - c).norm(), (c - a).norm()});
+      const double least = std::min({lower[static_cast<std::size_t>(mesh.F(f, 0))], lower[static_cast<std::size_t>(mesh.F(f, 1))],
+                                     lower[static_cast<std::size_t>(mesh.F(f, 2))]});
+      if (least - longest * (1.0 + 1e-9) / std::sqrt(3.0) >= wall) continue;
+      deficit[static_cast<std::size_t>(i)] = wall - face_to_outer(outer_bvh, a, b, c, wall);
+    }
+  });
+  return deficit;
+}
+
+// The grid: spacing wall / cells_per_wall, coarser when the box would need too many nodes.
+bool make_grid(const Aabb& box, const ContourCavityOptions& options, NodeGrid& grid) {
+  double h = options.wall / options.cells_per_wall;
   const Eigen::Vector3d extent = box.hi - box.lo;
   auto nodes_for = [&](double spacing) {
     double count = 1.0;
@@ -63,16 +284,7 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
     return count;
   };
   for (int grow = 0; grow < 60 && nodes_for(h) > static_cast<double>(options.max_nodes); ++grow) h *= 1.05;
-  if (nodes_for(h) > static_cast<double>(options.max_nodes)) {
-    out.ok = false;
-    out.message = "the cavity grid would need more than " + std::to_string(options.max_nodes) + " nodes";
-    return out;
-  }
-  // The margin: c·h, and never less than what keeps a grid edge (at most √3 h) shorter than
-  // wall + margin, or a contoured triangle could reach the outer surface. A grid made coarser by
-  // the node cap keeps a thicker wall rather than failing.
-  const double margin = std::max(options.margin_cells * h, 1.01 * std::sqrt(3.0) * h - wall);
-  NodeGrid& grid = out.grid;
+  if (nodes_for(h) > static_cast<double>(options.max_nodes)) return false;
   grid.spacing = h;
   // Offsets by odd fractions of h: grid rows and nodes then miss the round coordinates of CAD
   // meshes (the tie-breaking in grid_winding makes such hits correct anyway, but rarer is cheaper).
@@ -80,22 +292,16 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
   grid.nx = static_cast<std::int64_t>(std::ceil(extent.x() / h)) + 6;
   grid.ny = static_cast<std::int64_t>(std::ceil(extent.y() / h)) + 6;
   grid.nz = static_cast<std::int64_t>(std::ceil(extent.z() / h)) + 6;
-  const std::int64_t node_count = grid.node_count();
+  return true;
+}
 
-  WorkerPool pool(std::max(1, std::min(options.threads, kParts)));
-  // Inside the outer surface and inside the inner one: the candidates for the cavity.
-  const std::vector<std::int8_t> outer_winding = grid_winding(outer, grid, options.threads);
-  const std::vector<std::int8_t> inner_winding = grid_winding(inner, grid, options.threads);
-  std::vector<std::int8_t> sign(static_cast<std::size_t>(node_count));  // becomes 1: cavity
-  for (std::int64_t v = 0; v < node_count; ++v)
-    sign[static_cast<std::size_t>(v)] = outer_winding[static_cast<std::size_t>(v)] >= 1 && inner_winding[static_cast<std::size_t>(v)] >= 1;
-
-  // Distance pass: a candidate stays cavity when d_out >= wall + c·h. One query per block of 4³
-  // nodes decides most of them by the Lipschitz bound.
+// Distance pass: a candidate stays cavity when d_out >= level. One query per block of 4³ nodes
+// decides most of them by the Lipschitz bound. Returns the nodes queried one by one.
+std::int64_t keep_nodes_at_level(const TriangleBvh& outer_bvh, const NodeGrid& grid, double level,
+                                 std::vector<std::int8_t>& sign, WorkerPool& pool) {
   const std::int64_t bx = (grid.nx + kBlock - 1) / kBlock, by = (grid.ny + kBlock - 1) / kBlock,
                      bz = (grid.nz + kBlock - 1) / kBlock;
-  const double level = wall + margin;
-  const double rounding = 1e-9 * h;  // what a Lipschitz bound gives away to rounding
+  const double rounding = 1e-9 * grid.spacing;  // what a Lipschitz bound gives away to rounding
   std::int64_t per_node[kParts] = {0, 0};
   pool.run_parts(kParts, [&](int part) {
     for (std::int64_t kb = split_point(bz, kParts, part); kb < split_point(bz, kParts, part + 1); ++kb)
@@ -137,9 +343,11 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
               }
         }
   });
-  out.distance_nodes = per_node[0] + per_node[1];
+  return per_node[0] + per_node[1];
+}
 
-  // Cells whose nodes disagree, in index order.
+// Cells whose nodes disagree, in index order.
+std::vector<std::int64_t> mixed_cells(const NodeGrid& grid, const std::vector<std::int8_t>& sign, WorkerPool& pool) {
   std::vector<std::int64_t> cells_part[kParts];
   pool.run_parts(kParts, [&](int part) {
     for (std::int64_t k = split_point(grid.nz - 1, kParts, part); k < split_point(grid.nz - 1, kParts, part + 1); ++k)
@@ -157,106 +365,254 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
   });
   std::vector<std::int64_t> cells = std::move(cells_part[0]);
   cells.insert(cells.end(), cells_part[1].begin(), cells_part[1].end());
-  out.active_cells = static_cast<std::int64_t>(cells.size());
+  return cells;
+}
 
-  // φ at the nodes of those cells. Distances are capped a little beyond where they matter for
-  // the interpolation; the sign always comes from the passes above.
+// The distances at the nodes of the contoured cells, sorted by node index.
+struct NodeValues {
   std::vector<std::int64_t> nodes;
-  nodes.reserve(cells.size() * 4);
+  std::vector<double> outer_distance;  // exact below `level + cap`, else that cap (a lower bound)
+  std::vector<double> inner;           // the inner field's signed distance, capped at ±cap
+  std::vector<double> phi;             // what marching tetrahedra contours (the sign from the passes)
+  std::size_t at(std::int64_t node) const {
+    return static_cast<std::size_t>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
+  }
+};
+
+NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, const NodeGrid& grid,
+                       const std::vector<std::int64_t>& cells, const std::vector<std::int8_t>& sign,
+                       const std::vector<std::int8_t>& outer_winding, const std::vector<std::int8_t>& inner_inside,
+                       double target, double level, WorkerPool& pool) {
+  NodeValues v;
+  v.nodes.reserve(cells.size() * 4);
   for (const std::int64_t c : cells)
     for (int corner = 0; corner < 8; ++corner)
-      nodes.push_back(c + (corner & 1) + ((corner >> 1) & 1) * grid.nx + ((corner >> 2) & 1) * grid.nx * grid.ny);
-  std::sort(nodes.begin(), nodes.end());
-  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  const TriangleBvh inner_bvh(inner.V, inner.F);
-  std::vector<double> phi(nodes.size());
-  std::vector<double> outer_distance(nodes.size());  // exact below level + cap, else that cap
-  const double cap = 2.0 * h;
+      v.nodes.push_back(c + (corner & 1) + ((corner >> 1) & 1) * grid.nx + ((corner >> 2) & 1) * grid.nx * grid.ny);
+  std::sort(v.nodes.begin(), v.nodes.end());
+  v.nodes.erase(std::unique(v.nodes.begin(), v.nodes.end()), v.nodes.end());
+  const std::size_t count = v.nodes.size();
+  v.outer_distance.resize(count);
+  v.inner.resize(count);
+  v.phi.resize(count);
+  const double h = grid.spacing, cap = 2.0 * h;
   pool.run_parts(kParts, [&](int part) {
-    const long count = static_cast<long>(nodes.size());
-    for (long n = split_point(count, kParts, part); n < split_point(count, kParts, part + 1); ++n) {
-      const std::int64_t node = nodes[static_cast<std::size_t>(n)];
+    for (long n = split_point(static_cast<long>(count), kParts, part); n < split_point(static_cast<long>(count), kParts, part + 1); ++n) {
+      const std::size_t i = static_cast<std::size_t>(n);
+      const std::int64_t node = v.nodes[i];
       const Eigen::Vector3d p = grid.position(node);
       const ClosestPoint to_outer = closest_point(outer_bvh, p, level + cap);
       const double d_out = to_outer.found ? to_outer.distance : level + cap;
-      outer_distance[static_cast<std::size_t>(n)] = d_out;
+      v.outer_distance[i] = d_out;
       const double signed_out = outer_winding[static_cast<std::size_t>(node)] >= 1 ? d_out : -d_out;
-      const ClosestPoint to_inner = closest_point(inner_bvh, p, cap);
-      const double d_in = to_inner.found ? to_inner.distance : cap;
-      const double signed_in = inner_winding[static_cast<std::size_t>(node)] >= 1 ? d_in : -d_in;
-      double value = std::min(signed_out - level, signed_in);
+      v.inner[i] = field.signed_distance(p, inner_inside[static_cast<std::size_t>(node)] != 0, cap);
+      double value = std::min(signed_out - target, v.inner[i]);
       if (sign[static_cast<std::size_t>(node)]) value = std::max(value, 0.0);
       else value = std::min(value, -1e-9 * h);
-      phi[static_cast<std::size_t>(n)] = value;
+      v.phi[i] = value;
     }
   });
-  const auto value_of = [&](std::int64_t node) {
-    const auto it = std::lower_bound(nodes.begin(), nodes.end(), node);
-    return phi[static_cast<std::size_t>(it - nodes.begin())];
+  return v;
+}
+
+// Puts every vertex of the contour on its edge (the inner crossing, or the wall where the outer
+// surface binds), then lifts the vertices of faces that dip below the wall between their
+// vertices, a few rounds. Returns the faces still below the wall.
+std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& field, const NodeGrid& grid,
+                                const NodeValues& values, double target, double wall, double hair, TetContour& contour,
+                                WorkerPool& pool, ContourCavity& out) {
+  Mesh& mesh = contour.mesh;
+  const long vertex_count = static_cast<long>(mesh.V.rows());
+  std::vector<double> raise(static_cast<std::size_t>(vertex_count), 0.0), lower(static_cast<std::size_t>(vertex_count));
+  std::vector<char> on_wall(static_cast<std::size_t>(vertex_count), 0);
+  const double rounding = 1e-9 * grid.spacing;
+  auto place = [&](long v) {
+    const std::size_t i = static_cast<std::size_t>(v);
+    const std::size_t ip = values.at(contour.positive_node[i]), iq = values.at(contour.negative_node[i]);
+    const Eigen::Vector3d p = grid.position(contour.positive_node[i]), q = grid.position(contour.negative_node[i]);
+    const double t_in = std::clamp(field.crossing(p, q, values.inner[ip], values.inner[iq]), kMinFraction, 1.0 - kMinFraction);
+    const Placement placed = place_on_edge(outer_bvh, p, q, values.outer_distance[ip], t_in, target + raise[i], hair, rounding);
+    mesh.V.row(v) = (p + placed.fraction * (q - p)).transpose();
+    lower[i] = placed.lower;
+    on_wall[i] = placed.on_wall;
   };
-  TetContour contour = marching_tetrahedra(grid, cells, value_of, kMinFraction);
-
-  // The wall, exactly, at every vertex: move it along its edge towards the cavity node.
-  int moved[kParts] = {0, 0};
   pool.run_parts(kParts, [&](int part) {
-    const long count = static_cast<long>(contour.mesh.V.rows());
-    for (long v = split_point(count, kParts, part); v < split_point(count, kParts, part + 1); ++v) {
-      const std::int64_t positive = contour.positive_node[static_cast<std::size_t>(v)];
-      const Eigen::Vector3d p = grid.position(positive);
-      const Eigen::Vector3d q = grid.position(contour.negative_node[static_cast<std::size_t>(v)]);
-      double good = kMinFraction, bad = contour.fraction[static_cast<std::size_t>(v)];
-      // The cavity node's distance, less the way along the edge, bounds the vertex's: most
-      // vertices need no query.
-      const double node_distance =
-          outer_distance[static_cast<std::size_t>(std::lower_bound(nodes.begin(), nodes.end(), positive) - nodes.begin())];
-      if (node_distance - bad * (q - p).norm() >= wall + rounding) continue;
-      if (!closest_point(outer_bvh, p + bad * (q - p), wall).found) continue;
-      for (int step = 0; step < 40; ++step) {
-        const double mid = 0.5 * (good + bad);
-        (closest_point(outer_bvh, p + mid * (q - p), wall).found ? bad : good) = mid;
-      }
-      contour.mesh.V.row(v) = (p + good * (q - p)).transpose();
-      ++moved[part];
-    }
+    for (long v = split_point(vertex_count, kParts, part); v < split_point(vertex_count, kParts, part + 1); ++v) place(v);
   });
-  out.vertices_moved_for_wall = moved[0] + moved[1];
+  // Faces around each vertex, to check again only what a lift touched.
+  std::vector<int> first(static_cast<std::size_t>(vertex_count) + 1, 0), around(static_cast<std::size_t>(3 * mesh.F.rows()));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) ++first[static_cast<std::size_t>(mesh.F(f, c)) + 1];
+  for (long v = 0; v < vertex_count; ++v) first[static_cast<std::size_t>(v) + 1] += first[static_cast<std::size_t>(v)];
+  {
+    std::vector<int> fill(first.begin(), first.end() - 1);
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+      for (int c = 0; c < 3; ++c) around[static_cast<std::size_t>(fill[static_cast<std::size_t>(mesh.F(f, c))]++)] = static_cast<int>(f);
+  }
+  std::vector<int> check(static_cast<std::size_t>(mesh.F.rows()));
+  for (std::size_t f = 0; f < check.size(); ++f) check[f] = static_cast<int>(f);
+  std::vector<int> below;
+  for (int round = 0;; ++round) {
+    const std::vector<double> deficit = face_deficits(outer_bvh, mesh, lower, check, wall, pool);
+    below.clear();
+    std::vector<double> lifted = raise;
+    for (std::size_t i = 0; i < check.size(); ++i) {
+      if (!(deficit[i] > 0.0)) continue;
+      below.push_back(check[i]);
+      if (round == 0) out.largest_face_deficit = std::max(out.largest_face_deficit, deficit[i]);
+      for (int c = 0; c < 3; ++c) {
+        const std::size_t v = static_cast<std::size_t>(mesh.F(check[i], c));
+        lifted[v] = std::max(lifted[v], raise[v] + 1.5 * deficit[i] + hair);
+      }
+    }
+    if (round == 0) out.faces_lifted = static_cast<int>(below.size());
+    if (below.empty() || round == kRaiseRounds) break;
+    std::vector<long> moved;
+    for (long v = 0; v < vertex_count; ++v)
+      if (lifted[static_cast<std::size_t>(v)] != raise[static_cast<std::size_t>(v)]) moved.push_back(v);
+    raise = std::move(lifted);
+    pool.run_parts(kParts, [&](int part) {
+      const long count = static_cast<long>(moved.size());
+      for (long m = split_point(count, kParts, part); m < split_point(count, kParts, part + 1); ++m) place(moved[static_cast<std::size_t>(m)]);
+    });
+    check.clear();
+    for (const long v : moved)
+      for (int k = first[static_cast<std::size_t>(v)]; k < first[static_cast<std::size_t>(v) + 1]; ++k) check.push_back(around[static_cast<std::size_t>(k)]);
+    std::sort(check.begin(), check.end());
+    check.erase(std::unique(check.begin(), check.end()), check.end());
+  }
+  out.vertices_moved_for_wall = 0;
+  for (const char w : on_wall) out.vertices_moved_for_wall += w;
+  return below;
+}
 
-  // Shells: keep those that enclose void of some size.
-  const MeshShells shells = mesh_shells(contour.mesh, grid.origin);
+// Keeps the shells that enclose void of some size: specks are filled, islands join the void.
+void keep_shells(const Mesh& mesh, const NodeGrid& grid, double min_shell_fraction, ContourCavity& out) {
+  const MeshShells shells = mesh_shells(mesh, grid.origin);
   const std::vector<int>& shell = shells.shell_of_face;
   double total = 0.0;
   for (double v : shells.volume) total += std::max(v, 0.0);
   std::vector<char> keep(shells.volume.size(), 0);
   for (std::size_t s = 0; s < shells.volume.size(); ++s) {
     const double volume = shells.volume[s];
-    keep[s] = volume > options.min_shell_fraction * total && volume > 0.0;
+    keep[s] = volume > min_shell_fraction * total && volume > 0.0;
     if (keep[s]) ++out.shells;
     else {
       ++out.shells_dropped;
       out.dropped_volume += volume;
     }
   }
-  std::vector<int> new_index(static_cast<std::size_t>(contour.mesh.V.rows()), -1);
+  std::vector<int> new_index(static_cast<std::size_t>(mesh.V.rows()), -1);
   int vertex_count = 0, face_count = 0;
-  for (Eigen::Index f = 0; f < contour.mesh.F.rows(); ++f) {
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     if (!keep[static_cast<std::size_t>(shell[static_cast<std::size_t>(f)])]) continue;
     ++face_count;
     for (int c = 0; c < 3; ++c) {
-      int& index = new_index[static_cast<std::size_t>(contour.mesh.F(f, c))];
+      int& index = new_index[static_cast<std::size_t>(mesh.F(f, c))];
       if (index < 0) index = vertex_count++;
     }
   }
   out.cavity.V.resize(vertex_count, 3);
   out.cavity.F.resize(face_count, 3);
-  for (Eigen::Index v = 0; v < contour.mesh.V.rows(); ++v)
-    if (new_index[static_cast<std::size_t>(v)] >= 0) out.cavity.V.row(new_index[static_cast<std::size_t>(v)]) = contour.mesh.V.row(v);
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+    if (new_index[static_cast<std::size_t>(v)] >= 0) out.cavity.V.row(new_index[static_cast<std::size_t>(v)]) = mesh.V.row(v);
   int row = 0;
-  for (Eigen::Index f = 0; f < contour.mesh.F.rows(); ++f) {
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     if (!keep[static_cast<std::size_t>(shell[static_cast<std::size_t>(f)])]) continue;
-    for (int c = 0; c < 3; ++c) out.cavity.F(row, c) = new_index[static_cast<std::size_t>(contour.mesh.F(f, c))];
+    for (int c = 0; c < 3; ++c) out.cavity.F(row, c) = new_index[static_cast<std::size_t>(mesh.F(f, c))];
     ++row;
   }
+}
+
+ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, const InnerField& field,
+                            const ContourCavityOptions& options) {
+  ContourCavity out;
+  if (const std::string problem = options.check(); !problem.empty()) {
+    out.message = problem;
+    return out;
+  }
+  const double wall = options.wall;
+  Aabb box = field.box();
+  const Aabb outer_box = mesh_box(outer);
+  box.lo = box.lo.cwiseMax(outer_box.lo);
+  box.hi = box.hi.cwiseMin(outer_box.hi);
+  out.ok = true;
+  if (box.empty()) return out;  // no void
+  NodeGrid& grid = out.grid;
+  if (!make_grid(box, options, grid)) {
+    out.ok = false;
+    out.message = "the cavity grid would need more than " + std::to_string(options.max_nodes) + " nodes";
+    return out;
+  }
+  const double h = grid.spacing;
+  // Where the outer surface binds, vertices sit at `target`: the wall (plus the margin asked for),
+  // and a hair above it that covers rounding to float32 in a written file. Never nearer than
+  // 1.01 h: every point of a contoured triangle (diameter <= √3 h) is within h of one of its
+  // vertices, so no triangle then reaches the outer surface, however coarse the node cap makes
+  // the grid. Void nodes keep target + 2·kMinFraction·h, so a vertex kMinFraction along any edge
+  // from one (edges are at most √3 h long) still keeps the target.
+  const Eigen::Vector3d far = outer_box.lo.cwiseAbs().cwiseMax(outer_box.hi.cwiseAbs());
+  const double hair = 4e-7 * (far.norm() + (outer_box.hi - outer_box.lo).norm()) + 1e-9 * wall;
+  const double target = std::max(wall + options.margin_cells * h, 1.01 * h) + hair;
+  const double level = target + 2.0 * kMinFraction * h;
+
+  WorkerPool pool(std::max(1, std::min(options.threads, kParts)));
+  // Inside the outer surface and inside the inner void: the candidates for the cavity.
+  const std::vector<std::int8_t> outer_winding = grid_winding(outer, grid, options.threads);
+  const std::vector<std::int8_t> inner_inside = field.inside(grid, outer_winding, options.threads);
+  std::vector<std::int8_t> sign(static_cast<std::size_t>(grid.node_count()));  // becomes 1: cavity
+  for (std::size_t v = 0; v < sign.size(); ++v) sign[v] = outer_winding[v] >= 1 && inner_inside[v] != 0;
+  out.distance_nodes = keep_nodes_at_level(outer_bvh, grid, level, sign, pool);
+
+  TetContour contour;
+  for (int pass = 0;; ++pass) {
+    const std::vector<std::int64_t> cells = mixed_cells(grid, sign, pool);
+    out.active_cells = static_cast<std::int64_t>(cells.size());
+    const NodeValues values = node_values(outer_bvh, field, grid, cells, sign, outer_winding, inner_inside, target, level, pool);
+    contour = marching_tetrahedra(grid, cells, [&](std::int64_t node) { return values.phi[values.at(node)]; }, kMinFraction);
+    const std::vector<int> below = place_vertices(outer_bvh, field, grid, values, target, wall, hair, contour, pool, out);
+    out.faces_below_wall = static_cast<int>(below.size());
+    if (below.empty() || pass == kDemotions) break;
+    // Faces that no lift along their edges brought to the wall: their void nodes become material.
+    for (const int f : below)
+      for (int c = 0; c < 3; ++c) sign[static_cast<std::size_t>(contour.positive_node[static_cast<std::size_t>(contour.mesh.F(f, c))])] = 0;
+    ++out.demotions;
+  }
+  keep_shells(contour.mesh, grid, options.min_shell_fraction, out);
   return out;
+}
+
+}  // namespace
+
+std::string ContourCavityOptions::check() const {
+  const ContourCavityOptions& o = *this;
+  if (!(o.wall > 0.0) || !std::isfinite(o.wall)) return "the wall must be > 0";
+  if (!(o.cells_per_wall >= 1.25 && o.cells_per_wall <= 8.0)) return "cells per wall must be in [1.25, 8]";
+  if (!(o.margin_cells >= 0.0 && o.margin_cells <= 2.0)) return "the margin must be in [0, 2] cells";
+  if (o.max_nodes < 1000) return "the node cap must be >= 1000";
+  if (!(o.min_shell_fraction >= 0.0 && o.min_shell_fraction < 1.0)) return "the shell fraction must be in [0, 1)";
+  if (o.threads < 1 || o.threads > 64) return "threads must be in [1, 64]";
+  return "";
+}
+
+ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Mesh& inner,
+                             const ContourCavityOptions& options) {
+  if (inner.F.rows() == 0) {  // no void
+    ContourCavity out;
+    out.message = options.check();
+    out.ok = out.message.empty();
+    return out;
+  }
+  return contour_field(outer, outer_bvh, MeshField(inner), options);
+}
+
+ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Vector10d& quadric,
+                             const ContourCavityOptions& options) {
+  if (!quadric.allFinite()) {
+    ContourCavity out;
+    out.message = "the quadric's coefficients must be finite";
+    return out;
+  }
+  return contour_field(outer, outer_bvh, QuadricField(quadric, mesh_box(outer)), options);
 }
 
 }  // namespace offsetopt

@@ -7,18 +7,23 @@
 // left solid, so the cavity that is written is the contour of
 //   φ(p) = min( d_out(p) − wall − c·h ,  s_in(p) ),
 // d_out the distance to the outer surface (positive inside it), s_in the distance to the inner
-// offset surface with the sign of its winding number (inside where w >= 1), h the grid spacing,
+// offset surface with the sign of its winding number (inside where w >= 1), or the signed distance
+// to a quadric's zero set (the optimal void of DESIGN.md "Reachability"), h the grid spacing,
 // by marching tetrahedra (geometry/marching_tetrahedra.h) over the cells where φ changes sign.
 // Prusa's SLA hollowing contours a level set of the interior in the same spirit.
 //
-// Why every output is printable (tests/shape/test_contour_cavity.cpp):
-// - the shells are closed, embedded, oriented 2-manifolds (marching tetrahedra);
-// - a node counts as cavity only when d_out >= wall + margin (the margin c·h, or more where a
-//   coarse grid needs it: max(c·h, 1.01·√3·h − wall)), and every contoured triangle lies in a
-//   tetrahedron (diameter √3·h < wall + margin) with such a node, so no shell reaches the outer
-//   surface; each vertex is then moved along its grid edge, towards the cavity node, until its
-//   exact distance to the outer surface is at least `wall` (bisection on the edge, whose cavity
-//   end has wall + margin), so the wall holds at every vertex exactly;
+// Why every output is printable (tests/cavity/test_contour_cavity.cpp, docs/cavity.md):
+// - the shells are closed, embedded, oriented 2-manifolds (marching tetrahedra), and stay so
+//   wherever on its grid edge each vertex is put;
+// - a node counts as cavity only when d_out >= T + 2·10⁻³·h, T = the wall (+ c·h when asked) and
+//   a rounding hair; each vertex goes to the first point of its edge where the inner boundary is
+//   crossed or the exact distance to the outer surface falls to T (regula falsi on the edge), so
+//   the wall-bound part of the cavity sits at the requested wall, not a margin above it;
+// - every point of a contoured triangle lies within h of one of its vertices (its diameter is at
+//   most √3 h), and T >= 1.01 h, so no shell reaches the outer surface;
+// - faces that dip below the wall between their vertices (at concave parts of the outer surface)
+//   are found by exact triangle distances and their vertices lifted along their edges; where that
+//   is not enough, their void nodes become material and the contour is made again;
 // - parts left solid have no node with d_out >= wall + margin: no cavity reaches them;
 // - shells enclosing less than min_shell_fraction of the void, and shells that bound an island of
 //   material inside the void (negative volume), are dropped: the specks are filled, the islands
@@ -32,6 +37,7 @@
 
 #include "geometry/bvh.h"
 #include "geometry/node_grid.h"
+#include "mass/volume_integrals.h"
 #include "mesh/mesh.h"
 
 namespace offsetopt {
@@ -39,7 +45,7 @@ namespace offsetopt {
 struct ContourCavityOptions {
   double wall = 0.0;               // the wall to keep, mesh units, > 0
   double cells_per_wall = 1.5;     // h = wall / cells_per_wall, in [1.25, 8]
-  double margin_cells = 0.25;      // c, in [0.25, 2]
+  double margin_cells = 0.0;       // c: where the outer surface binds, the cavity keeps wall + c·h; in [0, 2]
   std::int64_t max_nodes = std::int64_t{1} << 25;  // h grows when the box needs more nodes
   double min_shell_fraction = 1e-3;  // shells below this fraction of the void are filled
   int threads = 2;                 // 1..64; the result is the same for any count
@@ -58,12 +64,26 @@ struct ContourCavity {
   int shells = 0;                  // kept
   int shells_dropped = 0;
   double dropped_volume = 0.0;     // signed sum of the dropped shells' volumes
-  int vertices_moved_for_wall = 0; // moved along their edge to keep the wall exactly
+  int vertices_moved_for_wall = 0; // put on the wall: moved along their edge to the exact distance
+  // Faces between vertices on the wall can dip below it where the outer surface is concave (a
+  // chord of a cylinder or sphere around an inner edge or corner). Each face is measured (exactly,
+  // unless its vertices' distances already bound it), and the vertices of those below are lifted.
+  double largest_face_deficit = 0.0;  // how far below the wall a face came before any lift
+  int faces_lifted = 0;               // faces below the wall before any lift
+  int demotions = 0;                  // contours again because lifts along the edges did not suffice
+  int faces_below_wall = 0;           // after every lift and demotion (0 unless the caps ran out)
 };
 
 // `outer` is the closed outer surface and `outer_bvh` its tree; `inner` the inner offset surface
 // (closed as a mesh, possibly folded or crossing `outer`). Both in the same units as the wall.
 ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Mesh& inner,
+                             const ContourCavityOptions& options);
+
+// The same with a quadric for the inner term: the void is { q < 0 } with
+// q(x) = Σ quadric_i m_i(x) over the monomials m = [1, x, y, z, x², y², z², xy, yz, zx] (the order
+// of mass/volume_integrals.h), x in the outer surface's units, and s_in = −q/|∇q| (its signed
+// distance to first order; exact for a plane). The coefficients may have any common scale.
+ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Vector10d& quadric,
                              const ContourCavityOptions& options);
 
 }  // namespace offsetopt

@@ -57,11 +57,11 @@ struct OptimizeOptions {
   double ramp = 2e-3;            // τ of the smooth clamp, fraction of the diagonal
   double start_fraction = 0.5;   // start inside the band (see ReducedOptions)
   CavityMode cavity = CavityMode::automatic;
-  // The contoured cavity: grid spacing wall / cavity_cells_per_wall, interpolation margin
-  // cavity_margin_cells · h (cavity/contour_cavity.h); at most max_correction_rounds solves again
-  // with the contour's moments.
+  // The contoured cavity: grid spacing wall / cavity_cells_per_wall, the wall-bound part at
+  // wall + cavity_margin_cells · h (0: at the requested wall; cavity/contour_cavity.h); at most
+  // max_correction_rounds solves again with the contour's moments.
   double cavity_cells_per_wall = 1.5;
-  double cavity_margin_cells = 0.25;
+  double cavity_margin_cells = 0.0;
   int max_correction_rounds = 6;
   // `--cavity offset` only: after a solve, vertices on folds of the inner surface get their upper
   // bound multiplied by repair_shrink and vertices on walls thinner than half the requested one

@@ -160,3 +160,104 @@ TEST_CASE("a node cap that forces a grid coarser than the wall still gives a pri
   check_printable(spheres.outer, spheres.outer_bvh, c, wall);
   CHECK(c.shells == 1);
 }
+
+namespace {
+
+// q(x) = |x − c|² − r² on the monomials [1, x, y, z, x², y², z², xy, yz, zx].
+Vector10d ball_quadric(const Eigen::Vector3d& c, double r) {
+  Vector10d q = Vector10d::Zero();
+  q(0) = c.squaredNorm() - r * r;
+  q.segment<3>(1) = -2.0 * c;
+  q(4) = q(5) = q(6) = 1.0;
+  return q;
+}
+
+}  // namespace
+
+TEST_CASE("a quadric ball inside a sphere: the analytic ball within the grid's error, closed, embedded, the wall kept") {
+  const SphereInSphere spheres;  // outer radius 10
+  const Eigen::Vector3d centre(0.4, -0.3, 0.25);
+  const double r = 6.0, wall = 1.0, pi = 3.141592653589793;
+  ContourCavityOptions options;
+  options.wall = wall;
+  // Any common scale of the coefficients gives the same void.
+  for (const double scale : {1.0, 1e-3}) {
+    const ContourCavity c = contour_cavity(spheres.outer, spheres.outer_bvh, Vector10d(scale * ball_quadric(centre, r)), options);
+    check_printable(spheres.outer, spheres.outer_bvh, c, wall);
+    CHECK(c.shells == 1);
+    // The wall does not bind (10 − 6 − 0.56 > wall + margin + a cell), so every vertex is a zero of
+    // the linear interpolation of −q/|∇q| = (r² − ρ²)/(2ρ) along an edge of at most √3 h: within
+    // a small fraction of h of the sphere, and the chords lose a little volume.
+    const double h = c.grid.spacing;
+    double worst = 0.0;
+    for (Eigen::Index v = 0; v < c.cavity.V.rows(); ++v)
+      worst = std::max(worst, std::fabs((c.cavity.V.row(v).transpose() - centre).norm() - r));
+    CHECK(worst < 0.05 * h);
+    const double volume = volume_integrals(c.cavity).values(kIntVolume);
+    const double ball = 4.0 / 3.0 * pi * r * r * r;
+    CHECK(volume <= ball * 1.0001);
+    CHECK(volume >= ball * 0.98);
+  }
+}
+
+TEST_CASE("a half-space quadric cuts a box's interior into the analytic slab") {
+  const double L = 20.0, wall = 1.0, z0 = 8.3;
+  const Mesh outer = make_box({0, 0, 0}, {L, L, L});
+  const TriangleBvh outer_bvh(outer.V, outer.F);
+  Vector10d q = Vector10d::Zero();
+  q(0) = -z0;
+  q(3) = 1.0;  // q = z − z0: the void is below z0
+  ContourCavityOptions options;
+  options.wall = wall;
+  const ContourCavity c = contour_cavity(outer, outer_bvh, q, options);
+  check_printable(outer, outer_bvh, c, wall);
+  CHECK(c.shells == 1);
+  // The contour keeps d_out >= ℓ (the wall, plus the grid's margin where the outer surface
+  // binds); d_out is linear along every grid edge near a face, so the faces land exactly, and only
+  // the twelve edges of the slab lose a prism of at most h²/2 in cross-section.
+  const double h = c.grid.spacing;
+  double lowest = L, highest = 0.0;
+  for (Eigen::Index v = 0; v < c.cavity.V.rows(); ++v) {
+    lowest = std::min(lowest, c.cavity.V(v, 2));
+    highest = std::max(highest, c.cavity.V(v, 2));
+  }
+  CHECK(highest == doctest::Approx(z0).epsilon(1e-9));  // the plane is linear: interpolated exactly
+  const double level = lowest;                           // where the outer surface binds
+  CHECK(level >= wall);
+  CHECK(level <= wall + std::max(0.25 * h, 1.01 * std::sqrt(3.0) * h - wall) + 1e-9);
+  const double side = L - 2.0 * level, slab = side * side * (z0 - level);
+  const double edges = 8.0 * side + 4.0 * (z0 - level);
+  const double volume = volume_integrals(c.cavity).values(kIntVolume);
+  CHECK(volume <= slab * (1.0 + 1e-9));
+  CHECK(volume >= slab - edges * h * h / 2.0);
+}
+
+TEST_CASE("the quadric cavity is the same for any thread count") {
+  const SphereInSphere spheres;
+  // A tilted ellipsoid (cross terms): q = x²/36 + y²/25 + z²/16 + 0.02 (xy + yz + zx) − 1.
+  Vector10d q = Vector10d::Zero();
+  q << -1.0, 0.1, 0.0, -0.05, 1.0 / 36, 1.0 / 25, 1.0 / 16, 0.02, 0.02, 0.02;
+  ContourCavityOptions options;
+  options.wall = 0.9;
+  options.threads = 1;
+  const ContourCavity one = contour_cavity(spheres.outer, spheres.outer_bvh, q, options);
+  options.threads = 3;
+  const ContourCavity three = contour_cavity(spheres.outer, spheres.outer_bvh, q, options);
+  REQUIRE(one.ok);
+  REQUIRE(one.cavity.F.rows() > 0);
+  REQUIRE(one.cavity.V.rows() == three.cavity.V.rows());
+  REQUIRE(one.cavity.F.rows() == three.cavity.F.rows());
+  CHECK(one.cavity.V == three.cavity.V);
+  CHECK(one.cavity.F == three.cavity.F);
+}
+
+TEST_CASE("a quadric with a non-finite coefficient is refused, not contoured") {
+  const SphereInSphere spheres;
+  Vector10d q = ball_quadric(Eigen::Vector3d::Zero(), 5.0);
+  q(4) = std::numeric_limits<double>::quiet_NaN();
+  ContourCavityOptions options;
+  options.wall = 1.0;
+  const ContourCavity c = contour_cavity(spheres.outer, spheres.outer_bvh, q, options);
+  CHECK(!c.ok);
+  CHECK(!c.message.empty());
+}
