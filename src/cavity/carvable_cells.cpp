@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "cavity/contour_cavity.h"
 #include "geometry/aabb.h"
 #include "geometry/closest_point.h"
 #include "geometry/grid_winding.h"
@@ -86,7 +87,7 @@ std::string CarvableCellsOptions::check() const {
   const CarvableCellsOptions& o = *this;
   if (!(o.wall > 0.0) || !std::isfinite(o.wall)) return "the wall must be > 0";
   if (!(o.cells_per_wall >= 1.25 && o.cells_per_wall <= 8.0)) return "cells per wall must be in [1.25, 8]";
-  if (!(o.margin_cells >= 0.25 && o.margin_cells <= 2.0)) return "the margin must be in [0.25, 2] cells";
+  if (!(o.margin_cells >= 0.0 && o.margin_cells <= 2.0)) return "the margin must be in [0, 2] cells";
   if (o.max_nodes < 1000) return "the node cap must be >= 1000";
   if (o.band && (!(o.outer_max > 0.0) || !std::isfinite(o.outer_max))) return "the band needs outer_max > 0";
   if (o.band && (!(o.ground_tol >= 0.0) || !std::isfinite(o.ground_z))) return "the band needs a ground and ground_tol >= 0";
@@ -138,7 +139,7 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
     out.message = "the cell grid would need more than " + std::to_string(options.max_nodes) + " nodes";
     return out;
   }
-  out.margin = std::max(options.margin_cells * h, 1.01 * std::sqrt(3.0) * h - wall);
+  out.margin = cavity_node_level(wall, h, options.margin_cells, mesh_box(outer)) - wall;
   NodeGrid& grid = out.grid;
   grid.spacing = h;
   grid.origin = box.lo - Eigen::Vector3d(2.2371, 2.3119, 2.4243) * h;
@@ -165,6 +166,7 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
   std::vector<double> thresholds;
   if (level > 0.0) thresholds.push_back(level);
   if (level < 0.0) thresholds.push_back(-level);
+  thresholds.push_back(wall);  // the mid reading
   if (options.band) {
     thresholds.push_back(r);
     if (options.outer_max - r > r) thresholds.push_back(options.outer_max - r);
@@ -185,7 +187,7 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
   };
 
   const double base = options.ground_z + 2.0 * options.outer_max + options.ground_tol;
-  std::vector<std::int64_t> lists[kParts][4];
+  std::vector<std::int64_t> lists[kParts][5];
   WorkerPool pool(std::max(1, std::min(options.threads, kParts)));
   pool.run_parts(kParts, [&](int part) {
     const std::int64_t nxy = grid.nx * grid.ny;
@@ -201,6 +203,7 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
           const bool may = whole || (inside ? (level <= 0.0 || reaches(c, level)) : (level < 0.0 && !reaches(c, -level)));
           if (whole) lists[part][0].push_back(cell);
           if (may) lists[part][1].push_back(cell);
+          if (inside && reaches(c, wall)) lists[part][4].push_back(cell);
           if (!options.band) continue;
           const double z = centres.z(k);
           if (!inside && reaches(c, r) && (options.outer_max - r > r && !reaches(c, options.outer_max - r)) && z - 0.5 * h >= base)
@@ -209,8 +212,8 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
             lists[part][3].push_back(cell);
         }
   });
-  std::vector<std::int64_t>* targets[4] = {&out.inner, &out.outer, &out.band_inner, &out.band_outer};
-  for (int l = 0; l < 4; ++l)
+  std::vector<std::int64_t>* targets[5] = {&out.inner, &out.outer, &out.band_inner, &out.band_outer, &out.mid};
+  for (int l = 0; l < 5; ++l)
     for (int part = 0; part < kParts; ++part) targets[l]->insert(targets[l]->end(), lists[part][l].begin(), lists[part][l].end());
   out.ok = true;
   return out;

@@ -2,7 +2,7 @@
 // do"), read two ways so that both of reachability's answers are honest:
 // - inner: cells the contoured cavity can write whole: all 8 nodes inside the outer surface with
 //   distance >= wall + margin (the contour's own node test, cavity/contour_cavity.h, with its
-//   spacing h = wall / cells_per_wall and margin max(c·h, 1.01·√3·h − wall)). A void made of inner
+//   spacing h = wall / cells_per_wall and margin from cavity_node_level). A void made of inner
 //   cells is one the tool can write, so it backs the claim "reachable";
 // - outer: every cell that may contain a point at least `wall` inside: the signed distance of its
 //   centre (positive inside) plus half its diagonal r = √3·h/2 is >= wall (with --outer, the wall
@@ -37,7 +37,7 @@ namespace offsetopt {
 struct CarvableCellsOptions {
   double wall = 0.0;                 // input units, > 0
   double cells_per_wall = 1.5;       // h = wall / cells_per_wall (the contour's), in [1.25, 8]
-  double margin_cells = 0.25;        // c, in [0.25, 2]
+  double margin_cells = 0.0;         // c, in [0, 2] (cavity/contour_cavity.h)
   std::int64_t max_nodes = std::int64_t{1} << 25;  // h grows (×1.05 steps) when the box needs more
   bool band = false;                 // also the outer band (--outer)
   double outer_max = 0.0;            // band: how far outside material may be added, > 0
@@ -54,6 +54,10 @@ struct CarvableCells {
   NodeGrid grid;
   double margin = 0.0;               // the contour's interpolation margin at this spacing
   std::vector<std::int64_t> inner, outer;            // void cells (see above)
+  // Cells whose centre is at least `wall` inside: the contour's void, which reaches the wall
+  // exactly, read at the cell scale (half cells lost and gained along the wall about cancel).
+  // Neither a subset nor a superset of what can be written; inner ⊆ mid ⊆ outer.
+  std::vector<std::int64_t> mid;
   std::vector<std::int64_t> band_inner, band_outer;  // --outer: cells that add material
   std::int64_t distance_queries = 0;                 // exact point queries (blocks not counted)
 

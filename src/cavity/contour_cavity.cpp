@@ -19,6 +19,12 @@ namespace offsetopt {
 namespace {
 
 constexpr double kMinFraction = 1e-3;  // marching tetrahedra: how close to a node a vertex may sit
+
+// A hair above the wall that covers rounding the written file's coordinates to float32.
+double rounding_hair(double wall, const Aabb& outer_box) {
+  const Eigen::Vector3d far = outer_box.lo.cwiseAbs().cwiseMax(outer_box.hi.cwiseAbs());
+  return 4e-7 * (far.norm() + (outer_box.hi - outer_box.lo).norm()) + 1e-9 * wall;
+}
 constexpr int kBlock = 4;              // nodes per block side in the distance pass
 constexpr int kParts = 2;              // every parallel loop is cut into this many fixed parts
 constexpr int kRaiseRounds = 6;        // rounds that lift the vertices of faces below the wall
@@ -550,10 +556,9 @@ ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, con
   // vertices, so no triangle then reaches the outer surface, however coarse the node cap makes
   // the grid. Void nodes keep target + 2·kMinFraction·h, so a vertex kMinFraction along any edge
   // from one (edges are at most √3 h long) still keeps the target.
-  const Eigen::Vector3d far = outer_box.lo.cwiseAbs().cwiseMax(outer_box.hi.cwiseAbs());
-  const double hair = 4e-7 * (far.norm() + (outer_box.hi - outer_box.lo).norm()) + 1e-9 * wall;
+  const double hair = rounding_hair(wall, outer_box);
   const double target = std::max(wall + options.margin_cells * h, 1.01 * h) + hair;
-  const double level = target + 2.0 * kMinFraction * h;
+  const double level = cavity_node_level(wall, h, options.margin_cells, outer_box);
 
   WorkerPool pool(std::max(1, std::min(options.threads, kParts)));
   // Inside the outer surface and inside the inner void: the candidates for the cavity.
@@ -582,6 +587,10 @@ ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, con
 }
 
 }  // namespace
+
+double cavity_node_level(double wall, double h, double margin_cells, const Aabb& outer_box) {
+  return std::max(wall + margin_cells * h, 1.01 * h) + rounding_hair(wall, outer_box) + 2.0 * kMinFraction * h;
+}
 
 std::string ContourCavityOptions::check() const {
   const ContourCavityOptions& o = *this;

@@ -76,6 +76,11 @@ struct ContourCavity {
 
 // `outer` is the closed outer surface and `outer_bvh` its tree; `inner` the inner offset surface
 // (closed as a mesh, possibly folded or crossing `outer`). Both in the same units as the wall.
+// The distance to the outer surface from which a grid node of spacing h counts as cavity (the
+// node test above): a cell whose eight nodes all keep it is written whole. `outer_box` bounds the
+// outer surface (the rounding hair grows with the coordinates' size).
+double cavity_node_level(double wall, double h, double margin_cells, const Aabb& outer_box);
+
 ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Mesh& inner,
                              const ContourCavityOptions& options);
 

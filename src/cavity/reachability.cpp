@@ -46,6 +46,12 @@ Form minus(const Form& a, double t, const Form& b) {
   return f;
 }
 
+// The form read with `shift` more void than the occupancy holds (a correction round's Δ).
+Form with_void_shift(Form f, const Vector10d& shift) {
+  f.constant += f.void_coefficients().dot(shift);
+  return f;
+}
+
 struct GoalRows {
   std::vector<Form> numerators, denominators;  // ratio rows N_j >= t D_j (D_j > 0)
   std::vector<std::string> ratio_names;
@@ -62,6 +68,7 @@ struct Frame {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Vector10d P0 = Vector10d::Zero();   // the input's integrals, normalised frame
   double top = 1.0;                   // highest point over the ground, normalised
+  Vector10d void_shift = Vector10d::Zero();  // ReachabilityOptions::void_shift, normalised frame
   Eigen::Vector3d to_frame(const Eigen::Vector3d& posed) const { return (posed - origin) * scale; }
 };
 
@@ -150,6 +157,9 @@ GoalRows goal_rows(const GoalSpec& goal, const Frame& f, double tau, double volu
     }
     case GoalKind::volume: break;
   }
+  if (!f.void_shift.isZero(0.0))
+    for (std::vector<Form>* forms : {&rows.numerators, &rows.denominators, &rows.plain})
+      for (Form& form : *forms) form = with_void_shift(form, f.void_shift);
   return rows;
 }
 
@@ -232,6 +242,9 @@ struct LpRun {
   std::vector<Form> rows;          // the rows as solved (each >= 0, ratio rows minus z)
   int ratio_rows = 0;
   Eigen::VectorXd weights;         // w >= 0 per row (from the duals or the Farkas certificate)
+  // A void cell's reduced cost is void_reduced · (its integrals), normalised frame: positive where
+  // the optimum carves (optimal runs only).
+  Vector10d void_reduced = Vector10d::Zero();
 };
 
 class Solver {
@@ -348,6 +361,7 @@ class Solver {
         wv += objective->void_coefficients() / V0;
         wb += objective->solid / V0;
       }
+      run.void_reduced = wv;
       const double tol = o_.lp.optimality_tolerance;
       std::vector<char> split(static_cast<std::size_t>(G), 0);
       bool any = false;
@@ -448,6 +462,17 @@ MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, con
   return s;
 }
 
+// A quadric of the normalised frame in input units about the frame's origin (the rotated pose):
+// m_k(s (p − o)) = s^deg(k) m_k(p − o).
+Quadric quadric_in_input_units(const Vector10d& frame_coefficients, const Frame& f) {
+  const double s = f.scale;
+  const int degree[10] = {0, 1, 1, 1, 2, 2, 2, 2, 2, 2};
+  Quadric q;
+  q.origin = f.origin;
+  for (int k = 0; k < 10; ++k) q.coefficients(k) = frame_coefficients(k) * (degree[k] == 0 ? 1.0 : degree[k] == 1 ? s : s * s);
+  return q;
+}
+
 // The certificate: w >= 0 on rows (each >= 0 when met), checked on every cell of the outer reading
 // with a rigorous bound of the quadric over each cube.
 ReachCertificate certify(const LpRun& run, const Partition& outer, const Frame& f) {
@@ -483,11 +508,11 @@ ReachCertificate certify(const LpRun& run, const Partition& outer, const Frame& 
   c.present = true;
   c.bound = total.value();
   c.proves = c.bound < -1e-13;
-  // The quadric in input units about the frame's origin (rotated pose): void = {q < 0} = {q_v > 0}.
+  // void = {q < 0} = {q_v > 0}.
+  const Quadric q = quadric_in_input_units(-gv, f);
+  c.quadric = q.coefficients;
+  c.origin = q.origin;
   const double s = f.scale;
-  const int degree[10] = {0, 1, 1, 1, 2, 2, 2, 2, 2, 2};
-  for (int k = 0; k < 10; ++k) c.quadric(k) = -gv(k) * (degree[k] == 0 ? 1.0 : degree[k] == 1 ? s : s * s);
-  c.origin = f.origin;
   c.constant = F0.value() / (s * s * s);
   return c;
 }
@@ -512,9 +537,10 @@ double user_margin(const GoalSpec& goal) {
 
 // Lowest cz over the ground (normalised) with every row at the user's margin: Dinkelbach on ∫z / M.
 std::optional<double> lowest_cz(Solver& solver, Partition& p, const GoalRows& rows, const Frame& f, double margin,
-                                std::vector<double>& u, int cap) {
+                                std::vector<double>& u, int cap, Vector10d& void_reduced) {
   const std::vector<Form> constraints = ratio_rows_at(rows, margin);
-  const Form Z = solid_form(unit(kIntZ)), M = solid_form(unit(kIntVolume));
+  const Form Z = with_void_shift(solid_form(unit(kIntZ)), f.void_shift);
+  const Form M = with_void_shift(solid_form(unit(kIntVolume)), f.void_shift);
   std::vector<double> warm = u;
   double theta = form_value(Z, f.P0, p, u) / form_value(M, f.P0, p, u);
   std::optional<double> best;
@@ -527,6 +553,7 @@ std::optional<double> lowest_cz(Solver& solver, Partition& p, const GoalRows& ro
     if (!best || next < *best) {
       best = next;
       u = run.u;
+      void_reduced = run.void_reduced;
     }
     if (theta - next <= 1e-12) break;
     theta = next;
@@ -545,7 +572,7 @@ std::vector<double> per_cell(const Partition& p, const std::vector<double>& u, i
 }
 
 Frame make_frame(const VolumeIntegrals& input, const Eigen::Matrix3d& R, const Eigen::Vector3d& origin, double diagonal,
-                 double top) {
+                 double top, const Vector10d& void_shift) {
   Frame f;
   f.scale = 1.0 / diagonal;
   f.origin = origin;
@@ -568,10 +595,28 @@ Frame make_frame(const VolumeIntegrals& input, const Eigen::Matrix3d& R, const E
     f.P0(k) = shifted.values(k) * factor;
   }
   f.top = top * s;
+  for (int k = 0; k < 10; ++k) {
+    double factor = s * s * s;
+    for (int d = 0; d < degree[k]; ++d) factor *= s;
+    f.void_shift(k) = void_shift(k) * factor;
+  }
   return f;
 }
 
 }  // namespace
+
+Vector10d Quadric::about_zero() const {
+  // m(p − o) expanded: the second-order part is unchanged, the lower ones take the shift.
+  const Vector10d& c = coefficients;
+  const Eigen::Vector3d& o = origin;
+  Vector10d a = c;
+  a(1) = c(1) - 2.0 * c(4) * o.x() - c(7) * o.y() - c(9) * o.z();
+  a(2) = c(2) - 2.0 * c(5) * o.y() - c(7) * o.x() - c(8) * o.z();
+  a(3) = c(3) - 2.0 * c(6) * o.z() - c(8) * o.y() - c(9) * o.x();
+  a(0) = c(0) - c(1) * o.x() - c(2) * o.y() - c(3) * o.z() + c(4) * o.x() * o.x() + c(5) * o.y() * o.y() +
+         c(6) * o.z() * o.z() + c(7) * o.x() * o.y() + c(8) * o.y() * o.z() + c(9) * o.z() * o.x();
+  return a;
+}
 
 std::string ReachabilityOptions::check() const {
   const ReachabilityOptions& o = *this;
@@ -584,6 +629,7 @@ std::string ReachabilityOptions::check() const {
   if (!(o.axis_tolerance > 0.0 && o.axis_tolerance <= 0.7e-4)) return "the axis tolerance must be in (0, 0.7e-4]";
   if (o.spin_levels < 1 || o.spin_levels > 200) return "spin_levels must be in [1, 200]";
   if (o.threads < 1 || o.threads > 64) return "threads must be in [1, 64]";
+  if (!o.void_shift.allFinite()) return "the void shift must be finite";
   return o.lp.check();
 }
 
@@ -629,13 +675,14 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
   }
   out.cells = cells;
   const double v = cells->cell_volume();
-  out.carvable_volume = v * static_cast<double>(cells->inner.size());
+  const std::vector<std::int64_t>& writable = options.mid_reading ? cells->mid : cells->inner;
+  out.carvable_volume = v * static_cast<double>(writable.size());
   out.carvable_volume_outer = v * static_cast<double>(cells->outer.size());
   out.band_volume = v * static_cast<double>(cells->band_inner.size());
   // The highest point over the ground, for the spin's levels: bounded by the cells' reach.
   double top = 0.0;
   for (std::int64_t c : cells->outer) top = std::max(top, (rotation * cells->centre(c)).z() - ground_z);
-  const Frame f = make_frame(input_integrals, rotation, origin, diagonal, top);
+  const Frame f = make_frame(input_integrals, rotation, origin, diagonal, top, options.void_shift);
   out.ok = true;
   if (goal.kind == GoalKind::volume) {
     out.reachable = goal.target_volume <= out.carvable_volume;
@@ -644,7 +691,7 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
   }
   Solver solver(f, options, out);
   const bool band = options.outer && goal.kind != GoalKind::floating;
-  Partition inner = make_partition(*cells, cells->inner, band ? cells->band_inner : std::vector<std::int64_t>{}, f, options.block);
+  Partition inner = make_partition(*cells, writable, band ? cells->band_inner : std::vector<std::int64_t>{}, f, options.block);
   const double margin = user_margin(goal) * f.scale;
   const double tau_in = options.axis_tolerance, tau_out = 1e-4;
 
@@ -657,7 +704,7 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
       const LpRun run = solver.solve(inner, rows.plain, 0, false, nullptr, warm);
       if (run.status == LpStatus::optimal) {
         out.reachable = out.decided = true;
-        out.occupancy = per_cell(inner, run.u, -1, cells->inner.size());
+        out.occupancy = per_cell(inner, run.u, -1, writable.size());
         out.band_occupancy = per_cell(inner, run.u, 1, cells->band_inner.size());
       }
     }
@@ -688,10 +735,14 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
     out.decided = true;
     std::vector<double> u = s.u;
     if (options.lowest_cz) {
-      const std::optional<double> cz = lowest_cz(solver, inner, rows, f, margin, u, options.max_dinkelbach);
-      if (cz) out.lowest_cz = *cz / f.scale;
+      Vector10d void_reduced = Vector10d::Zero();
+      const std::optional<double> cz = lowest_cz(solver, inner, rows, f, margin, u, options.max_dinkelbach, void_reduced);
+      if (cz) {
+        out.lowest_cz = *cz / f.scale;
+        out.optimum = quadric_in_input_units(-void_reduced, f);
+      }
     }
-    out.occupancy = per_cell(inner, u, -1, cells->inner.size());
+    out.occupancy = per_cell(inner, u, -1, writable.size());
     out.band_occupancy = per_cell(inner, u, 1, cells->band_inner.size());
     return out;
   }

@@ -54,7 +54,7 @@ struct ReachabilityOptions {
   double ground_tol = 0.0;           // input units, >= 0
   bool outer = false;                // the band adds material
   double cells_per_wall = 1.5;       // the contour's grid (cavity/carvable_cells.h)
-  double margin_cells = 0.25;
+  double margin_cells = 0.0;       // as OptimizeOptions::cavity_margin_cells
   std::int64_t max_nodes = std::int64_t{1} << 25;
   int block = 4;                     // cells per LP block side, 1..16
   int max_dinkelbach = 30;           // LPs per ratio search
@@ -64,6 +64,15 @@ struct ReachabilityOptions {
   int spin_levels = 11, spin_directions = 24;
   int threads = 2;
   BoundedSimplexOptions lp = lp_defaults();
+  // Integrals (input units, about `origin`, in the pose of `goal`) of void the written cavity
+  // holds beyond the occupancy: a correction round's Δ = written − occupancy. Every row is read on
+  // the solid less it.
+  Vector10d void_shift = Vector10d::Zero();
+  // Read "reachable", the margins, the lowest centre of mass and the occupancy on the mid cells
+  // (CarvableCells::mid: the contour's void at the cell scale) instead of the inner ones: the
+  // estimate of the best void at the exact wall, and the programme the quadric void is written
+  // from. The claim "unreachable" is always read on the outer cells.
+  bool mid_reading = false;
 
   static BoundedSimplexOptions lp_defaults() {
     BoundedSimplexOptions o;  // rows are scaled by the volume: values O(1), a cell's column O(1/#cells)
@@ -74,6 +83,15 @@ struct ReachabilityOptions {
   }
   static ReachabilityOptions defaults() { return ReachabilityOptions(); }
   std::string check() const;
+};
+
+// q(p) = Σ_k coefficients_k m_k(p − origin) on the monomials m = [1, x, y, z, x², y², z², xy, yz, zx]
+// (mass/volume_integrals.h order), input units.
+struct Quadric {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Vector10d coefficients = Vector10d::Zero();
+  // The same quadric on the monomials of p itself (origin 0), as cavity/contour_cavity.h takes it.
+  Vector10d about_zero() const;
 };
 
 struct ReachCertificate {
@@ -97,9 +115,12 @@ struct Reachability {
   std::optional<double> best_margin_upper;  // outer reading (computed when not reachable)
   std::string binding;               // the row that limits the best margin ("support edge 3")
   std::optional<double> lowest_cz;   // over the ground, input units, goal met at the user's margin
+  // The void of that lowest centre of mass: {q < 0} ∩ the inner cells (all but a few fractional
+  // cells of `occupancy`); set with lowest_cz.
+  std::optional<Quadric> optimum;
   ReachCertificate certificate;      // unreachable: the proof; reachable: the optimum's quadric
   std::shared_ptr<const CarvableCells> cells;
-  std::vector<double> occupancy;     // per cells->inner: the LP's optimal void (lowest cz if computed)
+  std::vector<double> occupancy;     // per cells->inner (or ->mid): the LP's optimal void (lowest cz if computed)
   std::vector<double> band_occupancy;  // per cells->band_inner
   double carvable_volume = 0.0, carvable_volume_outer = 0.0, band_volume = 0.0;
   int lps = 0;

@@ -73,10 +73,11 @@ const CommandHelp kHelp = {
         {"--fix", "REGION", "none", "x>V, x<V, y>V, y<V, z>V, z<V or sphere:X,Y,Z,R",
          "keep the surface (an opening) where REGION holds", "z>50"},
         {"--ground-tol", "T", "0.001 diag", "[0, 1e12]", "ground contact tolerance", "0.01"},
-        {"--cavity", "MODE", "auto", "auto | offset | contour",
+        {"--cavity", "MODE", "auto", "auto | offset | contour | quadric",
          "the cavity written: the inner offset surface (offset: the paper's, with repair rounds), the contoured implicit "
-         "cavity (contour: closed, embedded, the wall kept exactly), or the offset surface when it verifies as it is and "
-         "the contour otherwise (auto)",
+         "cavity (contour: closed, embedded, the wall kept exactly), the best void any carving reaches, bounded by a "
+         "quadric (quadric), or auto: the offset surface when it verifies as it is, the contour otherwise, and the quadric "
+         "void when the offset void misses a goal some void reaches or falls more than 1% short of the best",
          "contour"},
         {"--cavity-cells", "C", "1.5", "[1.25, 8]", "contour grid cells per wall thickness", "3"},
         kPoseOptionSpecs[0],
@@ -171,7 +172,7 @@ int run_optimize(const Args& args) {
     } else if (arg == "--cavity") {
       const std::string& value = cursor.value_of(arg);
       if (!parse_cavity_mode(value, options.cavity))
-        throw UsageError("--cavity must be auto, offset or contour, got '" + value + "'");
+        throw UsageError("--cavity must be auto, offset, contour or quadric, got '" + value + "'");
     } else if (arg == "--cavity-cells") {
       options.cavity_cells_per_wall = parse_double(cursor.value_of(arg), arg, 1.25, 8.0);
     } else if (arg == "--ground-tol") {

@@ -193,7 +193,17 @@ Json cavity_json(const CavitySummary& cavity) {
     for (const ContourRound& round : *cavity.rounds) rounds.push_back(contour_round_json(round));
     j["rounds"] = rounds;
   }
-  j["written"] = cavity.contoured ? "contour" : "offset";
+  if (cavity.quadric_rounds) {
+    Json rounds = Json::array();
+    for (const ContourRound& round : *cavity.quadric_rounds) rounds.push_back(contour_round_json(round));
+    j["quadric_rounds"] = rounds;
+  }
+  if (cavity.offset_objective || cavity.quadric_objective) {
+    j["offset_objective"] = cavity.offset_objective ? Json(*cavity.offset_objective) : Json();
+    j["quadric_objective"] = cavity.quadric_objective ? Json(*cavity.quadric_objective) : Json();
+  }
+  j["written"] = to_string(cavity.written);
+  if (!cavity.choice.empty()) j["choice"] = cavity.choice;
   return j;
 }
 
@@ -270,7 +280,8 @@ Json stage_timings_json(const StageTimings& timings) {
   const std::pair<const char*, std::optional<double>> stages[] = {
       {"frame", timings.frame},     {"skeleton", timings.skeleton}, {"basis", timings.basis},
       {"solve", timings.solve},     {"verify", timings.verify},     {"contour", timings.contour},
-      {"correct", timings.correct}, {"total", timings.total}};
+      {"correct", timings.correct}, {"reach", timings.reach},     {"quadric", timings.quadric},
+      {"total", timings.total}};
   Json j = Json::object();
   for (const auto& [key, seconds] : stages)
     if (seconds) j[key] = *seconds;
@@ -288,6 +299,14 @@ Json optimize_report(const OptimizeOptions& options, const OptimizeResult& resul
   report["before"] = before_json(result.before);
   report["cavity"] = cavity_json(result.cavity);
   report["after"] = verification_json(result.after);
+  if (result.optimality) {
+    Json o = Json::object();
+    o["fraction"] = result.optimality->fraction;
+    o["before"] = result.optimality->before;
+    o["written"] = result.optimality->written;
+    o["best"] = result.optimality->best;
+    report["optimality"] = o;
+  }
   report["goal_met"] = result.after.goal_met;
   report["valid"] = result.after.valid;
   if (result.status == OptimizeStatus::goal_not_met) report["why"] = result.message;

@@ -19,6 +19,7 @@
 #include "shape/offset_field.h"
 #include "cavity/printable_solid.h"
 #include "cavity/verify_offsets.h"
+#include "optimize/quadric_void.h"
 #include "skeleton/laplacian_contraction.h"
 #include "util/format_double.h"
 #include "util/seconds_since.h"
@@ -99,12 +100,22 @@ const char* to_string(CavityMode mode) {
     case CavityMode::automatic: return "auto";
     case CavityMode::offset: return "offset";
     case CavityMode::contour: return "contour";
+    case CavityMode::quadric: return "quadric";
   }
   return "auto";
 }
 
+const char* to_string(WrittenCavity written) {
+  switch (written) {
+    case WrittenCavity::offset: return "offset";
+    case WrittenCavity::contour: return "contour";
+    case WrittenCavity::quadric: return "quadric";
+  }
+  return "offset";
+}
+
 bool parse_cavity_mode(const std::string& text, CavityMode& mode) {
-  for (CavityMode m : {CavityMode::automatic, CavityMode::offset, CavityMode::contour})
+  for (CavityMode m : {CavityMode::automatic, CavityMode::offset, CavityMode::contour, CavityMode::quadric})
     if (text == to_string(m)) {
       mode = m;
       return true;
@@ -436,8 +447,8 @@ struct Cavity {
   CavitySummary summary;
 };
 
-Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
-                   StageTimings& timings, const Progress& say) {
+Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
+                          StageTimings& timings, const Progress& say) {
   auto stage_start = Clock::now();
   Cavity c;
   VerifyInput verify_input;
@@ -530,10 +541,154 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
     timings.contour = contour_seconds;
     timings.correct = seconds_since(stage_start) - contour_seconds;
   }
-  c.summary.contoured = want_contour && problem.empty();
+  if (want_contour && problem.empty()) c.summary.written = WrittenCavity::contour;
   if (!problem.empty()) {
     c.verification.valid = false;
     c.verification.failures.insert(c.verification.failures.begin(), problem);
+  }
+  return c;
+}
+
+// Stage "reach": what any void can do (cavity/reachability.h), for the quadric void and the
+// optimality. Only for the goals that lower the centre of mass, without --outer (the band would be
+// written as added material) and without --fix (openings are not contoured).
+struct Reach {
+  std::optional<Reachability> result;
+  ReachabilityOptions options;
+  VolumeIntegrals outer_integrals;
+  double seconds = 0.0;
+};
+
+bool lowers_centre(GoalKind kind) {
+  return kind == GoalKind::stand || kind == GoalKind::stand_filled || kind == GoalKind::roly_poly ||
+         kind == GoalKind::floating;
+}
+
+Reach make_reach(const Mesh& input, const OptimizeOptions& options, const Frame& f, const Band& b) {
+  Reach r;
+  const bool wanted = options.cavity == CavityMode::automatic || options.cavity == CavityMode::quadric;
+  if (!wanted || !lowers_centre(options.goal) || options.outer || b.fixed_count > 0) return r;
+  const auto start = Clock::now();
+  r.options.wall = f.wall;
+  r.options.ground_tol = f.ground_tol;
+  r.options.cells_per_wall = options.cavity_cells_per_wall;
+  r.options.margin_cells = options.cavity_margin_cells;
+  r.options.threads = options.threads;
+  r.options.mid_reading = true;
+  r.outer_integrals = volume_integrals(input, f.origin);
+  r.result = reachability(input, b.bvh, f.goal_input, f.zmin, f.origin, r.options);
+  r.seconds = seconds_since(start);
+  return r;
+}
+
+// The goal's objective on the solid as written (normalised frame), or for float the depth under
+// the centre of buoyancy negated: smaller is better either way.
+double written_score(const Frame& f, const Mesh& outer, const Mesh& cavity, const Verification& v) {
+  if (f.goal.kind == GoalKind::floating) return -v.goal.com_below_buoyancy * f.scale;
+  Mesh framed = cavity;
+  for (Eigen::Index i = 0; i < framed.V.rows(); ++i) framed.V.row(i) = f.to_frame(framed.V.row(i).transpose()).transpose();
+  Mesh outer_framed = outer;
+  for (Eigen::Index i = 0; i < outer_framed.V.rows(); ++i)
+    outer_framed.V.row(i) = f.to_frame(outer_framed.V.row(i).transpose()).transpose();
+  return evaluate_goal(f.goal, volume_integrals(outer_framed, Eigen::Vector3d::Zero()).values,
+                       volume_integrals(framed, Eigen::Vector3d::Zero()).values)
+      .objective;
+}
+
+std::optional<Optimality> optimality(const Frame& f, const Reachability& reach, const Verification& v) {
+  if (!v.goal_met || !reach.reachable) return std::nullopt;
+  Optimality o;
+  if (f.goal.kind == GoalKind::floating) {
+    if (!reach.best_margin || !(*reach.best_margin > 0.0)) return std::nullopt;
+    o.before = 0.0;  // a solid body's centre of mass is its centre of buoyancy
+    o.written = v.goal.com_below_buoyancy;
+    o.best = *reach.best_margin;
+    o.fraction = o.written / o.best;
+    return o;
+  }
+  if (!reach.lowest_cz) return std::nullopt;
+  o.before = f.before(kCz) - f.zmin;
+  o.written = v.goal.center_of_mass.z() - f.zmin;
+  o.best = *reach.lowest_cz;
+  if (!(o.before - o.best > 0.0)) return std::nullopt;
+  o.fraction = (o.before - o.written) / (o.before - o.best);
+  return o;
+}
+
+// Stages "cavity" and "verify" with the quadric void: the offset path first (make_offset_cavity),
+// then the quadric void where the offset void misses a goal some void reaches or falls short of the
+// best by more than options.quadric_below_fraction; the quadric void is written when it verifies
+// and beats the offset void's score by more than options.quadric_tie, or when asked for.
+Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve, const Reach& reach,
+                   StageTimings& timings, const Progress& say) {
+  Cavity c = make_offset_cavity(options, f, b, solve, timings, say);
+  const bool forced = options.cavity == CavityMode::quadric;
+  auto refuse = [&](const std::string& why) {
+    c.verification.valid = false;
+    c.verification.failures.insert(c.verification.failures.begin(), why);
+  };
+  if (!reach.result || !reach.result->ok || !reach.result->reachable) {
+    if (forced)
+      refuse(!reach.result ? "--cavity quadric needs a goal that lowers the centre of mass, without --outer or --fix"
+             : !reach.result->ok ? "no quadric void: " + reach.result->message
+                                 : "no quadric void: no void the tool can write reaches the goal");
+    return c;
+  }
+  const bool offset_verified = !forced && c.verification.goal_met && c.verification.valid;
+  if (offset_verified) c.summary.offset_objective = written_score(f, solve.outer, c.written, c.verification);
+  const std::optional<Optimality> offset_optimality = optimality(f, *reach.result, c.verification);
+  const bool short_of_best = !offset_optimality || offset_optimality->fraction < options.quadric_below_fraction;
+  if (!forced && !(options.cavity == CavityMode::automatic && (!offset_verified || short_of_best))) return c;
+
+  const auto start = Clock::now();
+  QuadricVoidInput in;
+  in.outer = &solve.outer;
+  in.outer_bvh = &b.bvh;
+  in.reach = &*reach.result;
+  in.outer_integrals = reach.outer_integrals;
+  in.goal = f.goal_input;
+  in.ground_z = f.zmin;
+  in.origin = f.origin;
+  in.diagonal = f.diag;
+  in.reach_options = reach.options;
+  in.contour.wall = f.wall;
+  in.contour.cells_per_wall = options.cavity_cells_per_wall;
+  in.contour.margin_cells = options.cavity_margin_cells;
+  in.contour.threads = options.threads;
+  in.verify.outer = &solve.outer;
+  in.verify.goal = f.goal_input;
+  in.verify.diagonal = f.diag;
+  in.verify.ground_tol = f.ground_tol;
+  in.verify.wall = f.wall;
+  in.verify.threads = options.threads;
+  in.max_rounds = options.max_correction_rounds;
+  in.headroom = kCorrectionHeadroom;
+  const QuadricVoid q = write_quadric_void(in);
+  timings.quadric = seconds_since(start);
+  c.summary.quadric_rounds = q.rounds;
+  const bool quadric_verified = q.verification.goal_met && q.verification.valid;
+  say(std::string("quadric void: ") + std::to_string(q.rounds.size()) + " contours, " +
+      (quadric_verified ? "verified" : q.message.empty() ? "not verified" : q.message));
+  if (quadric_verified) c.summary.quadric_objective = written_score(f, solve.outer, q.written, q.verification);
+  const bool take = forced ? !q.rounds.empty()
+                           : quadric_verified && (!offset_verified || *c.summary.offset_objective - *c.summary.quadric_objective >
+                                                                           options.quadric_tie * std::fabs(*c.summary.quadric_objective));
+  if (take) {
+    c.written = q.written;
+    c.verification = q.verification;
+    c.summary.written = WrittenCavity::quadric;
+    c.summary.choice = forced ? "asked for (--cavity quadric)"
+                       : offset_verified ? "the quadric void's objective is better by more than " +
+                                               format_double(options.quadric_tie * 100.0) + "%"
+                                         : "the offset void misses a goal the quadric void reaches";
+    if (forced && !q.message.empty()) refuse(q.message);
+  } else {
+    c.summary.choice = !quadric_verified ? "the quadric void did not verify: " +
+                                               (q.message.empty() ? (q.verification.failures.empty() ? std::string("unknown")
+                                                                                                    : q.verification.failures.front())
+                                                                  : q.message)
+                                         : "the offset void is within " + format_double(options.quadric_tie * 100.0) +
+                                               "% of the quadric void's objective";
   }
   return c;
 }
@@ -698,13 +853,15 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   solve.run();
   timings.solve = seconds_since(stage_start);
 
-  const Cavity cavity = make_cavity(options, f, b, solve, timings, say);
+  const Reach reach = make_reach(input, options, f, b);
+  if (reach.result) timings.reach = reach.seconds;
+  const Cavity cavity = make_cavity(options, f, b, solve, reach, timings, say);
   timings.total = seconds_since(total_start);
 
   OptimizeResult result;
   result.outer = solve.outer;
   result.inner = cavity.written;
-  result.printable = cavity.summary.contoured ? hollow_solid(solve.outer, cavity.written)
+  result.printable = cavity.summary.contoured() ? hollow_solid(solve.outer, cavity.written)
                                               : printable_solid(solve.outer, cavity.written, b.band.fixed);
   result.skeleton = Mesh{b.contraction.V, input.F};
   result.goal = f.setup;
@@ -716,13 +873,14 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
                    b.input_self.truncated};
   result.cavity = cavity.summary;
   result.after = cavity.verification;
+  if (reach.result) result.optimality = optimality(f, *reach.result, cavity.verification);
   result.timings = timings;
   // The input's own crossings are named where it is loaded (cli/cli_support.h, load_input); the
   // report keeps their count, and the verification counts only the cavity's.
   // "Parts thinner than two walls" is the users' wording for parts left solid (kept as it was).
   if (b.left_solid_count > 0)
     result.warnings.push_back(std::to_string(b.left_solid_count) + " vertices lie in parts thinner than two walls" +
-                              (cavity.summary.contoured ? "; those parts stay solid" : ", where the offset surface leaves less than the wall"));
+                              (cavity.summary.contoured() ? "; those parts stay solid" : ", where the offset surface leaves less than the wall"));
   if (b.field.fallback_count > 0)
     result.warnings.push_back(std::to_string(b.field.fallback_count) + " vertices move along the inward normal (skeleton direction unusable or too shallow)");
   const Verification& verification = cavity.verification;
@@ -732,14 +890,21 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     // axis goals), so a small basis can end above the first and still pass: say so, as the
     // report's solver status alone would read as a failure.
     const AlResult& solved = solve.solved;
-    if (solved.status == AlStatus::infeasible || solved.max_violation > 100.0 * options.solver.feasibility_tolerance)
+    const bool offset_written = cavity.summary.written != WrittenCavity::quadric;
+    if (offset_written &&
+        (solved.status == AlStatus::infeasible || solved.max_violation > 100.0 * options.solver.feasibility_tolerance))
       result.warnings.push_back(std::string("the solver ended ") + to_string(solved.status) + " with constraint violation " +
                                 format_double(solved.max_violation) + " (tolerance " +
                                 format_double(options.solver.feasibility_tolerance) +
                                 ", normalised frame); the written object still meets every tolerance the verification checks");
   } else {
     result.status = OptimizeStatus::goal_not_met;
-    result.message = failure_reason(options, b, solve, verification);
+    const CavitySummary& written = cavity.summary;
+    if (written.written == WrittenCavity::quadric)
+      result.message = "the quadric void: " + (verification.failures.empty() ? std::string("unknown") : verification.failures.front());
+    else
+      result.message = failure_reason(options, b, solve, verification) +
+                       (written.quadric_rounds ? "; the quadric void was tried: " + written.choice : std::string());
   }
   return result;
 }

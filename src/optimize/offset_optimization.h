@@ -31,7 +31,8 @@ namespace offsetopt {
 // (the paper's result, the input's connectivity), the contour of the implicit cavity
 // (cavity/contour_cavity.h, corrected in moment space), or the offset surface when it verifies as
 // it is and the contour otherwise.
-enum class CavityMode { automatic, offset, contour };
+// `quadric`: the reachability programme's optimal void (optimize/quadric_void.h), contoured.
+enum class CavityMode { automatic, offset, contour, quadric };
 const char* to_string(CavityMode mode);
 bool parse_cavity_mode(const std::string& text, CavityMode& mode);
 
@@ -57,6 +58,13 @@ struct OptimizeOptions {
   double ramp = 2e-3;            // τ of the smooth clamp, fraction of the diagonal
   double start_fraction = 0.5;   // start inside the band (see ReducedOptions)
   CavityMode cavity = CavityMode::automatic;
+  // `auto` tries the quadric void when the offset void misses a goal some void reaches, or when
+  // it achieves less than this fraction of the possible lowering (Optimality); the offset void is
+  // kept when its objective is within quadric_tie of the quadric void's (walls that follow the
+  // shape are worth a little). At 0.95 the demo goals, whose offset voids reach 0.98, pay no second
+  // contour; real meshes, at 0.68 to 0.91, get the quadric void.
+  double quadric_below_fraction = 0.95;
+  double quadric_tie = 0.01;
   // The contoured cavity: grid spacing wall / cavity_cells_per_wall, the wall-bound part at
   // wall + cavity_margin_cells · h (0: at the requested wall; cavity/contour_cavity.h); at most
   // max_correction_rounds solves again with the contour's moments.
@@ -208,20 +216,37 @@ struct ContourRound {
   std::optional<bool> valid;        // absent when a correction follows (validity not measured)
 };
 
-// Which cavity was written and why: the offset surface's own verification, then the contour rounds.
+enum class WrittenCavity { offset, contour, quadric };
+const char* to_string(WrittenCavity written);
+
+// Which cavity was written and why: the offset surface's own verification, then the contour rounds,
+// then, where the offset model fell short of a goal some void reaches, the quadric void's rounds.
+// Objectives are the goal's (shape/goal.h, normalised frame) on the solid as written.
 struct CavitySummary {
   CavityMode mode = CavityMode::automatic;
   bool offset_goal_met = false, offset_valid = false;
   std::vector<std::string> offset_failures;
   std::optional<std::vector<ContourRound>> rounds;  // present when a contour was attempted
-  bool contoured = false;           // the written cavity is the contour (else the offset surface)
+  std::optional<std::vector<ContourRound>> quadric_rounds;  // present when the quadric void was attempted
+  std::optional<double> offset_objective, quadric_objective;  // of each void that verified
+  WrittenCavity written = WrittenCavity::offset;
+  std::string choice;               // why this cavity was written (empty: the only one tried)
+  bool contoured() const { return written != WrittenCavity::offset; }
+};
+
+// How close the written void comes to the best any void reaches (cavity/reachability.h): the
+// fraction of the possible lowering of the centre of mass achieved (stand, stand-filled,
+// roly-poly; heights over the ground) or of the best depth under the centre of buoyancy (float).
+struct Optimality {
+  double fraction = 0.0;
+  double before = 0.0, written = 0.0, best = 0.0;  // input units: cz over the ground, or depth
 };
 
 // Seconds per stage: not reproducible, so kept apart from the rest. contour and correct are
 // present when a contour was attempted.
 struct StageTimings {
   double frame = 0.0, skeleton = 0.0, basis = 0.0, solve = 0.0, verify = 0.0;
-  std::optional<double> contour, correct;
+  std::optional<double> contour, correct, reach, quadric;
   double total = 0.0;
 };
 
@@ -238,6 +263,7 @@ struct OptimizeResult {
   InputSummary before;
   CavitySummary cavity;
   Verification after;           // of the written solid
+  std::optional<Optimality> optimality;  // when a void reaches the goal and the written one meets it
   StageTimings timings;
   std::vector<std::string> warnings;
 };
