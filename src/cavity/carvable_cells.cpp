@@ -138,7 +138,8 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
     out.message = "the cell grid would need more than " + std::to_string(options.max_nodes) + " nodes";
     return out;
   }
-  out.margin = std::max(options.margin_cells * h, 1.01 * std::sqrt(3.0) * h - wall);
+  out.margin = options.node_margin >= 0.0 ? options.node_margin
+                                          : std::max(options.margin_cells * h, 1.01 * std::sqrt(3.0) * h - wall);
   NodeGrid& grid = out.grid;
   grid.spacing = h;
   grid.origin = box.lo - Eigen::Vector3d(2.2371, 2.3119, 2.4243) * h;

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstdio>
-#include <cstdlib>
 
 #include "mass/volume_integrals.h"
 #include "util/det_math.h"
@@ -156,12 +154,14 @@ GoalRows goal_rows(const GoalSpec& goal, const Frame& f, double tau, double volu
 // The fine cells of one reading, in the normalised frame, grouped into LP columns.
 struct FineCell {
   Eigen::Vector3d x;     // centre, normalised frame
+  std::int32_t i = 0, j = 0, k = 0;  // grid indices (for the block hierarchy)
   std::int8_t sign = -1; // −1 void, +1 band
   int source = 0;        // index in its CarvableCells list
 };
 
 struct Group {
   int begin = 0, end = 0;          // into Partition::order
+  int side = 1;                    // block side in cells (a power of two times 1)
   Vector10d integrals = Vector10d::Zero();
   std::int8_t sign = -1;
 };
@@ -186,7 +186,14 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
     for (std::size_t s = 0; s < list.size(); ++s) {
       const std::int64_t cell = list[s];
       const std::int64_t i = cell % g.nx, j = (cell / g.nx) % g.ny, k = cell / (g.nx * g.ny);
-      p.cells.push_back({f.to_frame(f.rotation * cc.centre(cell)), static_cast<std::int8_t>(sign), static_cast<int>(s)});
+      FineCell fc;
+      fc.x = f.to_frame(f.rotation * cc.centre(cell));
+      fc.i = static_cast<std::int32_t>(i);
+      fc.j = static_cast<std::int32_t>(j);
+      fc.k = static_cast<std::int32_t>(k);
+      fc.sign = static_cast<std::int8_t>(sign);
+      fc.source = static_cast<int>(s);
+      p.cells.push_back(fc);
       key.push_back(((sign < 0 ? 0 : 1) * bz + k / block) * bx * by + (j / block) * bx + i / block);
     }
   }
@@ -205,6 +212,7 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
     grp.begin = s;
     grp.end = e;
     grp.sign = p.cells[static_cast<std::size_t>(p.order[static_cast<std::size_t>(s)])].sign;
+    grp.side = block;
     for (int q = s; q < e; ++q) grp.integrals += p.cell_integrals(p.order[static_cast<std::size_t>(q)]);
     p.groups.push_back(grp);
   }
@@ -267,6 +275,7 @@ class Solver {
       return added;
     };
     if (warm.size() != p.groups.size()) warm.assign(p.groups.size(), 0.0);
+    for (int k = ratio_rows; k < m; ++k) active[static_cast<std::size_t>(k)] = 1;  // few, and often equalities
     add_lowest(values_at(warm), 0.0, 6, kInf);
     for (int pass = 0;; ++pass) {
       std::vector<int> index;
@@ -330,7 +339,6 @@ class Solver {
       ++out_.lps;
       out_.lp_iterations += r.iterations;
       out_.columns = static_cast<int>(lp.A.cols());
-      if (std::getenv("REACH_DEBUG")) std::fprintf(stderr, "lp rows %d cols %d status %s it %d passes %d z %.6g round %d\n", m, (int)lp.A.cols(), to_string(r.status), r.iterations, r.pricing_passes, with_z ? r.x(G) : r.objective, round);
       run.status = r.status;
       run.weights = (-r.y).cwiseMax(0.0);
       if (r.status != LpStatus::optimal) {
@@ -377,15 +385,28 @@ class Solver {
           next_warm.push_back(run.u[static_cast<std::size_t>(g)]);
           continue;
         }
+        // Into its (up to) 8 octants, cells kept in order inside each.
         const Vector10d& w = grp.sign < 0 ? wv : wb;
-        for (int q = grp.begin; q < grp.end; ++q) {
-          Group one;
-          one.begin = q;
-          one.end = q + 1;
-          one.sign = grp.sign;
-          one.integrals = p.cell_integrals(p.order[static_cast<std::size_t>(q)]);
-          groups.push_back(one);
-          next_warm.push_back(w.dot(one.integrals) > 0.0 ? 1.0 : 0.0);
+        const int half = std::max(1, grp.side / 2);
+        auto octant = [&](int q) {
+          const FineCell& c = p.cells[static_cast<std::size_t>(p.order[static_cast<std::size_t>(q)])];
+          return (c.i / half) % 2 + 2 * ((c.j / half) % 2) + 4 * ((c.k / half) % 2);
+        };
+        std::vector<int> sorted;
+        for (int o = 0; o < 8; ++o)
+          for (int q = grp.begin; q < grp.end; ++q)
+            if (octant(q) == o) sorted.push_back(p.order[static_cast<std::size_t>(q)]);
+        std::copy(sorted.begin(), sorted.end(), p.order.begin() + grp.begin);
+        for (int q = grp.begin; q < grp.end;) {
+          const int o = octant(q);
+          Group child;
+          child.begin = q;
+          child.sign = grp.sign;
+          child.side = half;
+          while (q < grp.end && octant(q) == o) child.integrals += p.cell_integrals(p.order[static_cast<std::size_t>(q++)]);
+          child.end = q;
+          groups.push_back(child);
+          next_warm.push_back(w.dot(child.integrals) > 0.0 ? 1.0 : 0.0);
         }
       }
       p.groups = std::move(groups);
@@ -578,7 +599,9 @@ std::string ReachabilityOptions::check() const {
   if (!(o.wall > 0.0) || !std::isfinite(o.wall)) return "the wall must be > 0";
   if (o.outer && !(o.outer_max > 0.0)) return "--outer needs outer_max > 0";
   if (!(o.ground_tol >= 0.0)) return "the ground tolerance must be >= 0";
-  if (o.block < 1 || o.block > 16) return "the block must be in [1, 16] cells";
+  if (!(o.cells_per_wall >= 1.25 && o.cells_per_wall <= 8.0)) return "cells per wall must be in [1.25, 8]";
+  if (!(o.contour_cells_per_wall >= 1.25 && o.contour_cells_per_wall <= 8.0)) return "the contour's cells per wall must be in [1.25, 8]";
+  if (o.block < 1 || o.block > 16 || (o.block & (o.block - 1)) != 0) return "the block must be 1, 2, 4, 8 or 16 cells";
   if (o.max_dinkelbach < 1 || o.max_dinkelbach > 200) return "max_dinkelbach must be in [1, 200]";
   if (o.max_refinements < 0 || o.max_refinements > 200) return "max_refinements must be in [0, 200]";
   if (!(o.axis_tolerance > 0.0 && o.axis_tolerance <= 0.7e-4)) return "the axis tolerance must be in (0, 0.7e-4]";
@@ -597,6 +620,12 @@ Reachability reachability(const Mesh& input, const TriangleBvh& input_bvh, const
   CarvableCellsOptions co;
   co.wall = options.wall;
   co.cells_per_wall = options.cells_per_wall;
+  {
+    // The written contour's margin, at its own spacing (cavity/contour_cavity.h).
+    const double hc = options.wall / options.contour_cells_per_wall;
+    co.node_margin = options.node_margin >= 0.0 ? options.node_margin
+                                                : std::max(options.margin_cells * hc, 1.01 * std::sqrt(3.0) * hc - options.wall);
+  }
   co.margin_cells = options.margin_cells;
   co.max_nodes = options.max_nodes;
   co.band = options.outer && goal.kind != GoalKind::floating;

@@ -53,10 +53,15 @@ struct ReachabilityOptions {
   double outer_max = 0.0;            // --outer: input units, > 0
   double ground_tol = 0.0;           // input units, >= 0
   bool outer = false;                // the band adds material
-  double cells_per_wall = 1.5;       // the contour's grid (cavity/carvable_cells.h)
+  // The cells: spacing wall / cells_per_wall (the contour's by default; finer grids lose less of
+  // the carvable region to whole cells, at a price in time); their nodes keep the contour's
+  // margin, c·h at the contour's spacing (cavity/carvable_cells.h).
+  double cells_per_wall = 1.5;
+  double contour_cells_per_wall = 1.5;
   double margin_cells = 0.25;
+  double node_margin = -1.0;         // input units; negative: the contour's c·h as above
   std::int64_t max_nodes = std::int64_t{1} << 25;
-  int block = 4;                     // cells per LP block side, 1..16
+  int block = 4;                     // cells per LP block side: 1, 2, 4, 8 or 16 (split by octants)
   int max_dinkelbach = 30;           // LPs per ratio search
   int max_refinements = 40;          // block splits per LP
   bool lowest_cz = true;             // also the lowest centre of mass (stand, stand-filled, roly-poly, float)
