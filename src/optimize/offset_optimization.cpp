@@ -610,6 +610,24 @@ std::string failure_reason(const OptimizeOptions& options, const Band& b, const 
   return why;
 }
 
+// No void can reach the goal (a checked certificate): the input is written as it is, exit 3.
+OptimizeResult refuse_unreachable(const Mesh& input, const Frame& f, ReachabilitySummary reach, StageTimings timings,
+                                  Clock::time_point total_start) {
+  OptimizeResult result;
+  result.status = OptimizeStatus::goal_not_met;
+  result.message = reach.refusal;
+  result.outer = input;
+  result.printable = input;
+  result.goal = f.setup;
+  result.frame = {f.origin, f.scale, f.diag, f.wall, f.outer_max, f.margin, f.ground_tol};
+  result.before = {f.before, f.stability_before.com_margin, f.stability_before.stands, 0, false};
+  result.after.goal.goal = f.goal_input.kind;
+  timings.total = seconds_since(total_start);
+  result.timings = timings;
+  result.reachability = std::move(reach);
+  return result;
+}
+
 }  // namespace
 
 OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& options, const Progress& progress) {
@@ -629,6 +647,11 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   if (const std::string problem = make_frame(input, options, f); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
   timings.frame = seconds_since(stage_start);
+  say("reachability: can any void reach the goal?");
+  ReachabilitySummary reach = reachability_stage({&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
+                                                  options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
+                                                  options.threads});
+  if (reach.decided && !reach.reachable) return refuse_unreachable(input, f, std::move(reach), timings, total_start);
 
   // The basis needs the mesh alone, so it is computed alongside the skeleton. Both give the same
   // bits on any number of threads, so running them together changes no result. The future's
@@ -717,6 +740,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   result.cavity = cavity.summary;
   result.after = cavity.verification;
   result.timings = timings;
+  result.reachability = std::move(reach);
   // The input's own crossings are named where it is loaded (cli/cli_support.h, load_input); the
   // report keeps their count, and the verification counts only the cavity's.
   // "Parts thinner than two walls" is the users' wording for parts left solid (kept as it was).
