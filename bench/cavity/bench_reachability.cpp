@@ -30,11 +30,15 @@ int main(int argc, char** argv) {
     else if (a == "--fluid-density" && i + 1 < argc) goal.fluid_density = std::atof(argv[++i]);
     else if (a == "--fill-density" && i + 1 < argc) goal.fill_density = std::atof(argv[++i]);
     else if (a == "--threads" && i + 1 < argc) o.threads = std::atoi(argv[++i]);
+    else if (a == "--cells-per-wall" && i + 1 < argc) o.cells_per_wall = std::atof(argv[++i]);
+    else if (a == "--node-margin-walls" && i + 1 < argc) o.node_margin = std::atof(argv[++i]);  // × wall, below
+    else if (a == "--block" && i + 1 < argc) o.block = std::atoi(argv[++i]);
   }
   const Mesh mesh = load_mesh(argv[1]).mesh;
   const Eigen::Vector3d lo = mesh.V.colwise().minCoeff().transpose(), hi = mesh.V.colwise().maxCoeff().transpose();
   const double diag = (hi - lo).norm();
   o.wall = 0.01 * diag;
+  if (o.node_margin >= 0.0) o.node_margin *= o.wall;
   o.outer_max = 0.02 * diag;
   o.ground_tol = 0.001 * diag;
   const Vector10d P = mass_properties(mesh);

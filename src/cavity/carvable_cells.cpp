@@ -75,12 +75,6 @@ std::vector<std::int8_t> distance_band(const NodeGrid& g, const std::vector<std:
   return band;
 }
 
-Aabb mesh_box(const Mesh& mesh) {
-  Aabb box;
-  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) box.extend(mesh.V.row(i).transpose());
-  return box;
-}
-
 }  // namespace
 
 std::string CarvableCellsOptions::check() const {
@@ -116,7 +110,7 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
     return out;
   }
   const double wall = options.wall;
-  Aabb box = mesh_box(outer);
+  Aabb box = bounding_box(outer.V);
   if (box.empty()) {
     out.message = "the mesh has no vertex";
     return out;
@@ -139,7 +133,8 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
     out.message = "the cell grid would need more than " + std::to_string(options.max_nodes) + " nodes";
     return out;
   }
-  out.margin = cavity_node_level(wall, h, options.margin_cells, mesh_box(outer)) - wall;
+  out.margin = options.node_margin >= 0.0 ? options.node_margin
+                                          : cavity_node_level(wall, h, options.margin_cells, bounding_box(outer.V)) - wall;
   NodeGrid& grid = out.grid;
   grid.spacing = h;
   grid.origin = box.lo - Eigen::Vector3d(2.2371, 2.3119, 2.4243) * h;

@@ -38,6 +38,9 @@ struct CarvableCellsOptions {
   double wall = 0.0;                 // input units, > 0
   double cells_per_wall = 1.5;       // h = wall / cells_per_wall (the contour's), in [1.25, 8]
   double margin_cells = 0.0;         // c, in [0, 2] (cavity/contour_cavity.h)
+  // The node test's margin, input units; negative: the contour's at this grid's h
+  // (cavity_node_level). A grid finer than the contour's passes the contour's margin here.
+  double node_margin = -1.0;
   std::int64_t max_nodes = std::int64_t{1} << 25;  // h grows (×1.05 steps) when the box needs more
   bool band = false;                 // also the outer band (--outer)
   double outer_max = 0.0;            // band: how far outside material may be added, > 0

@@ -31,12 +31,6 @@ constexpr int kRaiseRounds = 6;        // rounds that lift the vertices of faces
 constexpr int kDemotions = 3;          // contours again with the void nodes of faces that stayed below
 constexpr int kRootSteps = 48;         // cap on the distance queries that put one vertex on the wall
 
-Aabb mesh_box(const Mesh& mesh) {
-  Aabb box;
-  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) box.extend(mesh.V.row(i).transpose());
-  return box;
-}
-
 // The inner term of φ: which nodes lie inside the void it bounds, and a signed distance to its
 // boundary (positive inside), capped at ±cap.
 class InnerField {
@@ -59,7 +53,7 @@ class InnerField {
 class MeshField final : public InnerField {
  public:
   explicit MeshField(const Mesh& inner) : inner_(inner), bvh_(inner.V, inner.F) {}
-  Aabb box() const override { return mesh_box(inner_); }
+  Aabb box() const override { return bounding_box(inner_.V); }
   std::vector<std::int8_t> inside(const NodeGrid& grid, const std::vector<std::int8_t>&, int threads) const override {
     std::vector<std::int8_t> winding = grid_winding(inner_, grid, threads);
     for (std::int8_t& w : winding) w = w >= 1;
@@ -538,7 +532,7 @@ ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, con
   }
   const double wall = options.wall;
   Aabb box = field.box();
-  const Aabb outer_box = mesh_box(outer);
+  const Aabb outer_box = bounding_box(outer.V);
   box.lo = box.lo.cwiseMax(outer_box.lo);
   box.hi = box.hi.cwiseMin(outer_box.hi);
   out.ok = true;
@@ -621,7 +615,7 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
     out.message = "the quadric's coefficients must be finite";
     return out;
   }
-  return contour_field(outer, outer_bvh, QuadricField(quadric, mesh_box(outer)), options);
+  return contour_field(outer, outer_bvh, QuadricField(quadric, bounding_box(outer.V)), options);
 }
 
 }  // namespace offsetopt

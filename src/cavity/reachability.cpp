@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstdio>
-#include <cstdlib>
 
+#include "cavity/contour_cavity.h"
+#include "geometry/aabb.h"
 #include "mass/volume_integrals.h"
 #include "util/det_math.h"
 #include "util/neumaier_sum.h"
@@ -46,12 +46,6 @@ Form minus(const Form& a, double t, const Form& b) {
   return f;
 }
 
-// The form read with `shift` more void than the occupancy holds (a correction round's Δ).
-Form with_void_shift(Form f, const Vector10d& shift) {
-  f.constant += f.void_coefficients().dot(shift);
-  return f;
-}
-
 struct GoalRows {
   std::vector<Form> numerators, denominators;  // ratio rows N_j >= t D_j (D_j > 0)
   std::vector<std::string> ratio_names;
@@ -68,7 +62,6 @@ struct Frame {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Vector10d P0 = Vector10d::Zero();   // the input's integrals, normalised frame
   double top = 1.0;                   // highest point over the ground, normalised
-  Vector10d void_shift = Vector10d::Zero();  // ReachabilityOptions::void_shift, normalised frame
   Eigen::Vector3d to_frame(const Eigen::Vector3d& posed) const { return (posed - origin) * scale; }
 };
 
@@ -157,21 +150,20 @@ GoalRows goal_rows(const GoalSpec& goal, const Frame& f, double tau, double volu
     }
     case GoalKind::volume: break;
   }
-  if (!f.void_shift.isZero(0.0))
-    for (std::vector<Form>* forms : {&rows.numerators, &rows.denominators, &rows.plain})
-      for (Form& form : *forms) form = with_void_shift(form, f.void_shift);
   return rows;
 }
 
 // The fine cells of one reading, in the normalised frame, grouped into LP columns.
 struct FineCell {
   Eigen::Vector3d x;     // centre, normalised frame
+  std::int32_t i = 0, j = 0, k = 0;  // grid indices (for the block hierarchy)
   std::int8_t sign = -1; // −1 void, +1 band
   int source = 0;        // index in its CarvableCells list
 };
 
 struct Group {
   int begin = 0, end = 0;          // into Partition::order
+  int side = 1;                    // block side in cells (a power of two times 1)
   Vector10d integrals = Vector10d::Zero();
   std::int8_t sign = -1;
 };
@@ -196,7 +188,14 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
     for (std::size_t s = 0; s < list.size(); ++s) {
       const std::int64_t cell = list[s];
       const std::int64_t i = cell % g.nx, j = (cell / g.nx) % g.ny, k = cell / (g.nx * g.ny);
-      p.cells.push_back({f.to_frame(f.rotation * cc.centre(cell)), static_cast<std::int8_t>(sign), static_cast<int>(s)});
+      FineCell fc;
+      fc.x = f.to_frame(f.rotation * cc.centre(cell));
+      fc.i = static_cast<std::int32_t>(i);
+      fc.j = static_cast<std::int32_t>(j);
+      fc.k = static_cast<std::int32_t>(k);
+      fc.sign = static_cast<std::int8_t>(sign);
+      fc.source = static_cast<int>(s);
+      p.cells.push_back(fc);
       key.push_back(((sign < 0 ? 0 : 1) * bz + k / block) * bx * by + (j / block) * bx + i / block);
     }
   }
@@ -215,6 +214,7 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
     grp.begin = s;
     grp.end = e;
     grp.sign = p.cells[static_cast<std::size_t>(p.order[static_cast<std::size_t>(s)])].sign;
+    grp.side = block;
     for (int q = s; q < e; ++q) grp.integrals += p.cell_integrals(p.order[static_cast<std::size_t>(q)]);
     p.groups.push_back(grp);
   }
@@ -280,6 +280,7 @@ class Solver {
       return added;
     };
     if (warm.size() != p.groups.size()) warm.assign(p.groups.size(), 0.0);
+    for (int k = ratio_rows; k < m; ++k) active[static_cast<std::size_t>(k)] = 1;  // few, and often equalities
     add_lowest(values_at(warm), 0.0, 6, kInf);
     for (int pass = 0;; ++pass) {
       std::vector<int> index;
@@ -343,7 +344,6 @@ class Solver {
       ++out_.lps;
       out_.lp_iterations += r.iterations;
       out_.columns = static_cast<int>(lp.A.cols());
-      if (std::getenv("REACH_DEBUG")) std::fprintf(stderr, "lp rows %d cols %d status %s it %d passes %d z %.6g round %d\n", m, (int)lp.A.cols(), to_string(r.status), r.iterations, r.pricing_passes, with_z ? r.x(G) : r.objective, round);
       run.status = r.status;
       run.weights = (-r.y).cwiseMax(0.0);
       if (r.status != LpStatus::optimal) {
@@ -391,15 +391,28 @@ class Solver {
           next_warm.push_back(run.u[static_cast<std::size_t>(g)]);
           continue;
         }
+        // Into its (up to) 8 octants, cells kept in order inside each.
         const Vector10d& w = grp.sign < 0 ? wv : wb;
-        for (int q = grp.begin; q < grp.end; ++q) {
-          Group one;
-          one.begin = q;
-          one.end = q + 1;
-          one.sign = grp.sign;
-          one.integrals = p.cell_integrals(p.order[static_cast<std::size_t>(q)]);
-          groups.push_back(one);
-          next_warm.push_back(w.dot(one.integrals) > 0.0 ? 1.0 : 0.0);
+        const int half = std::max(1, grp.side / 2);
+        auto octant = [&](int q) {
+          const FineCell& c = p.cells[static_cast<std::size_t>(p.order[static_cast<std::size_t>(q)])];
+          return (c.i / half) % 2 + 2 * ((c.j / half) % 2) + 4 * ((c.k / half) % 2);
+        };
+        std::vector<int> sorted;
+        for (int o = 0; o < 8; ++o)
+          for (int q = grp.begin; q < grp.end; ++q)
+            if (octant(q) == o) sorted.push_back(p.order[static_cast<std::size_t>(q)]);
+        std::copy(sorted.begin(), sorted.end(), p.order.begin() + grp.begin);
+        for (int q = grp.begin; q < grp.end;) {
+          const int o = octant(q);
+          Group child;
+          child.begin = q;
+          child.sign = grp.sign;
+          child.side = half;
+          while (q < grp.end && octant(q) == o) child.integrals += p.cell_integrals(p.order[static_cast<std::size_t>(q++)]);
+          child.end = q;
+          groups.push_back(child);
+          next_warm.push_back(w.dot(child.integrals) > 0.0 ? 1.0 : 0.0);
         }
       }
       p.groups = std::move(groups);
@@ -539,8 +552,7 @@ double user_margin(const GoalSpec& goal) {
 std::optional<double> lowest_cz(Solver& solver, Partition& p, const GoalRows& rows, const Frame& f, double margin,
                                 std::vector<double>& u, int cap, Vector10d& void_reduced) {
   const std::vector<Form> constraints = ratio_rows_at(rows, margin);
-  const Form Z = with_void_shift(solid_form(unit(kIntZ)), f.void_shift);
-  const Form M = with_void_shift(solid_form(unit(kIntVolume)), f.void_shift);
+  const Form Z = solid_form(unit(kIntZ)), M = solid_form(unit(kIntVolume));
   std::vector<double> warm = u;
   double theta = form_value(Z, f.P0, p, u) / form_value(M, f.P0, p, u);
   std::optional<double> best;
@@ -572,7 +584,7 @@ std::vector<double> per_cell(const Partition& p, const std::vector<double>& u, i
 }
 
 Frame make_frame(const VolumeIntegrals& input, const Eigen::Matrix3d& R, const Eigen::Vector3d& origin, double diagonal,
-                 double top, const Vector10d& void_shift) {
+                 double top) {
   Frame f;
   f.scale = 1.0 / diagonal;
   f.origin = origin;
@@ -595,11 +607,6 @@ Frame make_frame(const VolumeIntegrals& input, const Eigen::Matrix3d& R, const E
     f.P0(k) = shifted.values(k) * factor;
   }
   f.top = top * s;
-  for (int k = 0; k < 10; ++k) {
-    double factor = s * s * s;
-    for (int d = 0; d < degree[k]; ++d) factor *= s;
-    f.void_shift(k) = void_shift(k) * factor;
-  }
   return f;
 }
 
@@ -623,13 +630,14 @@ std::string ReachabilityOptions::check() const {
   if (!(o.wall > 0.0) || !std::isfinite(o.wall)) return "the wall must be > 0";
   if (o.outer && !(o.outer_max > 0.0)) return "--outer needs outer_max > 0";
   if (!(o.ground_tol >= 0.0)) return "the ground tolerance must be >= 0";
-  if (o.block < 1 || o.block > 16) return "the block must be in [1, 16] cells";
+  if (!(o.cells_per_wall >= 1.25 && o.cells_per_wall <= 8.0)) return "cells per wall must be in [1.25, 8]";
+  if (!(o.contour_cells_per_wall >= 1.25 && o.contour_cells_per_wall <= 8.0)) return "the contour's cells per wall must be in [1.25, 8]";
+  if (o.block < 1 || o.block > 16 || (o.block & (o.block - 1)) != 0) return "the block must be 1, 2, 4, 8 or 16 cells";
   if (o.max_dinkelbach < 1 || o.max_dinkelbach > 200) return "max_dinkelbach must be in [1, 200]";
   if (o.max_refinements < 0 || o.max_refinements > 200) return "max_refinements must be in [0, 200]";
   if (!(o.axis_tolerance > 0.0 && o.axis_tolerance <= 0.7e-4)) return "the axis tolerance must be in (0, 0.7e-4]";
   if (o.spin_levels < 1 || o.spin_levels > 200) return "spin_levels must be in [1, 200]";
   if (o.threads < 1 || o.threads > 64) return "threads must be in [1, 64]";
-  if (!o.void_shift.allFinite()) return "the void shift must be finite";
   return o.lp.check();
 }
 
@@ -643,6 +651,12 @@ Reachability reachability(const Mesh& input, const TriangleBvh& input_bvh, const
   CarvableCellsOptions co;
   co.wall = options.wall;
   co.cells_per_wall = options.cells_per_wall;
+  {
+    // The written contour's margin, at its own spacing (cavity/contour_cavity.h).
+    const double hc = options.wall / options.contour_cells_per_wall;
+    co.node_margin = options.node_margin >= 0.0 ? options.node_margin
+                                                : cavity_node_level(options.wall, hc, options.margin_cells, bounding_box(input.V)) - options.wall;
+  }
   co.margin_cells = options.margin_cells;
   co.max_nodes = options.max_nodes;
   co.band = options.outer && goal.kind != GoalKind::floating;
@@ -682,7 +696,7 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
   // The highest point over the ground, for the spin's levels: bounded by the cells' reach.
   double top = 0.0;
   for (std::int64_t c : cells->outer) top = std::max(top, (rotation * cells->centre(c)).z() - ground_z);
-  const Frame f = make_frame(input_integrals, rotation, origin, diagonal, top, options.void_shift);
+  const Frame f = make_frame(input_integrals, rotation, origin, diagonal, top);
   out.ok = true;
   if (goal.kind == GoalKind::volume) {
     out.reachable = goal.target_volume <= out.carvable_volume;

@@ -53,10 +53,15 @@ struct ReachabilityOptions {
   double outer_max = 0.0;            // --outer: input units, > 0
   double ground_tol = 0.0;           // input units, >= 0
   bool outer = false;                // the band adds material
-  double cells_per_wall = 1.5;       // the contour's grid (cavity/carvable_cells.h)
-  double margin_cells = 0.0;       // as OptimizeOptions::cavity_margin_cells
+  // The cells: spacing wall / cells_per_wall (the contour's by default; finer grids lose less of
+  // the carvable region to whole cells, at a price in time); their nodes keep the contour's
+  // node test at the contour's spacing (cavity/contour_cavity.h, cavity_node_level).
+  double cells_per_wall = 1.5;
+  double contour_cells_per_wall = 1.5;
+  double margin_cells = 0.0;         // as OptimizeOptions::cavity_margin_cells
+  double node_margin = -1.0;         // input units; negative: the contour's, as above
   std::int64_t max_nodes = std::int64_t{1} << 25;
-  int block = 4;                     // cells per LP block side, 1..16
+  int block = 4;                     // cells per LP block side: 1, 2, 4, 8 or 16 (split by octants)
   int max_dinkelbach = 30;           // LPs per ratio search
   int max_refinements = 40;          // block splits per LP
   bool lowest_cz = true;             // also the lowest centre of mass (stand, stand-filled, roly-poly, float)
@@ -64,10 +69,6 @@ struct ReachabilityOptions {
   int spin_levels = 11, spin_directions = 24;
   int threads = 2;
   BoundedSimplexOptions lp = lp_defaults();
-  // Integrals (input units, about `origin`, in the pose of `goal`) of void the written cavity
-  // holds beyond the occupancy: a correction round's Δ = written − occupancy. Every row is read on
-  // the solid less it.
-  Vector10d void_shift = Vector10d::Zero();
   // Read "reachable", the margins, the lowest centre of mass and the occupancy on the mid cells
   // (CarvableCells::mid: the contour's void at the cell scale) instead of the inner ones: the
   // estimate of the best void at the exact wall, and the programme the quadric void is written

@@ -288,6 +288,42 @@ Json stage_timings_json(const StageTimings& timings) {
   return j;
 }
 
+Json optional_number(const std::optional<double>& value) { return value ? Json(*value) : Json(); }
+
+// docs/reachability.md describes every key.
+Json reachability_json(const ReachabilitySummary& r) {
+  Json j = Json::object();
+  j["reachable"] = r.reachable;
+  j["decided"] = r.decided;
+  j["best_margin"] = optional_number(r.best_margin);
+  j["best_margin_upper"] = optional_number(r.best_margin_upper);
+  j["binding"] = r.binding.empty() ? Json() : Json(r.binding);
+  if (r.certificate) {
+    Json c = Json::object();
+    c["origin"] = Json::array_of({r.certificate_origin.x(), r.certificate_origin.y(), r.certificate_origin.z()});
+    Json q = Json::array();
+    for (int k = 0; k < 10; ++k) q.push_back(r.quadric(k));
+    c["quadric"] = q;
+    j["certificate"] = c;
+  } else {
+    j["certificate"] = Json();
+  }
+  j["lowest_cz"] = optional_number(r.lowest_cz);
+  Json remedies = Json::array();
+  for (const ReachabilityRemedy& remedy : r.remedies) {
+    Json m = Json::object();
+    m["option"] = remedy.option;
+    m["reachable"] = remedy.reachable;
+    m["best_margin"] = optional_number(remedy.best_margin);
+    remedies.push_back(m);
+  }
+  j["remedies"] = remedies;
+  j["carvable_volume"] = r.carvable_volume;
+  j["linear_programmes"] = r.lps;
+  j["simplex_iterations"] = r.lp_iterations;
+  return j;
+}
+
 Json optimize_report(const OptimizeOptions& options, const OptimizeResult& result) {
   Json report = Json::object();
   report["parameters"] = parameters_json(options, result.frame);
@@ -310,6 +346,7 @@ Json optimize_report(const OptimizeOptions& options, const OptimizeResult& resul
   report["goal_met"] = result.after.goal_met;
   report["valid"] = result.after.valid;
   if (result.status == OptimizeStatus::goal_not_met) report["why"] = result.message;
+  if (result.reachability) report["reachability"] = reachability_json(*result.reachability);
   return report;
 }
 

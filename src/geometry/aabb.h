@@ -43,6 +43,14 @@ struct Aabb {
   }
 };
 
+// The box of the rows of an n×3 matrix of points (a mesh's V); empty when there is none.
+template <class Points>
+Aabb bounding_box(const Points& points) {
+  Aabb box;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) box.extend(points.row(i).transpose());
+  return box;
+}
+
 // Parameter interval [t_enter, t_exit] of the ray origin + t * direction inside `box`, clipped to
 // [t_min, t_max]; false when it is empty. `inverse_direction` is 1/direction componentwise
 // (+-inf for a zero component). The comparisons are written so a NaN from 0 * inf (origin on a

@@ -549,36 +549,10 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
   return c;
 }
 
-// Stage "reach": what any void can do (cavity/reachability.h), for the quadric void and the
-// optimality. Only for the goals that lower the centre of mass, without --outer (the band would be
-// written as added material) and without --fix (openings are not contoured).
-struct Reach {
-  std::optional<Reachability> result;
-  ReachabilityOptions options;
-  VolumeIntegrals outer_integrals;
-  double seconds = 0.0;
-};
-
+// The goals the quadric void is written for: those that lower the centre of mass.
 bool lowers_centre(GoalKind kind) {
   return kind == GoalKind::stand || kind == GoalKind::stand_filled || kind == GoalKind::roly_poly ||
          kind == GoalKind::floating;
-}
-
-Reach make_reach(const Mesh& input, const OptimizeOptions& options, const Frame& f, const Band& b) {
-  Reach r;
-  const bool wanted = options.cavity == CavityMode::automatic || options.cavity == CavityMode::quadric;
-  if (!wanted || !lowers_centre(options.goal) || options.outer || b.fixed_count > 0) return r;
-  const auto start = Clock::now();
-  r.options.wall = f.wall;
-  r.options.ground_tol = f.ground_tol;
-  r.options.cells_per_wall = options.cavity_cells_per_wall;
-  r.options.margin_cells = options.cavity_margin_cells;
-  r.options.threads = options.threads;
-  r.options.mid_reading = true;
-  r.outer_integrals = volume_integrals(input, f.origin);
-  r.result = reachability(input, b.bvh, f.goal_input, f.zmin, f.origin, r.options);
-  r.seconds = seconds_since(start);
-  return r;
 }
 
 // The goal's objective on the solid as written (normalised frame), or for float the depth under
@@ -619,24 +593,27 @@ std::optional<Optimality> optimality(const Frame& f, const Reachability& reach, 
 // then the quadric void where the offset void misses a goal some void reaches or falls short of the
 // best by more than options.quadric_below_fraction; the quadric void is written when it verifies
 // and beats the offset void's score by more than options.quadric_tie, or when asked for.
-Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve, const Reach& reach,
-                   StageTimings& timings, const Progress& say) {
+Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
+                   const ReachabilitySummary& reach, StageTimings& timings, const Progress& say) {
   Cavity c = make_offset_cavity(options, f, b, solve, timings, say);
   const bool forced = options.cavity == CavityMode::quadric;
   auto refuse = [&](const std::string& why) {
     c.verification.valid = false;
     c.verification.failures.insert(c.verification.failures.begin(), why);
   };
-  if (!reach.result || !reach.result->ok || !reach.result->reachable) {
+  const bool writable = lowers_centre(options.goal) && !options.outer && b.fixed_count == 0;
+  const bool wanted = options.cavity == CavityMode::automatic || forced;
+  if (!wanted || !writable || !reach.programme || !reach.programme->reachable || !reach.programme->optimum) {
     if (forced)
-      refuse(!reach.result ? "--cavity quadric needs a goal that lowers the centre of mass, without --outer or --fix"
-             : !reach.result->ok ? "no quadric void: " + reach.result->message
-                                 : "no quadric void: no void the tool can write reaches the goal");
+      refuse(!writable ? "--cavity quadric needs a goal that lowers the centre of mass, without --outer or --fix"
+             : !reach.programme ? "no quadric void: the reachability programme could not be set up"
+                                : "no quadric void: no void the programme knows reaches the goal");
     return c;
   }
+  const Reachability& programme = *reach.programme;
   const bool offset_verified = !forced && c.verification.goal_met && c.verification.valid;
   if (offset_verified) c.summary.offset_objective = written_score(f, solve.outer, c.written, c.verification);
-  const std::optional<Optimality> offset_optimality = optimality(f, *reach.result, c.verification);
+  const std::optional<Optimality> offset_optimality = optimality(f, programme, c.verification);
   const bool short_of_best = !offset_optimality || offset_optimality->fraction < options.quadric_below_fraction;
   if (!forced && !(options.cavity == CavityMode::automatic && (!offset_verified || short_of_best))) return c;
 
@@ -644,13 +621,10 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
   QuadricVoidInput in;
   in.outer = &solve.outer;
   in.outer_bvh = &b.bvh;
-  in.reach = &*reach.result;
-  in.outer_integrals = reach.outer_integrals;
-  in.goal = f.goal_input;
-  in.ground_z = f.zmin;
+  in.start = *programme.optimum;
+  in.goal_in_frame = f.goal;
   in.origin = f.origin;
   in.diagonal = f.diag;
-  in.reach_options = reach.options;
   in.contour.wall = f.wall;
   in.contour.cells_per_wall = options.cavity_cells_per_wall;
   in.contour.margin_cells = options.cavity_margin_cells;
@@ -765,6 +739,24 @@ std::string failure_reason(const OptimizeOptions& options, const Band& b, const 
   return why;
 }
 
+// No void can reach the goal (a checked certificate): the input is written as it is, exit 3.
+OptimizeResult refuse_unreachable(const Mesh& input, const Frame& f, ReachabilitySummary reach, StageTimings timings,
+                                  Clock::time_point total_start) {
+  OptimizeResult result;
+  result.status = OptimizeStatus::goal_not_met;
+  result.message = reach.refusal;
+  result.outer = input;
+  result.printable = input;
+  result.goal = f.setup;
+  result.frame = {f.origin, f.scale, f.diag, f.wall, f.outer_max, f.margin, f.ground_tol};
+  result.before = {f.before, f.stability_before.com_margin, f.stability_before.stands, 0, false};
+  result.after.goal.goal = f.goal_input.kind;
+  timings.total = seconds_since(total_start);
+  result.timings = timings;
+  result.reachability = std::move(reach);
+  return result;
+}
+
 }  // namespace
 
 OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& options, const Progress& progress) {
@@ -784,6 +776,13 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   if (const std::string problem = make_frame(input, options, f); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
   timings.frame = seconds_since(stage_start);
+  say("reachability: can any void reach the goal?");
+  stage_start = Clock::now();
+  ReachabilitySummary reach = reachability_stage({&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
+                                                  options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
+                                                  options.threads});
+  timings.reach = seconds_since(stage_start);
+  if (reach.decided && !reach.reachable) return refuse_unreachable(input, f, std::move(reach), timings, total_start);
 
   // The basis needs the mesh alone, so it is computed alongside the skeleton. Both give the same
   // bits on any number of threads, so running them together changes no result. The future's
@@ -853,8 +852,6 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   solve.run();
   timings.solve = seconds_since(stage_start);
 
-  const Reach reach = make_reach(input, options, f, b);
-  if (reach.result) timings.reach = reach.seconds;
   const Cavity cavity = make_cavity(options, f, b, solve, reach, timings, say);
   timings.total = seconds_since(total_start);
 
@@ -873,8 +870,9 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
                    b.input_self.truncated};
   result.cavity = cavity.summary;
   result.after = cavity.verification;
-  if (reach.result) result.optimality = optimality(f, *reach.result, cavity.verification);
+  if (reach.programme) result.optimality = optimality(f, *reach.programme, cavity.verification);
   result.timings = timings;
+  result.reachability = std::move(reach);
   // The input's own crossings are named where it is loaded (cli/cli_support.h, load_input); the
   // report keeps their count, and the verification counts only the cavity's.
   // "Parts thinner than two walls" is the users' wording for parts left solid (kept as it was).

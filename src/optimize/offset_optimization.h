@@ -21,6 +21,7 @@
 #include "shape/goal.h"
 #include "shape/reduced_problem.h"
 #include "cavity/verify_offsets.h"
+#include "optimize/reachability_stage.h"
 #include "skeleton/laplacian_contraction.h"
 #include "spectral/lanczos_eigensolver.h"
 #include "spectral/manifold_harmonics.h"
@@ -266,6 +267,9 @@ struct OptimizeResult {
   std::optional<Optimality> optimality;  // when a void reaches the goal and the written one meets it
   StageTimings timings;
   std::vector<std::string> warnings;
+  // Whether any void reaches the goal (optimize/reachability_stage.h); absent when it was not
+  // asked (bad input).
+  std::optional<ReachabilitySummary> reachability;
 };
 
 OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& options,

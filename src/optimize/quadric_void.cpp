@@ -1,5 +1,11 @@
 #include "optimize/quadric_void.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+
 #include "mass/volume_integrals.h"
 #include "util/neumaier_sum.h"
 
@@ -7,97 +13,183 @@ namespace offsetopt {
 
 namespace {
 
-// The integrals of the programme's void, Σ u_i · (cube i), about `origin` (Neumaier sums in cell
-// order, so the same for any thread count).
-Vector10d occupancy_integrals(const Reachability& reach, bool mid_reading, const Eigen::Vector3d& origin) {
-  const CarvableCells& cells = *reach.cells;
-  NeumaierSum sums[10];
-  const std::vector<std::int64_t>& writable = mid_reading ? cells.mid : cells.inner;
-  for (std::size_t i = 0; i < reach.occupancy.size() && i < writable.size(); ++i) {
-    const double u = reach.occupancy[i];
-    if (u == 0.0) continue;
-    const Vector10d cube = cube_integrals(cells.centre(writable[i]), cells.grid.spacing, origin);
-    for (int k = 0; k < 10; ++k) sums[k].add(u * cube(k));
-  }
+constexpr int kDegree[10] = {0, 1, 1, 1, 2, 2, 2, 2, 2, 2};
+
+double power(double x, int n) {
+  double p = 1.0;
+  for (int i = 0; i < n; ++i) p *= x;
+  return p;
+}
+
+Vector10d monomials(const Eigen::Vector3d& x) {
+  Vector10d m;
+  m << 1.0, x.x(), x.y(), x.z(), x.x() * x.x(), x.y() * x.y(), x.z() * x.z(), x.x() * x.y(), x.y() * x.z(), x.z() * x.x();
+  return m;
+}
+
+Eigen::Vector3d gradient(const Vector10d& c, const Eigen::Vector3d& x) {
+  return Eigen::Vector3d(c(1) + 2.0 * c(4) * x.x() + c(7) * x.y() + c(9) * x.z(),
+                         c(2) + 2.0 * c(5) * x.y() + c(7) * x.x() + c(8) * x.z(),
+                         c(3) + 2.0 * c(6) * x.z() + c(8) * x.y() + c(9) * x.x());
+}
+
+// Raw integrals about the frame's origin in input units, read in the normalised frame (volume s³,
+// first moments s⁴, second s⁵).
+Vector10d integrals_in_frame(const Vector10d& integrals, double s) {
   Vector10d out;
-  for (int k = 0; k < 10; ++k) out(k) = sums[k].value();
+  for (int k = 0; k < 10; ++k) out(k) = integrals(k) * power(s, 3 + kDegree[k]);
   return out;
 }
 
-GoalSpec with_headroom(GoalSpec goal, double headroom) {
-  goal.margin *= 1.0 + headroom;
-  goal.epsilon *= 1.0 + headroom;
-  return goal;
+// A frame quadric (coefficients on m(s (p − o))) in input units about o, and back.
+Quadric to_input_units(const Vector10d& frame, double s, const Eigen::Vector3d& origin) {
+  Quadric q;
+  q.origin = origin;
+  for (int k = 0; k < 10; ++k) q.coefficients(k) = frame(k) * power(s, kDegree[k]);
+  return q;
 }
 
-// Normalised-frame scale factors of the ten integrals (volume s³, first moments s⁴, second s⁵).
-Vector10d in_frame(const Vector10d& integrals, double scale) {
-  const int degree[10] = {0, 1, 1, 1, 2, 2, 2, 2, 2, 2};
+Vector10d to_frame(const Quadric& q, double s, const Eigen::Vector3d& origin) {
+  // About the frame's origin first (Quadric{−o, a}.about_zero() is a(p + o) on m(p)).
+  const Vector10d c = q.origin == origin ? q.coefficients : Quadric{-origin, q.about_zero()}.about_zero();
   Vector10d out;
-  for (int k = 0; k < 10; ++k) {
-    double factor = scale * scale * scale;
-    for (int d = 0; d < degree[k]; ++d) factor *= scale;
-    out(k) = integrals(k) * factor;
-  }
+  for (int k = 0; k < 10; ++k) out(k) = c(k) / power(s, kDegree[k]);
   return out;
+}
+
+// The mean |∇q| over the cavity's faces on the quadric, 0 when none is.
+double boundary_gradient(const Mesh& cavity, const Vector10d& c, double s, const Eigen::Vector3d& origin, double near) {
+  NeumaierSum sum;
+  int count = 0;
+  for (Eigen::Index f = 0; f < cavity.F.rows(); ++f) {
+    const Eigen::Vector3d x =
+        s * ((cavity.V.row(cavity.F(f, 0)) + cavity.V.row(cavity.F(f, 1)) + cavity.V.row(cavity.F(f, 2))).transpose() / 3.0 - origin);
+    const double g = gradient(c, x).norm();
+    if (!(g > 0.0) || std::fabs(c.dot(monomials(x))) > near * g) continue;
+    sum.add(g);
+    ++count;
+  }
+  return count ? sum.value() / count : 0.0;
+}
+
+// ∂I/∂c (frame units) over the cavity's faces that lie on the quadric (within a tenth of a cell):
+// the rest of the boundary keeps the wall and does not move with q.
+Eigen::Matrix<double, 10, 10> boundary_jacobian(const Mesh& cavity, const Vector10d& c, double s, const Eigen::Vector3d& origin,
+                                                double near) {
+  Eigen::Matrix<double, 10, 10> J = Eigen::Matrix<double, 10, 10>::Zero();
+  for (Eigen::Index f = 0; f < cavity.F.rows(); ++f) {
+    const Eigen::Vector3d a = cavity.V.row(cavity.F(f, 0)).transpose(), b = cavity.V.row(cavity.F(f, 1)).transpose(),
+                          d = cavity.V.row(cavity.F(f, 2)).transpose();
+    const Eigen::Vector3d x = s * ((a + b + d) / 3.0 - origin);
+    const Vector10d m = monomials(x);
+    const double g = gradient(c, x).norm();
+    if (!(g > 0.0) || std::fabs(c.dot(m)) > near * g) continue;
+    const double area = 0.5 * s * s * (b - a).cross(d - a).norm();
+    J -= (area / g) * (m * m.transpose());
+  }
+  return J;
+}
+
+// The least-norm δc that zeroes the violated rows to first order, or nothing when they cannot move.
+std::optional<Vector10d> newton_step(const GoalValues& values, const Eigen::Matrix<double, 10, 10>& J) {
+  std::vector<Eigen::Matrix<double, 1, 10>> rows;
+  std::vector<double> rhs;
+  for (Eigen::Index r = 0; r < values.equality.size(); ++r) {
+    rows.push_back(values.equality_jacobian.row(r).tail<10>() * J);
+    rhs.push_back(-values.equality(r));
+  }
+  for (Eigen::Index r = 0; r < values.inequality.size(); ++r)
+    if (values.inequality(r) > 0.0) {
+      rows.push_back(values.inequality_jacobian.row(r).tail<10>() * J);
+      rhs.push_back(-values.inequality(r));
+    }
+  if (rows.empty()) return std::nullopt;
+  Eigen::MatrixXd A(static_cast<Eigen::Index>(rows.size()), 10);
+  Eigen::VectorXd b(static_cast<Eigen::Index>(rows.size()));
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    A.row(static_cast<Eigen::Index>(r)) = rows[r];
+    b(static_cast<Eigen::Index>(r)) = rhs[r];
+  }
+  // A Aᵀ y = b, δc = Aᵀ y, with a relative ridge for rows that the boundary cannot move.
+  Eigen::MatrixXd G = A * A.transpose();
+  const double ridge = 1e-12 * std::max(G.diagonal().maxCoeff(), 1e-300);
+  G.diagonal().array() += ridge;
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(G);
+  if (ldlt.info() != Eigen::Success) return std::nullopt;
+  const Vector10d step = A.transpose() * ldlt.solve(b);
+  if (!step.allFinite()) return std::nullopt;
+  return step;
+}
+
+void record_round(const ContourCavity& contoured, const Vector10d& predicted, const Vector10d& written, double s,
+                  const Verification& verification, bool will_correct, QuadricVoid& out) {
+  ContourRound& entry = out.rounds.emplace_back();
+  entry.delta_in_frame = written - predicted;
+  entry.void_volume_offset = predicted(kIntVolume) / (s * s * s);
+  entry.void_volume_contour = written(kIntVolume) / (s * s * s);
+  entry.grid = Eigen::Vector3i(static_cast<int>(contoured.grid.nx), static_cast<int>(contoured.grid.ny),
+                               static_cast<int>(contoured.grid.nz));
+  entry.spacing = contoured.grid.spacing;
+  entry.contoured_cells = contoured.active_cells;
+  entry.distance_nodes = contoured.distance_nodes;
+  entry.shells = contoured.shells;
+  entry.shells_filled = contoured.shells_dropped;
+  entry.filled_volume = contoured.dropped_volume;
+  entry.vertices_moved_for_wall = contoured.vertices_moved_for_wall;
+  entry.vertices = static_cast<long long>(contoured.cavity.V.rows());
+  entry.faces = static_cast<long long>(contoured.cavity.F.rows());
+  entry.goal_met = verification.goal_met;
+  if (!will_correct) entry.valid = verification.valid;
 }
 
 }  // namespace
 
 QuadricVoid write_quadric_void(const QuadricVoidInput& input) {
   QuadricVoid out;
-  out.attempted = true;
-  const GoalSpec aim = with_headroom(input.goal, input.headroom);
-  ReachabilityOptions options = input.reach_options;
-  options.lowest_cz = true;
-  const double scale = 1.0 / input.diagonal;
+  const double s = 1.0 / input.diagonal;
+  GoalSpec aim = input.goal_in_frame;
+  aim.margin *= 1.0 + input.headroom;
+  aim.epsilon *= 1.0 + input.headroom;
+  const Vector10d outer = integrals_in_frame(volume_integrals(*input.outer, input.origin).values, s);
+  Vector10d c = to_frame(input.start, s, input.origin);
+  Vector10d predicted = Vector10d::Zero();
   for (int round = 0; round <= input.max_rounds; ++round) {
-    const Reachability programme = reachability(input.reach->cells, input.outer_integrals, Eigen::Matrix3d::Identity(), aim,
-                                                input.ground_z, input.origin, input.diagonal, options);
-    if (!programme.ok || !programme.reachable || !programme.optimum) {
-      out.message = round == 0 ? "no void of the programme meets the goal with the correction's headroom"
-                               : "the programme lost the goal once the contour's moments were counted (round " +
-                                     std::to_string(round) + ")";
-      break;
-    }
-    const ContourCavity contoured = contour_cavity(*input.outer, *input.outer_bvh, programme.optimum->about_zero(), input.contour);
+    out.quadric = to_input_units(c, s, input.origin);
+    const ContourCavity contoured = contour_cavity(*input.outer, *input.outer_bvh, out.quadric.about_zero(), input.contour);
     if (!contoured.ok) {
       out.message = "the quadric void could not be contoured: " + contoured.message;
       break;
     }
-    const Vector10d model = occupancy_integrals(programme, options.mid_reading, input.origin);
-    const Vector10d written = volume_integrals(contoured.cavity, input.origin).values;
+    const Vector10d written = integrals_in_frame(volume_integrals(contoured.cavity, input.origin).values, s);
     VerifyInput verify = input.verify;
     verify.inner = &contoured.cavity;
     verify.goal_only = true;
     out.verification = verify_offsets(verify);
     const bool last = round == input.max_rounds;
-    const bool will_correct = !out.verification.goal_met && !last;
+    std::optional<Vector10d> step;
+    Eigen::Matrix<double, 10, 10> J = Eigen::Matrix<double, 10, 10>::Zero();
+    if (!out.verification.goal_met && !last) {
+      // q scaled so that |∇q| is 1 on average on its boundary: the step's norm then weighs the
+      // ten coefficients alike, whatever scale the programme's duals gave q.
+      const double near = 0.1 * contoured.grid.spacing * s;
+      const double g = boundary_gradient(contoured.cavity, c, s, input.origin, near);
+      if (g > 0.0) {
+        c /= g;
+        J = boundary_jacobian(contoured.cavity, c, s, input.origin, near);
+        step = newton_step(evaluate_goal(aim, outer, written), J);
+      }
+      if (!step) out.message = "the quadric's boundary cannot move the goal's rows (round " + std::to_string(round) + ")";
+    }
+    const bool will_correct = step.has_value();
     if (!will_correct) {
       verify.goal_only = false;
       out.verification = verify_offsets(verify);
     }
-    ContourRound& entry = out.rounds.emplace_back();
-    entry.delta_in_frame = in_frame(written - model - options.void_shift, scale);
-    entry.void_volume_offset = model(kIntVolume) + options.void_shift(kIntVolume);
-    entry.void_volume_contour = written(kIntVolume);
-    entry.grid = Eigen::Vector3i(static_cast<int>(contoured.grid.nx), static_cast<int>(contoured.grid.ny),
-                                 static_cast<int>(contoured.grid.nz));
-    entry.spacing = contoured.grid.spacing;
-    entry.contoured_cells = contoured.active_cells;
-    entry.distance_nodes = contoured.distance_nodes;
-    entry.shells = contoured.shells;
-    entry.shells_filled = contoured.shells_dropped;
-    entry.filled_volume = contoured.dropped_volume;
-    entry.vertices_moved_for_wall = contoured.vertices_moved_for_wall;
-    entry.vertices = static_cast<long long>(contoured.cavity.V.rows());
-    entry.faces = static_cast<long long>(contoured.cavity.F.rows());
-    entry.goal_met = out.verification.goal_met;
-    if (!will_correct) entry.valid = out.verification.valid;
+    record_round(contoured, round == 0 ? written : predicted, written, s, out.verification, will_correct, out);
     out.written = contoured.cavity;
-    out.quadric = programme.optimum;
     if (!will_correct) break;
-    options.void_shift = written - model;
+    predicted = written + J * *step;  // the next round's integrals to first order
+    c += *step;
   }
   return out;
 }

@@ -2,11 +2,17 @@
 // some void reaches, or reaches it well short of the best any void does, the void written is the
 // reachability programme's optimum, {q < 0} ∩ carvable (cavity/reachability.h), contoured like any
 // cavity, φ = min(d_out − wall − c·h, −q/|∇q|) (cavity/contour_cavity.h), and corrected in moment
-// space: the programme is solved again with the difference the contour made,
-//   Δ = integrals(contour) − integrals(occupancy),
-// read as void beyond the occupancy (ReachabilityOptions::void_shift), until the written solid
-// verifies or the rounds run out. Each programme aims `headroom` of the user's margins inside them,
-// as the offset model's corrections do, since the next contour's moments differ by a little noise.
+// space until the written solid verifies.
+//
+// The correction moves the quadric, not the programme: the programme's duals, hence its quadric,
+// jump between bases when its data move a little (a floating buoy's contour flipped between two
+// voids 9% apart, round after round), while the contour's integrals I move smoothly with q's ten
+// coefficients c. Where the boundary follows the quadric it moves by −δq/|∇q| along the normal, so
+//   ∂I_k/∂c_j = −∫_{∂void ∩ {q = 0}} m_k m_j / |∇q| dA        (one point per face),
+// and each round takes the least-norm step δc that brings the goal's violated rows (shape/goal.h,
+// evaluated on the written integrals with `headroom` of the user's margins inside them) to zero
+// to first order. All of it in the normalised frame (origin, 1 / diagonal), where the ten
+// coefficients are of one scale.
 #pragma once
 #include <optional>
 #include <string>
@@ -24,13 +30,10 @@ namespace offsetopt {
 struct QuadricVoidInput {
   const Mesh* outer = nullptr;            // the outer surface (the input: no outer offsets)
   const TriangleBvh* outer_bvh = nullptr;
-  const Reachability* reach = nullptr;    // reachable, with its cells
-  VolumeIntegrals outer_integrals;        // of *outer, any origin
-  GoalSpec goal;                          // input units, the user's margins
-  double ground_z = 0.0;
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // the one `reach` was computed about
-  double diagonal = 1.0;
-  ReachabilityOptions reach_options;      // as for `reach`
+  Quadric start;                          // the programme's optimum (Reachability::optimum)
+  GoalSpec goal_in_frame;                 // the goal in the normalised frame, the user's margins
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // of the normalised frame, input units
+  double diagonal = 1.0;                  // its scale is 1 / diagonal
   ContourCavityOptions contour;
   VerifyInput verify;                     // outer, goal, tolerances; inner is set per round
   int max_rounds = 6;                     // corrections after the first contour
@@ -38,12 +41,11 @@ struct QuadricVoidInput {
 };
 
 struct QuadricVoid {
-  bool attempted = false;
   Mesh written;                           // the last contour (empty when none was made)
   Verification verification;              // of the last contour
   std::vector<ContourRound> rounds;
-  std::optional<Quadric> quadric;         // of the last round
-  std::string message;                    // why no contour was written, when none was
+  Quadric quadric;                        // of the last round, input units
+  std::string message;                    // why it stopped short, when it did
 };
 
 QuadricVoid write_quadric_void(const QuadricVoidInput& input);

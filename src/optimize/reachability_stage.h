@@ -1,0 +1,66 @@
+// Stage "reachability" of the pipeline (DESIGN.md "Reachability: what any void can do"): before
+// the offset solve, can any void reach the goal as posed (cavity/reachability.h)? When no void can
+// (decided, with a certificate), the run stops at once with exit 3 and says by how much, and which
+// remedies the same programme finds to reach it (today: --outer, with its band). When it can, the
+// run goes on and the report still carries the answer.
+//
+// "Reachable" is read on the mid cells (CarvableCells::mid: the contour's void, which reaches the
+// wall exactly, at the cell scale), so lowest_cz estimates the best void at the requested wall;
+// "unreachable" only with a certificate checked on the outer cells.
+//
+// Input units throughout: best margins are the distance inside the support polygon (stand,
+// stand-filled), below the sphere centre (roly-poly) or below the centre of buoyancy (float),
+// positive when met; none for spin and volume. lowest_cz is over the ground plane.
+#pragma once
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "cavity/reachability.h"
+#include "mesh/mesh.h"
+#include "shape/goal.h"
+
+namespace offsetopt {
+
+struct ReachabilityRemedy {
+  std::string option;                // "--outer"
+  bool reachable = false;            // the programme reaches the goal with it
+  std::optional<double> best_margin;
+};
+
+struct ReachabilitySummary {
+  bool reachable = false, decided = false;
+  std::optional<double> best_margin, best_margin_upper;
+  std::string binding;
+  std::optional<double> lowest_cz;
+  bool certificate = false;          // a certificate was checked (it proves when decided and unreachable)
+  Eigen::Vector3d certificate_origin = Eigen::Vector3d::Zero();
+  Vector10d quadric = Vector10d::Zero();  // q(p) = Σ quadric_k m_k(p − origin); void = {q < 0}
+  double carvable_volume = 0.0;
+  int lps = 0;
+  long long lp_iterations = 0;
+  std::vector<ReachabilityRemedy> remedies;
+  std::string refusal;               // when decided unreachable: the one-line reason, input units
+  // Not reported: the programme itself (cells, occupancy, the optimum's quadric) and how it was
+  // set, for the quadric void (optimize/quadric_void.h); null when it could not be set up.
+  std::shared_ptr<const Reachability> programme;
+  ReachabilityOptions options;
+};
+
+struct ReachabilityStageInput {
+  const Mesh* input = nullptr;       // as posed
+  GoalSpec goal;                     // input units (OptimizeOptions' goal as make_frame sets it)
+  double ground_z = 0.0;
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // the ground contact centroid on the ground
+  double wall = 0.0, outer_max = 0.0, ground_tol = 0.0;
+  bool outer = false;
+  double cavity_cells_per_wall = 1.5, cavity_margin_cells = 0.0;
+  int threads = 2;
+};
+
+ReachabilitySummary reachability_stage(const ReachabilityStageInput& in);
+
+}  // namespace offsetopt
