@@ -902,7 +902,8 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
       result.message = "the quadric void: " + (verification.failures.empty() ? std::string("unknown") : verification.failures.front());
     else
       result.message = failure_reason(options, b, solve, verification) +
-                       (written.quadric_rounds ? "; the quadric void was tried: " + written.choice : std::string());
+                       (written.quadric_rounds ? "; the quadric void was tried: " + written.choice : std::string()) +
+                       (result.reachability->refusal.empty() ? std::string() : "; " + result.reachability->refusal);
   }
   return result;
 }

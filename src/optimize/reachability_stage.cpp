@@ -85,8 +85,11 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
       s.remedies.push_back(remedy);
     }
   }
-  if (r.decided) {
-    s.refusal = "no void can reach this: " + shortfall(in.goal, r);
+  {
+    s.refusal = (r.decided ? "no void can reach this: "
+                           : "no void the programme knows reaches this, though at the cell scale it cannot prove that none "
+                             "does: ") +
+                shortfall(in.goal, r);
     std::string names;
     for (const ReachabilityRemedy& remedy : s.remedies) {
       const bool may = remedy.reachable || (remedy.best_margin && *remedy.best_margin >=

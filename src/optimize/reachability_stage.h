@@ -43,7 +43,9 @@ struct ReachabilitySummary {
   int lps = 0;
   long long lp_iterations = 0;
   std::vector<ReachabilityRemedy> remedies;
-  std::string refusal;               // when decided unreachable: the one-line reason, input units
+  // When not reachable: the one-line reason, input units, with the remedies that may reach it;
+  // the run stops with it when decided, and adds it to the reason of an exit 3 otherwise.
+  std::string refusal;
   // Not reported: the programme itself (cells, occupancy, the optimum's quadric) and how it was
   // set, for the quadric void (optimize/quadric_void.h); null when it could not be set up.
   std::shared_ptr<const Reachability> programme;
