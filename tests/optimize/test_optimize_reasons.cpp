@@ -16,6 +16,7 @@ TEST_CASE("optimize: a solve cut off by its evaluation budget says so") {
   OptimizeOptions options = OptimizeOptions::defaults();
   options.goal = GoalKind::stand;
   options.solver.max_evaluations = 4;
+  options.cavity = CavityMode::contour;  // the offset model's reason, not the quadric void's rescue
   const OptimizeResult r = optimize_offsets(bottle, options);
   MESSAGE(r.message);
   CHECK(r.status == OptimizeStatus::goal_not_met);
