@@ -168,7 +168,7 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
   if (level < 0.0) thresholds.push_back(-level);
   if (options.band) {
     thresholds.push_back(r);
-    if (options.outer_max - r > r) thresholds.push_back(options.outer_max - r);
+    thresholds.push_back(options.outer_max);
     thresholds.push_back(options.outer_max + r);
   }
   std::sort(thresholds.begin(), thresholds.end());
@@ -204,7 +204,7 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
           if (may) lists[part][1].push_back(cell);
           if (!options.band) continue;
           const double z = centres.z(k);
-          if (!inside && reaches(c, r) && (options.outer_max - r > r && !reaches(c, options.outer_max - r)) && z - 0.5 * h >= base)
+          if (!inside && !reaches(c, options.outer_max) && z - 0.5 * h >= base)
             lists[part][2].push_back(cell);
           if ((inside ? !reaches(c, r) : !reaches(c, options.outer_max + r)) && z + 0.5 * h > options.ground_z + options.ground_tol)
             lists[part][3].push_back(cell);

@@ -10,8 +10,9 @@
 //   void keeping the wall lies in an outer cell, so it backs the claim "unreachable". inner ⊆ outer.
 // With `band`, also the cells the outer offset may fill (material ADDED, DESIGN.md; the base is kept
 // as cli --outer keeps it: nothing within 2·outer_max + ground_tol of the ground):
-// - band_inner: the whole cell outside, within outer_max (centre outside at distance in
-//   [r, outer_max − r]), its bottom above the kept base;
+// - band_inner: cells whose centre is outside within outer_max, the bottom above the kept base (the
+//   outer offset is a displaced surface, not a union of cells: no cell reading is exactly what it
+//   writes, and a whole-cell one keeps less than half of a band two walls thick);
 // - band_outer: any cell that may hold such a point (centre distance <= outer_max + r outside or
 //   <= r inside), its top above the ground contacts.
 // Cell (i, j, k) is the cube [node (i, j, k), node (i+1, j+1, k+1)] of `grid`, named by the lowest
