@@ -69,6 +69,7 @@ int main(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   const Reachability r = reachability(mesh, bvh, goal, st.ground_z, Eigen::Vector3d(centroid.x(), centroid.y(), st.ground_z), o);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (r.cells) std::printf("band cells %zu strict, %zu generous; void %zu / %zu\n", r.cells->band_inner.size(), r.cells->band_outer.size(), r.cells->inner.size(), r.cells->outer.size());
   auto opt = [](const std::optional<double>& v) { return v ? std::to_string(*v) : std::string("none"); };
   std::printf("%s\t%s\tvertices %lld\tseconds %.3f\tok %d\treachable %d\tdecided %d\tbest_margin %s\tupper %s\tmargin %.4g\t"
               "binding '%s'\tlowest_cz %s\tinput_cz %.4g\tcells %zu/%zu\tqueries %lld\tlps %d\titerations %lld\tcolumns %d\tproves %d %s\n",

@@ -14,7 +14,10 @@
 //   outer offset is a displaced surface, not a union of cells: no cell reading is exactly what it
 //   writes, and a whole-cell one keeps less than half of a band two walls thick);
 // - band_outer: any cell that may hold such a point (centre distance <= outer_max + r outside or
-//   <= r inside), its top above the ground contacts.
+//   <= r inside), its top above the ground contacts;
+// - skin_outer: cells inside that --outer may shave (the outer surface also moves inward, up to
+//   outer_max): centre depth <= outer_max + r, top above the ground contacts. Only the generous
+//   reading has them (a strict one would have to keep the wall between shaved and carved cells).
 // Cell (i, j, k) is the cube [node (i, j, k), node (i+1, j+1, k+1)] of `grid`, named by the lowest
 // node's index (NodeGrid::index); lists are ascending. Input units throughout.
 //
@@ -59,6 +62,7 @@ struct CarvableCells {
   double margin = 0.0;               // the contour's interpolation margin at this spacing
   std::vector<std::int64_t> inner, outer;            // void cells (see above)
   std::vector<std::int64_t> band_inner, band_outer;  // --outer: cells that add material
+  std::vector<std::int64_t> skin_outer;              // --outer: cells that may lose material
   std::int64_t distance_queries = 0;                 // exact point queries (blocks not counted)
 
   Eigen::Vector3d centre(std::int64_t cell) const;
