@@ -442,8 +442,19 @@ struct MarginSearch {
 MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, const Frame& f, int cap) {
   MarginSearch s;
   std::vector<double> warm(p.groups.size(), 0.0);
-  double t = -1.0;
   const int nr = static_cast<int>(rows.numerators.size());
+  // Start from the solid as it is when it meets the plain rows (its margin is one any void beats),
+  // else from a margin of minus the diagonal.
+  double t = -1.0;
+  bool solid_ok = true;
+  for (const Form& f0 : rows.plain) solid_ok = solid_ok && form_value(f0, f.P0, p, warm) >= 0.0;
+  if (solid_ok && nr > 0) {
+    t = kInf;
+    for (int j = 0; j < nr; ++j)
+      t = std::min(t, form_value(rows.numerators[static_cast<std::size_t>(j)], f.P0, p, warm) /
+                          form_value(rows.denominators[static_cast<std::size_t>(j)], f.P0, p, warm));
+    t = std::max(t, -1.0);
+  }
   for (int it = 0; it < cap; ++it) {
     const LpRun run = solver.solve(p, ratio_rows_at(rows, t), nr, true, nullptr, warm);
     if (run.status == LpStatus::infeasible) {
