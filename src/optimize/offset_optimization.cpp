@@ -764,6 +764,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   } else {
     result.status = OptimizeStatus::goal_not_met;
     result.message = failure_reason(options, b, solve, verification);
+    if (result.reachability && !result.reachability->reachable) result.message += "; " + reachability_note(*result.reachability);
   }
   return result;
 }

@@ -140,19 +140,29 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
     });
     s.remedies.insert(s.remedies.end(), poses.begin(), poses.end());
   }
+  std::string& names = s.remedy_list;
+  for (const ReachabilityRemedy& remedy : s.remedies) {
+    const bool may = remedy.reachable || (remedy.best_margin && *remedy.best_margin >=
+                                              (in.goal.kind == GoalKind::stand || in.goal.kind == GoalKind::stand_filled
+                                                   ? in.goal.margin
+                                                   : in.goal.epsilon));
+    if (may) names += (names.empty() ? "" : ", ") + remedy.option + (remedy.reachable ? "" : " (may)");
+  }
   if (r.decided) {
     s.refusal = "no void can reach this: " + shortfall(in.goal, r);
-    std::string names;
-    for (const ReachabilityRemedy& remedy : s.remedies) {
-      const bool may = remedy.reachable || (remedy.best_margin && *remedy.best_margin >=
-                                                (in.goal.kind == GoalKind::stand || in.goal.kind == GoalKind::stand_filled
-                                                     ? in.goal.margin
-                                                     : in.goal.epsilon));
-      if (may) names += (names.empty() ? "" : ", ") + remedy.option + (remedy.reachable ? "" : " (may)");
-    }
     s.refusal += names.empty() ? "; no remedy tried reaches it (re-pose the model or thicken it)" : "; try " + names;
   }
   return s;
+}
+
+std::string reachability_note(const ReachabilitySummary& summary) {
+  std::string note = "undecided whether any void reaches it";
+  if (summary.best_margin || summary.best_margin_upper) {
+    note += " (best margin " + (summary.best_margin ? format_double(*summary.best_margin) : std::string("none")) + " to " +
+            (summary.best_margin_upper ? format_double(*summary.best_margin_upper) : std::string("none")) + ")";
+  }
+  if (!summary.remedy_list.empty()) note += "; try " + summary.remedy_list;
+  return note;
 }
 
 }  // namespace offsetopt

@@ -39,6 +39,7 @@ struct ReachabilitySummary {
   long long lp_iterations = 0;
   std::vector<ReachabilityRemedy> remedies;
   std::string refusal;               // when decided unreachable: the one-line reason, input units
+  std::string remedy_list;           // the remedies that reach the goal ("--outer (may), --up +y"), or empty
 };
 
 struct ReachabilityStageInput {
@@ -53,5 +54,10 @@ struct ReachabilityStageInput {
 };
 
 ReachabilitySummary reachability_stage(const ReachabilityStageInput& in);
+
+// For a run that missed the goal when the programme could not decide: what it found, in one
+// clause ("undecided whether any void reaches it (best margin -0.0087 to -0.0013); try --outer
+// (may), --pose stable").
+std::string reachability_note(const ReachabilitySummary& summary);
 
 }  // namespace offsetopt
