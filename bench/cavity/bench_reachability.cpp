@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   if (!parse_goal_kind(argv[2], goal.kind)) return 2;
   goal.fluid_density = 0.8;
   ReachabilityOptions o;
+  Eigen::Vector3d center(0, 0, -1e300);  // roly-poly: the report's goal.sphere_center
   for (int i = 3; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--outer") o.outer = true;
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
     else if (a == "--cells-per-wall" && i + 1 < argc) o.cells_per_wall = std::atof(argv[++i]);
     else if (a == "--node-margin-walls" && i + 1 < argc) o.node_margin = std::atof(argv[++i]);  // × wall, below
     else if (a == "--block" && i + 1 < argc) o.block = std::atoi(argv[++i]);
+    else if (a == "--center" && i + 1 < argc) std::sscanf(argv[++i], "%lf,%lf,%lf", &center.x(), &center.y(), &center.z());
   }
   const Mesh mesh = load_mesh(argv[1]).mesh;
   const Eigen::Vector3d lo = mesh.V.colwise().minCoeff().transpose(), hi = mesh.V.colwise().maxCoeff().transpose();
@@ -50,7 +52,7 @@ int main(int argc, char** argv) {
   Eigen::Index lowest = 0;
   mesh.V.col(2).minCoeff(&lowest);
   goal.axis_point = mesh.V.row(lowest).transpose();
-  if (goal.kind == GoalKind::roly_poly) goal.axis_point.z() += 0.25 * (hi.z() - lo.z());
+  if (goal.kind == GoalKind::roly_poly) goal.axis_point = center.z() > -1e299 ? center : Eigen::Vector3d(goal.axis_point + Eigen::Vector3d(0, 0, 0.25 * (hi.z() - lo.z())));
   if (goal.kind == GoalKind::volume) goal.target_volume = 0.3 * P(kMass);
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
   for (const auto& p : st.support_polygon) centroid += p;
@@ -69,6 +71,7 @@ int main(int argc, char** argv) {
   const auto start = std::chrono::steady_clock::now();
   const Reachability r = reachability(mesh, bvh, goal, st.ground_z, Eigen::Vector3d(centroid.x(), centroid.y(), st.ground_z), o);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (r.cells) std::printf("band cells %zu strict, %zu generous; void %zu / %zu\n", r.cells->band_inner.size(), r.cells->band_outer.size(), r.cells->inner.size(), r.cells->outer.size());
   auto opt = [](const std::optional<double>& v) { return v ? std::to_string(*v) : std::string("none"); };
   std::printf("%s\t%s\tvertices %lld\tseconds %.3f\tok %d\treachable %d\tdecided %d\tbest_margin %s\tupper %s\tmargin %.4g\t"
               "binding '%s'\tlowest_cz %s\tinput_cz %.4g\tcells %zu/%zu\tqueries %lld\tlps %d\titerations %lld\tcolumns %d\tproves %d %s\n",

@@ -164,7 +164,7 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
   thresholds.push_back(wall);  // the mid reading
   if (options.band) {
     thresholds.push_back(r);
-    if (options.outer_max - r > r) thresholds.push_back(options.outer_max - r);
+    thresholds.push_back(options.outer_max);
     thresholds.push_back(options.outer_max + r);
   }
   std::sort(thresholds.begin(), thresholds.end());
@@ -182,7 +182,7 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
   };
 
   const double base = options.ground_z + 2.0 * options.outer_max + options.ground_tol;
-  std::vector<std::int64_t> lists[kParts][5];
+  std::vector<std::int64_t> lists[kParts][6];
   WorkerPool pool(std::max(1, std::min(options.threads, kParts)));
   pool.run_parts(kParts, [&](int part) {
     const std::int64_t nxy = grid.nx * grid.ny;
@@ -198,17 +198,18 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
           const bool may = whole || (inside ? (level <= 0.0 || reaches(c, level)) : (level < 0.0 && !reaches(c, -level)));
           if (whole) lists[part][0].push_back(cell);
           if (may) lists[part][1].push_back(cell);
-          if (inside && reaches(c, wall)) lists[part][4].push_back(cell);
+          if (inside && reaches(c, wall)) lists[part][5].push_back(cell);
           if (!options.band) continue;
           const double z = centres.z(k);
-          if (!inside && reaches(c, r) && (options.outer_max - r > r && !reaches(c, options.outer_max - r)) && z - 0.5 * h >= base)
+          if (!inside && !reaches(c, options.outer_max) && z - 0.5 * h >= base)
             lists[part][2].push_back(cell);
-          if ((inside ? !reaches(c, r) : !reaches(c, options.outer_max + r)) && z + 0.5 * h > options.ground_z + options.ground_tol)
-            lists[part][3].push_back(cell);
+          const bool above_contacts = z + 0.5 * h > options.ground_z + options.ground_tol;
+          if ((inside ? !reaches(c, r) : !reaches(c, options.outer_max + r)) && above_contacts) lists[part][3].push_back(cell);
+          if (inside && !reaches(c, options.outer_max + r) && above_contacts) lists[part][4].push_back(cell);
         }
   });
-  std::vector<std::int64_t>* targets[5] = {&out.inner, &out.outer, &out.band_inner, &out.band_outer, &out.mid};
-  for (int l = 0; l < 5; ++l)
+  std::vector<std::int64_t>* targets[6] = {&out.inner, &out.outer, &out.band_inner, &out.band_outer, &out.skin_outer, &out.mid};
+  for (int l = 0; l < 6; ++l)
     for (int part = 0; part < kParts; ++part) targets[l]->insert(targets[l]->end(), lists[part][l].begin(), lists[part][l].end());
   out.ok = true;
   return out;

@@ -10,10 +10,14 @@
 //   void keeping the wall lies in an outer cell, so it backs the claim "unreachable". inner ⊆ outer.
 // With `band`, also the cells the outer offset may fill (material ADDED, DESIGN.md; the base is kept
 // as cli --outer keeps it: nothing within 2·outer_max + ground_tol of the ground):
-// - band_inner: the whole cell outside, within outer_max (centre outside at distance in
-//   [r, outer_max − r]), its bottom above the kept base;
+// - band_inner: cells whose centre is outside within outer_max, the bottom above the kept base (the
+//   outer offset is a displaced surface, not a union of cells: no cell reading is exactly what it
+//   writes, and a whole-cell one keeps less than half of a band two walls thick);
 // - band_outer: any cell that may hold such a point (centre distance <= outer_max + r outside or
-//   <= r inside), its top above the ground contacts.
+//   <= r inside), its top above the ground contacts;
+// - skin_outer: cells inside that --outer may shave (the outer surface also moves inward, up to
+//   outer_max): centre depth <= outer_max + r, top above the ground contacts. Only the generous
+//   reading has them (a strict one would have to keep the wall between shaved and carved cells).
 // Cell (i, j, k) is the cube [node (i, j, k), node (i+1, j+1, k+1)] of `grid`, named by the lowest
 // node's index (NodeGrid::index); lists are ascending. Input units throughout.
 //
@@ -62,6 +66,7 @@ struct CarvableCells {
   // Neither a subset nor a superset of what can be written; inner ⊆ mid ⊆ outer.
   std::vector<std::int64_t> mid;
   std::vector<std::int64_t> band_inner, band_outer;  // --outer: cells that add material
+  std::vector<std::int64_t> skin_outer;              // --outer: cells that may lose material
   std::int64_t distance_queries = 0;                 // exact point queries (blocks not counted)
 
   Eigen::Vector3d centre(std::int64_t cell) const;

@@ -157,7 +157,7 @@ GoalRows goal_rows(const GoalSpec& goal, const Frame& f, double tau, double volu
 struct FineCell {
   Eigen::Vector3d x;     // centre, normalised frame
   std::int32_t i = 0, j = 0, k = 0;  // grid indices (for the block hierarchy)
-  std::int8_t sign = -1; // −1 void, +1 band
+  std::int8_t sign = -1; // −1 void, +1 band (material added), −2 skin (material shaved, --outer)
   int source = 0;        // index in its CarvableCells list
 };
 
@@ -177,14 +177,15 @@ struct Partition {
 };
 
 Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t>& voids, const std::vector<std::int64_t>& band,
-                         const Frame& f, int block) {
+                         const std::vector<std::int64_t>& skin, const Frame& f, int block) {
   Partition p;
   p.h = cc.grid.spacing * f.scale;
   const NodeGrid& g = cc.grid;
   const std::int64_t bx = (g.nx + block - 1) / block, by = (g.ny + block - 1) / block, bz = (g.nz + block - 1) / block;
   std::vector<std::int64_t> key;
-  for (int sign : {-1, 1}) {
-    const std::vector<std::int64_t>& list = sign < 0 ? voids : band;
+  for (int sign : {-1, 1, -2}) {
+    const std::vector<std::int64_t>& list = sign == -1 ? voids : sign == 1 ? band : skin;
+    const int kind = sign == -1 ? 0 : sign == 1 ? 1 : 2;
     for (std::size_t s = 0; s < list.size(); ++s) {
       const std::int64_t cell = list[s];
       const std::int64_t i = cell % g.nx, j = (cell / g.nx) % g.ny, k = cell / (g.nx * g.ny);
@@ -196,11 +197,11 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
       fc.sign = static_cast<std::int8_t>(sign);
       fc.source = static_cast<int>(s);
       p.cells.push_back(fc);
-      key.push_back(((sign < 0 ? 0 : 1) * bz + k / block) * bx * by + (j / block) * bx + i / block);
+      key.push_back((kind * bz + k / block) * bx * by + (j / block) * bx + i / block);
     }
   }
   // Counting sort by block (stable: cells keep their order inside a block).
-  const std::int64_t blocks = 2 * bx * by * bz;
+  const std::int64_t blocks = 3 * bx * by * bz;
   std::vector<int> start(static_cast<std::size_t>(blocks) + 1, 0);
   for (std::int64_t k : key) ++start[static_cast<std::size_t>(k) + 1];
   for (std::int64_t b = 0; b < blocks; ++b) start[static_cast<std::size_t>(b) + 1] += start[static_cast<std::size_t>(b)];
@@ -223,7 +224,7 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
 
 // Coefficient of a form on a column of integrals I with sign s.
 double form_on(const Form& f, const Vector10d& I, int sign) {
-  return sign < 0 ? f.void_coefficients().dot(I) : f.solid.dot(I);
+  return sign == -1 ? f.void_coefficients().dot(I) : sign == 1 ? f.solid.dot(I) : -f.solid.dot(I);
 }
 
 double form_value(const Form& f, const Vector10d& P0, const Partition& p, const std::vector<double>& u) {
@@ -328,7 +329,8 @@ class Solver {
       }
       for (int g = 0; g < G; ++g) {
         const Group& grp = p.groups[static_cast<std::size_t>(g)];
-        lp.A.col(g) = (grp.sign < 0 ? cv : cb).transpose() * grp.integrals;
+        lp.A.col(g) = (grp.sign == -1 ? cv : cb).transpose() * grp.integrals;
+        if (grp.sign == -2) lp.A.col(g) = -lp.A.col(g);
         if (objective) lp.c(g) = form_on(*objective, grp.integrals, grp.sign) / V0;
       }
       if (with_z) {
@@ -362,6 +364,8 @@ class Solver {
         wb += objective->solid / V0;
       }
       run.void_reduced = wv;
+      const Vector10d ws = -wb;  // a shaved cell is an added one with the opposite sign
+      auto weights_of = [&](int sign) -> const Vector10d& { return sign == -1 ? wv : sign == 1 ? wb : ws; };
       const double tol = o_.lp.optimality_tolerance;
       std::vector<char> split(static_cast<std::size_t>(G), 0);
       bool any = false;
@@ -370,7 +374,7 @@ class Solver {
         if (grp.end - grp.begin == 1) continue;
         const double u = run.u[static_cast<std::size_t>(g)];
         bool bad = false;
-        const Vector10d& w = grp.sign < 0 ? wv : wb;
+        const Vector10d& w = weights_of(grp.sign);
         for (int q = grp.begin; q < grp.end && !bad; ++q) {
           const double d = w.dot(p.cell_integrals(p.order[static_cast<std::size_t>(q)]));
           bad = u >= 1.0 - 1e-9 ? d < -tol : u <= 1e-9 ? d > tol : std::fabs(d) > tol;
@@ -392,7 +396,7 @@ class Solver {
           continue;
         }
         // Into its (up to) 8 octants, cells kept in order inside each.
-        const Vector10d& w = grp.sign < 0 ? wv : wb;
+        const Vector10d& w = weights_of(grp.sign);
         const int half = std::max(1, grp.side / 2);
         auto octant = [&](int q) {
           const FineCell& c = p.cells[static_cast<std::size_t>(p.order[static_cast<std::size_t>(q)])];
@@ -444,8 +448,19 @@ struct MarginSearch {
 MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, const Frame& f, int cap) {
   MarginSearch s;
   std::vector<double> warm(p.groups.size(), 0.0);
-  double t = -1.0;
   const int nr = static_cast<int>(rows.numerators.size());
+  // Start from the solid as it is when it meets the plain rows (its margin is one any void beats),
+  // else from a margin of minus the diagonal.
+  double t = -1.0;
+  bool solid_ok = true;
+  for (const Form& f0 : rows.plain) solid_ok = solid_ok && form_value(f0, f.P0, p, warm) >= 0.0;
+  if (solid_ok && nr > 0) {
+    t = kInf;
+    for (int j = 0; j < nr; ++j)
+      t = std::min(t, form_value(rows.numerators[static_cast<std::size_t>(j)], f.P0, p, warm) /
+                          form_value(rows.denominators[static_cast<std::size_t>(j)], f.P0, p, warm));
+    t = std::max(t, -1.0);
+  }
   for (int it = 0; it < cap; ++it) {
     const LpRun run = solver.solve(p, ratio_rows_at(rows, t), nr, true, nullptr, warm);
     if (run.status == LpStatus::infeasible) {
@@ -504,7 +519,7 @@ ReachCertificate certify(const LpRun& run, const Partition& outer, const Frame& 
   }
   const double h = outer.h, v = h * h * h, half = 0.5 * h;
   for (const FineCell& cell : outer.cells) {
-    const Vector10d& g = cell.sign < 0 ? gv : gb;
+    const Vector10d g = cell.sign == -1 ? gv : cell.sign == 1 ? gb : Vector10d(-gb);
     const Eigen::Vector3d& x = cell.x;
     const double q = g(0) + g(1) * x.x() + g(2) * x.y() + g(3) * x.z() + g(4) * x.x() * x.x() + g(5) * x.y() * x.y() +
                      g(6) * x.z() * x.z() + g(7) * x.x() * x.y() + g(8) * x.y() * x.z() + g(9) * x.z() * x.x();
@@ -705,7 +720,7 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
   }
   Solver solver(f, options, out);
   const bool band = options.outer && goal.kind != GoalKind::floating;
-  Partition inner = make_partition(*cells, writable, band ? cells->band_inner : std::vector<std::int64_t>{}, f, options.block);
+  Partition inner = make_partition(*cells, writable, band ? cells->band_inner : std::vector<std::int64_t>{}, {}, f, options.block);
   const double margin = user_margin(goal) * f.scale;
   const double tau_in = options.axis_tolerance, tau_out = 1e-4;
 
@@ -723,7 +738,8 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
       }
     }
     if (!out.reachable) {
-      Partition outer = make_partition(*cells, cells->outer, band ? cells->band_outer : std::vector<std::int64_t>{}, f, options.block);
+      Partition outer = make_partition(*cells, cells->outer, band ? cells->band_outer : std::vector<std::int64_t>{},
+                                     band ? cells->skin_outer : std::vector<std::int64_t>{}, f, options.block);
       const GoalRows rows = goal_rows(goal, f, tau_out, 0.0, 2e-4, -1.0);
       warm.assign(outer.groups.size(), 0.0);
       const LpRun run = solver.solve(outer, rows.plain, 0, false, nullptr, warm);
@@ -761,7 +777,8 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
     return out;
   }
   // Not reached on the inner reading: the outer reading's best, and a certificate at the user's margin.
-  Partition outer = make_partition(*cells, cells->outer, band ? cells->band_outer : std::vector<std::int64_t>{}, f, options.block);
+  Partition outer = make_partition(*cells, cells->outer, band ? cells->band_outer : std::vector<std::int64_t>{},
+                                     band ? cells->skin_outer : std::vector<std::int64_t>{}, f, options.block);
   const GoalRows loose = goal_rows(goal, f, tau_out, 1e-3, 0.0, -1.0);
   const MarginSearch upper = best_margin(solver, outer, loose, f, options.max_dinkelbach);
   if (upper.feasible) out.best_margin_upper = upper.best / f.scale;

@@ -898,12 +898,13 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   } else {
     result.status = OptimizeStatus::goal_not_met;
     const CavitySummary& written = cavity.summary;
-    if (written.written == WrittenCavity::quadric)
+    if (written.written == WrittenCavity::quadric) {
       result.message = "the quadric void: " + (verification.failures.empty() ? std::string("unknown") : verification.failures.front());
-    else
-      result.message = failure_reason(options, b, solve, verification) +
-                       (written.quadric_rounds ? "; the quadric void was tried: " + written.choice : std::string()) +
-                       (result.reachability->refusal.empty() ? std::string() : "; " + result.reachability->refusal);
+    } else {
+      result.message = failure_reason(options, b, solve, verification);
+      if (written.quadric_rounds) result.message += "; the quadric void was tried: " + written.choice;
+    }
+    if (result.reachability && !result.reachability->reachable) result.message += "; " + reachability_note(*result.reachability);
   }
   return result;
 }

@@ -1,6 +1,12 @@
 #include "optimize/reachability_stage.h"
 
+#include <algorithm>
+
 #include "geometry/bvh.h"
+#include "geometry/pose.h"
+#include "mass/mass_properties.h"
+#include "mass/stability.h"
+#include "mass/stable_pose.h"
 #include "util/format_double.h"
 
 namespace offsetopt {
@@ -46,6 +52,40 @@ std::string shortfall(const GoalSpec& goal, const Reachability& r) {
   }
 }
 
+// Another pose for a stand goal: the same cells, their integrals rotated (cavity/reachability.h),
+// the ground and support polygon of the rotated input. Coordinates are R·p (no translation).
+std::optional<ReachabilityRemedy> try_pose(const ReachabilityStageInput& in, const std::shared_ptr<const CarvableCells>& cells,
+                                           const VolumeIntegrals& integrals, const Eigen::Matrix3d& R, const std::string& option) {
+  Mesh turned = *in.input;
+  for (Eigen::Index v = 0; v < turned.V.rows(); ++v) turned.V.row(v) = (R * in.input->V.row(v).transpose()).transpose();
+  const Vector10d P = mass_properties(turned);
+  StabilityOptions so;
+  so.ground_tol = in.ground_tol;
+  const Stability st = compute_stability(turned, Eigen::Vector3d(P(kCx), P(kCy), P(kCz)), so);
+  if (st.support_polygon.size() < 3) return std::nullopt;
+  GoalSpec goal = in.goal;
+  goal.support_polygon = st.support_polygon;
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  int contacts = 0;
+  for (Eigen::Index v = 0; v < turned.V.rows(); ++v)
+    if (turned.V(v, 2) <= st.ground_z + in.ground_tol) {
+      centroid += turned.V.row(v).head<2>().transpose();
+      ++contacts;
+    }
+  centroid /= std::max(1, contacts);
+  const Eigen::Vector3d lo = in.input->V.colwise().minCoeff().transpose(), hi = in.input->V.colwise().maxCoeff().transpose();
+  ReachabilityOptions o = options_for(in, false);
+  o.lowest_cz = false;
+  const Reachability r = reachability(cells, integrals, R, goal, st.ground_z, Eigen::Vector3d(centroid.x(), centroid.y(), st.ground_z),
+                                      (hi - lo).norm(), o);
+  if (!r.ok) return std::nullopt;
+  ReachabilityRemedy remedy;
+  remedy.option = option;
+  remedy.reachable = r.reachable;
+  remedy.best_margin = r.reachable ? r.best_margin : r.best_margin_upper;
+  return remedy;
+}
+
 }  // namespace
 
 ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
@@ -85,22 +125,48 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
       s.remedies.push_back(remedy);
     }
   }
-  {
-    s.refusal = (r.decided ? "no void can reach this: "
-                           : "no void the programme knows reaches this, though at the cell scale it cannot prove that none "
-                             "does: ") +
-                shortfall(in.goal, r);
-    std::string names;
-    for (const ReachabilityRemedy& remedy : s.remedies) {
-      const bool may = remedy.reachable || (remedy.best_margin && *remedy.best_margin >=
-                                                (in.goal.kind == GoalKind::stand || in.goal.kind == GoalKind::stand_filled
-                                                     ? in.goal.margin
-                                                     : in.goal.epsilon));
-      if (may) names += (names.empty() ? "" : ", ") + remedy.option + (remedy.reachable ? "" : " (may)");
+  // Other poses (stand goals): the most stable hull facet and the other five axes up, ranked by
+  // the best margin a void reaches there.
+  if (in.goal.kind == GoalKind::stand || in.goal.kind == GoalKind::stand_filled) {
+    const VolumeIntegrals integrals = volume_integrals(*in.input);
+    std::vector<ReachabilityRemedy> poses;
+    const Vector10d P = mass_properties(*in.input);
+    const StablePose stable = stable_pose(*in.input, Eigen::Vector3d(P(kCx), P(kCy), P(kCz)));
+    if (stable.status == StablePoseStatus::ok)
+      if (auto remedy = try_pose(in, r.cells, integrals, stable.motion.rotation, "--pose stable")) poses.push_back(*remedy);
+    for (const char* up : {"+x", "-x", "+y", "-y", "-z"}) {
+      AxisPermutation permutation;
+      if (!up_axis_permutation(up, permutation)) continue;
+      if (auto remedy = try_pose(in, r.cells, integrals, permutation.matrix(), std::string("--up ") + up)) poses.push_back(*remedy);
     }
+    std::stable_sort(poses.begin(), poses.end(), [](const ReachabilityRemedy& a, const ReachabilityRemedy& b) {
+      return a.best_margin.value_or(-1e300) > b.best_margin.value_or(-1e300);
+    });
+    s.remedies.insert(s.remedies.end(), poses.begin(), poses.end());
+  }
+  std::string& names = s.remedy_list;
+  for (const ReachabilityRemedy& remedy : s.remedies) {
+    const bool may = remedy.reachable || (remedy.best_margin && *remedy.best_margin >=
+                                              (in.goal.kind == GoalKind::stand || in.goal.kind == GoalKind::stand_filled
+                                                   ? in.goal.margin
+                                                   : in.goal.epsilon));
+    if (may) names += (names.empty() ? "" : ", ") + remedy.option + (remedy.reachable ? "" : " (may)");
+  }
+  if (r.decided) {
+    s.refusal = "no void can reach this: " + shortfall(in.goal, r);
     s.refusal += names.empty() ? "; no remedy tried reaches it (re-pose the model or thicken it)" : "; try " + names;
   }
   return s;
+}
+
+std::string reachability_note(const ReachabilitySummary& summary) {
+  std::string note = "undecided whether any void reaches it";
+  if (summary.best_margin || summary.best_margin_upper) {
+    note += " (best margin " + (summary.best_margin ? format_double(*summary.best_margin) : std::string("none")) + " to " +
+            (summary.best_margin_upper ? format_double(*summary.best_margin_upper) : std::string("none")) + ")";
+  }
+  if (!summary.remedy_list.empty()) note += "; try " + summary.remedy_list;
+  return note;
 }
 
 }  // namespace offsetopt

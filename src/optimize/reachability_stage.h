@@ -43,9 +43,8 @@ struct ReachabilitySummary {
   int lps = 0;
   long long lp_iterations = 0;
   std::vector<ReachabilityRemedy> remedies;
-  // When not reachable: the one-line reason, input units, with the remedies that may reach it;
-  // the run stops with it when decided, and adds it to the reason of an exit 3 otherwise.
-  std::string refusal;
+  std::string refusal;               // when decided unreachable: the one-line reason, input units
+  std::string remedy_list;           // the remedies that reach the goal ("--outer (may), --up +y"), or empty
   // Not reported: the programme itself (cells, occupancy, the optimum's quadric) and how it was
   // set, for the quadric void (optimize/quadric_void.h); null when it could not be set up.
   std::shared_ptr<const Reachability> programme;
@@ -64,5 +63,10 @@ struct ReachabilityStageInput {
 };
 
 ReachabilitySummary reachability_stage(const ReachabilityStageInput& in);
+
+// For a run that missed the goal when the programme could not decide: what it found, in one
+// clause ("undecided whether any void reaches it (best margin -0.0087 to -0.0013); try --outer
+// (may), --pose stable").
+std::string reachability_note(const ReachabilitySummary& summary);
 
 }  // namespace offsetopt

@@ -1,0 +1,82 @@
+// The reachability stage in the pipeline (optimize/reachability_stage.h): a leaning cylinder whose
+// centre of mass no void can bring over its base is refused at once (exit 3 material: goal not
+// met, the input written as it is) with the shortfall in input units, which is at least what the
+// geometry alone allows (the carvable cylinder leans as far as the solid); an upright cylinder is
+// reachable, and the lowest centre of mass any void reaches lies between the closed forms for the
+// carvable cylinder shrunk by the grid's two error bounds.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include "mass/mass_properties.h"
+#include "mesh/primitives.h"
+#include "optimize/offset_optimization.h"
+#include "optimize/reachability_stage.h"
+
+using namespace offsetopt;
+
+namespace {
+
+// Cylinder of radius 1 from z = 0 to 10, sheared x += lean · z.
+Mesh leaning_cylinder(double lean) {
+  Mesh m = make_cylinder(1.0, 0.0, 10.0, 32, 20, 4);
+  for (Eigen::Index v = 0; v < m.V.rows(); ++v) m.V(v, 0) += lean * m.V(v, 2);
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("reachability stage: a leaning cylinder is refused before the solve, with the shortfall") {
+  const Mesh mesh = leaning_cylinder(1.0);
+  OptimizeOptions options;
+  options.goal = GoalKind::stand;
+  const OptimizeResult r = optimize_offsets(mesh, options);
+  REQUIRE(r.status == OptimizeStatus::goal_not_met);
+  REQUIRE(r.reachability);
+  CHECK(!r.reachability->reachable);
+  CHECK(r.reachability->decided);
+  CHECK(r.message.find("no void can reach this") == 0);
+  CHECK(r.message.find("outside support edge") != std::string::npos);
+  // Any solid made by carving a sheared cylinder keeps its centre at x = lean · cz over the base,
+  // and cz >= the height of the wall-thick floor's own centroid > 0: more than the base's radius 1
+  // away once cz > 1 (the solid's own cz is 5). The best any void reaches is at least that far out.
+  REQUIRE(r.reachability->best_margin_upper);
+  CHECK(*r.reachability->best_margin_upper < -0.5);
+  CHECK(r.printable.F.rows() == mesh.F.rows());  // nothing carved
+  CHECK(r.reachability->certificate);
+}
+
+TEST_CASE("reachability stage: an upright cylinder is reachable, its lowest centre of mass between closed forms") {
+  const Mesh mesh = make_cylinder(3.0, 0.0, 10.0, 48, 24, 8);
+  ReachabilityStageInput in;
+  in.input = &mesh;
+  in.goal.kind = GoalKind::stand;
+  in.goal.margin = 0.02;
+  for (int i = 0; i < 48; ++i) {
+    const double a = 2.0 * 3.14159265358979 * i / 48.0;
+    in.goal.support_polygon.emplace_back(3.0 * std::cos(a), 3.0 * std::sin(a));
+  }
+  in.wall = 0.3;
+  in.outer_max = 0.6;
+  in.ground_tol = 0.01;
+  const ReachabilitySummary s = reachability_stage(in);
+  CHECK(s.reachable);
+  CHECK(s.decided);
+  REQUIRE(s.lowest_cz);
+  // The lowest centre: carve the carvable cylinder (radius R − s, from s to 10 − s) above the final
+  // centre z*, which solves z* = cz(z*). The strict cells lie between the cylinder shrunk by
+  // wall + margin and by wall + margin + √3 h (h = wall / 1.5, margin 0.05), on a 48-gon whose
+  // radius is between 3 cos(π/48) and 3.
+  const Vector10d P = mass_properties(mesh);
+  auto lowest = [&](double radius, double shrink) {
+    const double area = 3.14159265358979 * (radius - shrink) * (radius - shrink), top = 10.0 - shrink;
+    double z = P(kCz);
+    for (int i = 0; i < 200; ++i) z = (P(kMass) * P(kCz) - area * 0.5 * (top * top - z * z)) / (P(kMass) - area * (top - z));
+    return z;
+  };
+  const double h = 0.2;
+  CHECK(*s.lowest_cz >= lowest(3.0, 0.35) - 1e-9);
+  CHECK(*s.lowest_cz <= lowest(3.0 * std::cos(3.14159265358979 / 48.0), 0.35 + std::sqrt(3.0) * h) + 1e-9);
+  CHECK(s.remedies.empty());
+}
