@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -24,6 +26,10 @@ constexpr int kParts = 2;              // every parallel loop is cut into this m
 constexpr int kRaiseRounds = 6;        // rounds that lift the vertices of faces below the wall
 constexpr int kDemotions = 3;          // contours again with the void nodes of faces that stayed below
 constexpr int kRootSteps = 48;         // cap on the distance queries that put one vertex on the wall
+// Void nodes keep the target plus this many cells: room to lift a vertex towards its node where a
+// face dips below the wall (measured deficits reach a few hundredths of the wall), and more than
+// the kMinFraction of an edge (at most √3 h) that a vertex always keeps from its node.
+constexpr double kNodeRoom = 0.05;
 
 Aabb mesh_box(const Mesh& mesh) {
   Aabb box;
@@ -168,13 +174,45 @@ struct Placement {
   bool on_wall = false;
 };
 
-// The first point of the edge p → q (p a void node, d_p its distance to the outer surface, exact
-// or a lower bound) where either the inner boundary is crossed (fraction t_in) or the distance
-// falls to `target`. The wall's point is found by regula falsi with the Illinois step on the exact
-// distance, and the vertex is left on the side that keeps the target, at most `hair` above it.
-// Vertices never come nearer the node than kMinFraction: `lower` then says what they keep.
+// A point of [a, b] where the exact distance along p + t e is within [target, target + tolerance]
+// (regula falsi aimed at the middle of that band, Illinois steps), given f = distance − aim at
+// both ends (fa >= 0 > fb). Returns the fraction and its distance, or the last good end.
+std::pair<double, double> wall_point(const TriangleBvh& outer_bvh, const Eigen::Vector3d& p, const Eigen::Vector3d& e,
+                                     double a, double fa, double b, double fb, double aim, double tolerance) {
+  double good = a, good_distance = fa + aim;
+  int side = 0;
+  for (int step = 0; step < kRootSteps && good_distance - aim > 0.5 * tolerance; ++step) {
+    double t = (a * fb - b * fa) / (fb - fa);
+    if (!(t > a && t < b)) t = 0.5 * (a + b);
+    const double distance = outer_distance_at(outer_bvh, p + t * e);
+    const double f = distance - aim;
+    if (f >= -0.5 * tolerance) {
+      good = t;
+      good_distance = distance;
+      if (f <= 0.5 * tolerance) break;
+      a = t;
+      fa = f;
+      if (side == 1) fb *= 0.5;
+      side = 1;
+    } else {
+      b = t;
+      fb = f;
+      if (side == -1) fa *= 0.5;
+      side = -1;
+    }
+    if (b - a <= 1e-15) break;
+  }
+  return {good, good_distance};
+}
+
+// The first point of the edge p → q (p a void node) where either the inner boundary is crossed
+// (fraction t_in) or the distance to the outer surface falls to `target`; d_p and d_q are the
+// nodes' distances (exact, or lower bounds when beyond the cap). The wall's point is aimed at
+// target + tolerance/2 and accepted within tolerance/2 of it, so every vertex keeps the target,
+// at most `tolerance` above it. Vertices never come nearer the node than kMinFraction: `lower`
+// then says what they keep (below the target only for a lifted target the node cannot give).
 Placement place_on_edge(const TriangleBvh& outer_bvh, const Eigen::Vector3d& p, const Eigen::Vector3d& q, double d_p,
-                        double t_in, double target, double hair, double rounding) {
+                        double d_q, double t_in, double target, double tolerance, double rounding) {
   const Eigen::Vector3d e = q - p;
   const double length = e.norm();
   Placement out;
@@ -183,35 +221,32 @@ Placement place_on_edge(const TriangleBvh& outer_bvh, const Eigen::Vector3d& p, 
     out.lower = d_p - t_in * length;
     return out;
   }
-  const double d_end = outer_distance_at(outer_bvh, p + t_in * e);
-  if (d_end >= target) {
-    out.lower = d_end;
+  const double aim = target + 0.5 * tolerance;
+  out.on_wall = true;
+  if (d_p <= aim) {  // a lifted target beyond what the node has: as near the node as allowed
+    out.fraction = kMinFraction;
+    out.lower = d_p - kMinFraction * length;
     return out;
   }
-  out.on_wall = true;
-  double a = 0.0, fa = d_p - target, b = t_in, fb = d_end - target;  // fa, fb: scaled by Illinois
-  double fa_true = fa;
-  int side = 0;
-  for (int step = 0; step < kRootSteps && fa_true > hair && fa > 0.0; ++step) {
-    double t = (a * fb - b * fa) / (fb - fa);
-    if (!(t > a && t < b)) t = 0.5 * (a + b);
-    const double ft = outer_distance_at(outer_bvh, p + t * e) - target;
-    if (ft >= 0.0) {
-      a = t;
-      fa = fa_true = ft;
-      if (side == 1) fb *= 0.5;
-      side = 1;
-    } else {
-      b = t;
-      fb = ft;
-      if (side == -1) fa *= 0.5;
-      side = -1;
-    }
-    if (b - a <= 1e-15) break;
+  // An edge the inner boundary does not cross: bracket with the nodes' own distances (no query;
+  // exact for a plane on the first step). Otherwise measure where the inner boundary would put it.
+  double t_wall = t_in, lower = 0.0;
+  const bool whole_edge = t_in >= 1.0 - kMinFraction && d_q < aim;
+  if (whole_edge) {
+    std::tie(t_wall, lower) = wall_point(outer_bvh, p, e, 0.0, d_p - aim, 1.0, d_q - aim, aim, tolerance);
   }
-  if (a >= kMinFraction && fa_true >= 0.0) {
-    out.fraction = a;
-    out.lower = target + fa_true;
+  if (!whole_edge || t_wall > t_in) {
+    const double d_end = outer_distance_at(outer_bvh, p + t_in * e);
+    if (d_end >= target) {
+      out.on_wall = false;
+      out.lower = d_end;
+      return out;
+    }
+    std::tie(t_wall, lower) = wall_point(outer_bvh, p, e, 0.0, d_p - aim, t_in, d_end - aim, aim, tolerance);
+  }
+  if (t_wall >= kMinFraction && lower >= target) {
+    out.fraction = t_wall;
+    out.lower = lower;
   } else {
     out.fraction = kMinFraction;
     out.lower = d_p - kMinFraction * length;
@@ -219,56 +254,71 @@ Placement place_on_edge(const TriangleBvh& outer_bvh, const Eigen::Vector3d& p, 
   return out;
 }
 
-// The smallest distance from triangle (a, b, c) to the outer surface when it is below `limit`,
-// else `limit`. Outer faces whose plane has the whole triangle on one side, `best` away, are
-// skipped without the exact test: the triangle is at least that far from them.
-double face_to_outer(const TriangleBvh& outer_bvh, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                     const Eigen::Vector3d& c, double limit) {
-  Aabb box;
-  box.extend(a);
-  box.extend(b);
-  box.extend(c);
-  double best = limit;
-  auto box_gap = [&](const Aabb& node) {
+// Per face of `faces`, how far it comes below the wall (0 when it keeps it). A face is accepted
+// by its vertices' lower bounds when every point of it lies within (longest edge)/√3 of a vertex
+// (Jung's bound for a triangle); the rest are measured exactly against the outer faces within
+// the wall, gathered once per run of consecutive faces (neighbours: the contour is made cell by
+// cell). An outer face whose plane has the whole triangle on one side, a wall away, is passed
+// over without the exact triangle distance (on a locally convex outer surface: all of them).
+std::vector<double> face_deficits(const TriangleBvh& outer_bvh, const Mesh& mesh, const std::vector<double>& lower,
+                                  const std::vector<int>& faces, double wall, WorkerPool& pool) {
+  constexpr long kRun = 8;
+  std::vector<double> deficit(faces.size(), 0.0);
+  auto gap = [](const Aabb& x, const Aabb& y) {
     double squared = 0.0;
     for (int k = 0; k < 3; ++k) {
-      const double gap = std::max({0.0, node.lo(k) - box.hi(k), box.lo(k) - node.hi(k)});
-      squared += gap * gap;
+      const double g = std::max({0.0, x.lo(k) - y.hi(k), y.lo(k) - x.hi(k)});
+      squared += g * g;
     }
     return squared;
   };
-  outer_bvh.traverse([&](const Aabb& node) { return box_gap(node) < best * best; },
-                     [&](int face) {
-                       const Eigen::Vector3d g0 = outer_bvh.corner(face, 0), g1 = outer_bvh.corner(face, 1),
-                                             g2 = outer_bvh.corner(face, 2);
-                       const Eigen::Vector3d n = (g1 - g0).cross(g2 - g0);
-                       const double scale = best * n.norm();
-                       const double sa = n.dot(a - g0), sb = n.dot(b - g0), sc = n.dot(c - g0);
-                       if ((sa >= scale && sb >= scale && sc >= scale) || (sa <= -scale && sb <= -scale && sc <= -scale))
-                         return true;
-                       best = std::min(best, triangle_distance(a, b, c, g0, g1, g2));
-                       return true;
-                     });
-  return best;
-}
-
-// The wall at every face: a face is accepted by its vertices' lower bounds when every point of it
-// lies within (longest edge)/√3 of a vertex (Jung's bound for a triangle), else measured
-// exactly. Returns, per face listed, the deficit below the wall (0 when it keeps it).
-std::vector<double> face_deficits(const TriangleBvh& outer_bvh, const Mesh& mesh, const std::vector<double>& lower,
-                                  const std::vector<int>& faces, double wall, WorkerPool& pool) {
-  std::vector<double> deficit(faces.size(), 0.0);
+  const double wall_squared = wall * wall;
+  auto corner = [&](int f, int c) -> Eigen::Vector3d { return mesh.V.row(mesh.F(f, c)).transpose(); };
+  const long runs = (static_cast<long>(faces.size()) + kRun - 1) / kRun;
   pool.run_parts(kParts, [&](int part) {
-    const long count = static_cast<long>(faces.size());
-    for (long i = split_point(count, kParts, part); i < split_point(count, kParts, part + 1); ++i) {
-      const int f = faces[static_cast<std::size_t>(i)];
-      const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)).transpose(), b = mesh.V.row(mesh.F(f, 1)).transpose(),
-                            c = mesh.V.row(mesh.F(f, 2)).transpose();
-      const double longest = std::max({(a - b).norm(), (b - c).norm(), (c - a).norm()});
-      const double least = std::min({lower[static_cast<std::size_t>(mesh.F(f, 0))], lower[static_cast<std::size_t>(mesh.F(f, 1))],
-                                     lower[static_cast<std::size_t>(mesh.F(f, 2))]});
-      if (least - longest * (1.0 + 1e-9) / std::sqrt(3.0) >= wall) continue;
-      deficit[static_cast<std::size_t>(i)] = wall - face_to_outer(outer_bvh, a, b, c, wall);
+    std::vector<long> measure;
+    std::vector<int> nearby;
+    for (long r = split_point(runs, kParts, part); r < split_point(runs, kParts, part + 1); ++r) {
+      measure.clear();
+      Aabb run_box;
+      for (long i = r * kRun; i < std::min((r + 1) * kRun, static_cast<long>(faces.size())); ++i) {
+        const int f = faces[static_cast<std::size_t>(i)];
+        const Eigen::Vector3d a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
+        const double longest = std::max({(a - b).norm(), (b - c).norm(), (c - a).norm()});
+        const double least = std::min({lower[static_cast<std::size_t>(mesh.F(f, 0))], lower[static_cast<std::size_t>(mesh.F(f, 1))],
+                                       lower[static_cast<std::size_t>(mesh.F(f, 2))]});
+        if (least - longest * (1.0 + 1e-9) / std::sqrt(3.0) >= wall) continue;
+        measure.push_back(i);
+        run_box.extend(a);
+        run_box.extend(b);
+        run_box.extend(c);
+      }
+      if (measure.empty()) continue;
+      nearby.clear();
+      outer_bvh.traverse([&](const Aabb& node) { return gap(node, run_box) < wall_squared; },
+                         [&](int g) {
+                           if (gap(outer_bvh.face_box(g), run_box) < wall_squared) nearby.push_back(g);
+                           return true;
+                         });
+      for (const long i : measure) {
+        const int f = faces[static_cast<std::size_t>(i)];
+        const Eigen::Vector3d a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
+        Aabb box;
+        box.extend(a);
+        box.extend(b);
+        box.extend(c);
+        double best = wall;
+        for (const int g : nearby) {
+          if (gap(outer_bvh.face_box(g), box) >= best * best) continue;
+          const Eigen::Vector3d g0 = outer_bvh.corner(g, 0), g1 = outer_bvh.corner(g, 1), g2 = outer_bvh.corner(g, 2);
+          const Eigen::Vector3d n = (g1 - g0).cross(g2 - g0);
+          const double scale = wall * n.norm();
+          const double sa = n.dot(a - g0), sb = n.dot(b - g0), sc = n.dot(c - g0);
+          if ((sa >= scale && sb >= scale && sc >= scale) || (sa <= -scale && sb <= -scale && sc <= -scale)) continue;
+          best = std::min(best, triangle_distance(a, b, c, g0, g1, g2));
+        }
+        deficit[static_cast<std::size_t>(i)] = wall - best;
+      }
     }
   });
   return deficit;
@@ -425,12 +475,14 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
   std::vector<double> raise(static_cast<std::size_t>(vertex_count), 0.0), lower(static_cast<std::size_t>(vertex_count));
   std::vector<char> on_wall(static_cast<std::size_t>(vertex_count), 0);
   const double rounding = 1e-9 * grid.spacing;
+  const double tolerance = 1e-4 * wall;  // how far above the target a vertex on the wall may sit
   auto place = [&](long v) {
     const std::size_t i = static_cast<std::size_t>(v);
     const std::size_t ip = values.at(contour.positive_node[i]), iq = values.at(contour.negative_node[i]);
     const Eigen::Vector3d p = grid.position(contour.positive_node[i]), q = grid.position(contour.negative_node[i]);
     const double t_in = std::clamp(field.crossing(p, q, values.inner[ip], values.inner[iq]), kMinFraction, 1.0 - kMinFraction);
-    const Placement placed = place_on_edge(outer_bvh, p, q, values.outer_distance[ip], t_in, target + raise[i], hair, rounding);
+    const Placement placed = place_on_edge(outer_bvh, p, q, values.outer_distance[ip], values.outer_distance[iq], t_in,
+                                           target + raise[i], tolerance, rounding);
     mesh.V.row(v) = (p + placed.fraction * (q - p)).transpose();
     lower[i] = placed.lower;
     on_wall[i] = placed.on_wall;
@@ -548,12 +600,11 @@ ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, con
   // and a hair above it that covers rounding to float32 in a written file. Never nearer than
   // 1.01 h: every point of a contoured triangle (diameter <= √3 h) is within h of one of its
   // vertices, so no triangle then reaches the outer surface, however coarse the node cap makes
-  // the grid. Void nodes keep target + 2·kMinFraction·h, so a vertex kMinFraction along any edge
-  // from one (edges are at most √3 h long) still keeps the target.
+  // the grid. Void nodes keep target + kNodeRoom·h.
   const Eigen::Vector3d far = outer_box.lo.cwiseAbs().cwiseMax(outer_box.hi.cwiseAbs());
   const double hair = 4e-7 * (far.norm() + (outer_box.hi - outer_box.lo).norm()) + 1e-9 * wall;
   const double target = std::max(wall + options.margin_cells * h, 1.01 * h) + hair;
-  const double level = target + 2.0 * kMinFraction * h;
+  const double level = target + kNodeRoom * h;
 
   WorkerPool pool(std::max(1, std::min(options.threads, kParts)));
   // Inside the outer surface and inside the inner void: the candidates for the cavity.

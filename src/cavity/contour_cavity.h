@@ -15,10 +15,11 @@
 // Why every output is printable (tests/cavity/test_contour_cavity.cpp, docs/cavity.md):
 // - the shells are closed, embedded, oriented 2-manifolds (marching tetrahedra), and stay so
 //   wherever on its grid edge each vertex is put;
-// - a node counts as cavity only when d_out >= T + 2·10⁻³·h, T = the wall (+ c·h when asked) and
+// - a node counts as cavity only when d_out >= T + 0.05·h, T = the wall (+ c·h when asked) and
 //   a rounding hair; each vertex goes to the first point of its edge where the inner boundary is
-//   crossed or the exact distance to the outer surface falls to T (regula falsi on the edge), so
-//   the wall-bound part of the cavity sits at the requested wall, not a margin above it;
+//   crossed or the exact distance to the outer surface falls to T (regula falsi on the edge, to
+//   within 10⁻⁴ of the wall above T), so the wall-bound part of the cavity sits at the requested
+//   wall, not a margin above it;
 // - every point of a contoured triangle lies within h of one of its vertices (its diameter is at
 //   most √3 h), and T >= 1.01 h, so no shell reaches the outer surface;
 // - faces that dip below the wall between their vertices (at concave parts of the outer surface)
