@@ -15,7 +15,7 @@
 // Why every output is printable (tests/cavity/test_contour_cavity.cpp, docs/cavity.md):
 // - the shells are closed, embedded, oriented 2-manifolds (marching tetrahedra), and stay so
 //   wherever on its grid edge each vertex is put;
-// - a node counts as cavity only when d_out >= T + 0.05·h, T = the wall (+ c·h when asked) and
+// - a node counts as cavity only when d_out >= T + 0.02·h, T = the wall (+ c·h when asked) and
 //   a rounding hair; each vertex goes to the first point of its edge where the inner boundary is
 //   crossed or the exact distance to the outer surface falls to T (regula falsi on the edge, to
 //   within 10⁻⁴ of the wall above T), so the wall-bound part of the cavity sits at the requested
