@@ -1,6 +1,7 @@
 #include "cavity/contour_cavity.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <tuple>
@@ -453,7 +454,7 @@ struct NodeValues {
 NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, const NodeGrid& grid,
                        const std::vector<std::int64_t>& cells, const std::vector<std::int8_t>& sign,
                        const std::vector<std::int8_t>& outer_winding, const std::vector<std::int8_t>& inner_inside,
-                       double target, double level, WorkerPool& pool) {
+                       double target, double level, const NodeValues& previous, WorkerPool& pool) {
   NodeValues v;
   v.nodes.reserve(cells.size() * 4);
   for (const std::int64_t c : cells)
@@ -470,12 +471,18 @@ NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, co
     for (long n = split_point(static_cast<long>(count), kParts, part); n < split_point(static_cast<long>(count), kParts, part + 1); ++n) {
       const std::size_t i = static_cast<std::size_t>(n);
       const std::int64_t node = v.nodes[i];
-      const Eigen::Vector3d p = grid.position(node);
-      const ClosestPoint to_outer = closest_point(outer_bvh, p, level + cap);
-      const double d_out = to_outer.found ? to_outer.distance : level + cap;
-      v.outer_distance[i] = d_out;
+      const std::size_t before = previous.at(node);
+      if (before < previous.nodes.size() && previous.nodes[before] == node) {  // measured in an earlier pass
+        v.outer_distance[i] = previous.outer_distance[before];
+        v.inner[i] = previous.inner[before];
+      } else {
+        const Eigen::Vector3d p = grid.position(node);
+        const ClosestPoint to_outer = closest_point(outer_bvh, p, level + cap);
+        v.outer_distance[i] = to_outer.found ? to_outer.distance : level + cap;
+        v.inner[i] = field.signed_distance(p, inner_inside[static_cast<std::size_t>(node)] != 0, cap);
+      }
+      const double d_out = v.outer_distance[i];
       const double signed_out = outer_winding[static_cast<std::size_t>(node)] >= 1 ? d_out : -d_out;
-      v.inner[i] = field.signed_distance(p, inner_inside[static_cast<std::size_t>(node)] != 0, cap);
       double value = std::min(signed_out - target, v.inner[i]);
       if (sign[static_cast<std::size_t>(node)]) value = std::max(value, 0.0);
       else value = std::min(value, -1e-9 * h);
@@ -485,12 +492,44 @@ NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, co
   return v;
 }
 
+// What a pass leaves for the next after a demotion: its vertices by their grid edge, and the faces
+// (by their vertices' edges) that kept the wall. Away from the demoted nodes the next contour is
+// the same, so only what changed is placed and measured again.
+struct PassMemory {
+  struct Vertex {
+    std::int64_t positive = 0, negative = 0;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    double lower = 0.0, raise = 0.0;
+    char on_wall = 0;
+  };
+  std::vector<Vertex> vertices;                          // sorted by (positive, negative)
+  std::vector<std::array<std::int64_t, 6>> kept_faces;  // sorted; each face's three edges, sorted
+
+  const Vertex* find(std::int64_t positive, std::int64_t negative) const {
+    const auto it = std::lower_bound(vertices.begin(), vertices.end(), std::make_pair(positive, negative),
+                                     [](const Vertex& x, const std::pair<std::int64_t, std::int64_t>& key) {
+                                       return std::make_pair(x.positive, x.negative) < key;
+                                     });
+    return it != vertices.end() && it->positive == positive && it->negative == negative ? &*it : nullptr;
+  }
+};
+
+std::array<std::int64_t, 6> face_key(const TetContour& contour, int f) {
+  std::array<std::pair<std::int64_t, std::int64_t>, 3> edges;
+  for (int c = 0; c < 3; ++c) {
+    const std::size_t v = static_cast<std::size_t>(contour.mesh.F(f, c));
+    edges[static_cast<std::size_t>(c)] = {contour.positive_node[v], contour.negative_node[v]};
+  }
+  std::sort(edges.begin(), edges.end());
+  return {edges[0].first, edges[0].second, edges[1].first, edges[1].second, edges[2].first, edges[2].second};
+}
+
 // Puts every vertex of the contour on its edge (the inner crossing, or the wall where the outer
 // surface binds), then lifts the vertices of faces that dip below the wall between their
 // vertices, a few rounds. Returns the faces still below the wall.
 std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& field, const NodeGrid& grid,
                                 const NodeValues& values, double target, double wall, double hair, TetContour& contour,
-                                WorkerPool& pool, ContourCavity& out) {
+                                const PassMemory& previous, PassMemory& next, WorkerPool& pool, ContourCavity& out) {
   Mesh& mesh = contour.mesh;
   const long vertex_count = static_cast<long>(mesh.V.rows());
   std::vector<double> raise(static_cast<std::size_t>(vertex_count), 0.0), lower(static_cast<std::size_t>(vertex_count));
@@ -508,8 +547,20 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
     lower[i] = placed.lower;
     on_wall[i] = placed.on_wall;
   };
+  std::vector<char> remembered(static_cast<std::size_t>(vertex_count), 0);
   pool.run_parts(kParts, [&](int part) {
-    for (long v = split_point(vertex_count, kParts, part); v < split_point(vertex_count, kParts, part + 1); ++v) place(v);
+    for (long v = split_point(vertex_count, kParts, part); v < split_point(vertex_count, kParts, part + 1); ++v) {
+      const std::size_t i = static_cast<std::size_t>(v);
+      if (const PassMemory::Vertex* was = previous.find(contour.positive_node[i], contour.negative_node[i])) {
+        mesh.V.row(v) = was->position.transpose();
+        lower[i] = was->lower;
+        raise[i] = was->raise;
+        on_wall[i] = was->on_wall;
+        remembered[i] = 1;
+      } else {
+        place(v);
+      }
+    }
   });
   // Faces around each vertex, to check again only what a lift touched.
   std::vector<int> first(static_cast<std::size_t>(vertex_count) + 1, 0), around(static_cast<std::size_t>(3 * mesh.F.rows()));
@@ -521,8 +572,13 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
       for (int c = 0; c < 3; ++c) around[static_cast<std::size_t>(fill[static_cast<std::size_t>(mesh.F(f, c))]++)] = static_cast<int>(f);
   }
-  std::vector<int> check(static_cast<std::size_t>(mesh.F.rows()));
-  for (std::size_t f = 0; f < check.size(); ++f) check[f] = static_cast<int>(f);
+  std::vector<int> check;
+  for (int f = 0; f < static_cast<int>(mesh.F.rows()); ++f) {
+    const bool known = remembered[static_cast<std::size_t>(mesh.F(f, 0))] && remembered[static_cast<std::size_t>(mesh.F(f, 1))] &&
+                       remembered[static_cast<std::size_t>(mesh.F(f, 2))] &&
+                       std::binary_search(previous.kept_faces.begin(), previous.kept_faces.end(), face_key(contour, f));
+    if (!known) check.push_back(f);
+  }
   std::vector<int> below;
   for (int round = 0;; ++round) {
     const std::vector<double> deficit = face_deficits(outer_bvh, mesh, lower, check, wall, pool);
@@ -537,7 +593,7 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
         lifted[v] = std::max(lifted[v], raise[v] + 2.0 * deficit[i] + hair);
       }
     }
-    if (round == 0) out.faces_lifted = static_cast<int>(below.size());
+    if (round == 0 && out.demotions == 0) out.faces_lifted = static_cast<int>(below.size());
     if (below.empty() || round == kRaiseRounds) break;
     std::vector<long> moved;
     for (long v = 0; v < vertex_count; ++v)
@@ -555,6 +611,22 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
   }
   out.vertices_moved_for_wall = 0;
   for (const char w : on_wall) out.vertices_moved_for_wall += w;
+  if (!below.empty()) {  // a demotion follows: remember this pass
+    next.vertices.resize(static_cast<std::size_t>(vertex_count));
+    for (long v = 0; v < vertex_count; ++v) {
+      const std::size_t i = static_cast<std::size_t>(v);
+      next.vertices[i] = {contour.positive_node[i], contour.negative_node[i], mesh.V.row(v).transpose(), lower[i], raise[i], on_wall[i]};
+    }
+    std::sort(next.vertices.begin(), next.vertices.end(), [](const PassMemory::Vertex& x, const PassMemory::Vertex& y) {
+      return std::make_pair(x.positive, x.negative) < std::make_pair(y.positive, y.negative);
+    });
+    std::vector<char> failed(static_cast<std::size_t>(mesh.F.rows()), 0);
+    for (const int f : below) failed[static_cast<std::size_t>(f)] = 1;
+    next.kept_faces.clear();
+    for (int f = 0; f < static_cast<int>(mesh.F.rows()); ++f)
+      if (!failed[static_cast<std::size_t>(f)]) next.kept_faces.push_back(face_key(contour, f));
+    std::sort(next.kept_faces.begin(), next.kept_faces.end());
+  }
   return below;
 }
 
@@ -636,12 +708,17 @@ ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, con
   out.distance_nodes = keep_nodes_at_level(outer_bvh, grid, level, sign, pool);
 
   TetContour contour;
+  NodeValues values;
+  PassMemory memory;
   for (int pass = 0;; ++pass) {
     const std::vector<std::int64_t> cells = mixed_cells(grid, sign, pool);
     out.active_cells = static_cast<std::int64_t>(cells.size());
-    const NodeValues values = node_values(outer_bvh, field, grid, cells, sign, outer_winding, inner_inside, target, level, pool);
+    values = node_values(outer_bvh, field, grid, cells, sign, outer_winding, inner_inside, target, level, values, pool);
     contour = marching_tetrahedra(grid, cells, [&](std::int64_t node) { return values.phi[values.at(node)]; }, kMinFraction);
-    const std::vector<int> below = place_vertices(outer_bvh, field, grid, values, target, wall, hair, contour, pool, out);
+    PassMemory next;
+    const std::vector<int> below =
+        place_vertices(outer_bvh, field, grid, values, target, wall, hair, contour, memory, next, pool, out);
+    memory = std::move(next);
     out.faces_below_wall = static_cast<int>(below.size());
     if (below.empty() || pass == kDemotions) break;
     // Faces that no lift along their edges brought to the wall: their void nodes become material.
