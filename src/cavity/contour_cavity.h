@@ -25,7 +25,7 @@
 // - faces that dip below the wall between their vertices (at concave parts of the outer surface)
 //   are found by exact triangle distances and their vertices lifted along their edges; where that
 //   is not enough, their void nodes become material and the contour is made again;
-// - parts left solid have no node with d_out >= wall + margin: no cavity reaches them;
+// - parts left solid have no node with d_out >= T + 0.02·h: no cavity reaches them;
 // - shells enclosing less than min_shell_fraction of the void, and shells that bound an island of
 //   material inside the void (negative volume), are dropped: the specks are filled, the islands
 //   join the void.
@@ -72,7 +72,8 @@ struct ContourCavity {
   double largest_face_deficit = 0.0;  // how far below the wall a face came before any lift
   int faces_lifted = 0;               // faces below the wall before any lift
   int demotions = 0;                  // contours again because lifts along the edges did not suffice
-  int faces_below_wall = 0;           // after every lift and demotion (0 unless the caps ran out)
+  int faces_below_wall = 0;           // after every lift and demotion (0 unless the caps ran out;
+                                      // optimize then calls the solid invalid)
 };
 
 // `outer` is the closed outer surface and `outer_bvh` its tree; `inner` the inner offset surface
