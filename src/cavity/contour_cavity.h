@@ -15,16 +15,17 @@
 // Why every output is printable (tests/cavity/test_contour_cavity.cpp, docs/cavity.md):
 // - the shells are closed, embedded, oriented 2-manifolds (marching tetrahedra), and stay so
 //   wherever on its grid edge each vertex is put;
-// - a node counts as cavity only when d_out >= T + 2·10⁻³·h, T = the wall (+ c·h when asked) and
+// - a node counts as cavity only when d_out >= T + 0.02·h, T = the wall (+ c·h when asked) and
 //   a rounding hair; each vertex goes to the first point of its edge where the inner boundary is
-//   crossed or the exact distance to the outer surface falls to T (regula falsi on the edge), so
-//   the wall-bound part of the cavity sits at the requested wall, not a margin above it;
+//   crossed or the exact distance to the outer surface falls to T (regula falsi on the edge, to
+//   within 10⁻⁴ of the wall above T), so the wall-bound part of the cavity sits at the requested
+//   wall, not a margin above it;
 // - every point of a contoured triangle lies within h of one of its vertices (its diameter is at
 //   most √3 h), and T >= 1.01 h, so no shell reaches the outer surface;
 // - faces that dip below the wall between their vertices (at concave parts of the outer surface)
 //   are found by exact triangle distances and their vertices lifted along their edges; where that
 //   is not enough, their void nodes become material and the contour is made again;
-// - parts left solid have no node with d_out >= wall + margin: no cavity reaches them;
+// - parts left solid have no node with d_out >= T + 0.02·h: no cavity reaches them;
 // - shells enclosing less than min_shell_fraction of the void, and shells that bound an island of
 //   material inside the void (negative volume), are dropped: the specks are filled, the islands
 //   join the void.
@@ -71,7 +72,8 @@ struct ContourCavity {
   double largest_face_deficit = 0.0;  // how far below the wall a face came before any lift
   int faces_lifted = 0;               // faces below the wall before any lift
   int demotions = 0;                  // contours again because lifts along the edges did not suffice
-  int faces_below_wall = 0;           // after every lift and demotion (0 unless the caps ran out)
+  int faces_below_wall = 0;           // after every lift and demotion (0 unless the caps ran out;
+                                      // optimize then calls the solid invalid)
 };
 
 // `outer` is the closed outer surface and `outer_bvh` its tree; `inner` the inner offset surface

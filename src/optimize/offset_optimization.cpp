@@ -511,6 +511,12 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
       if (!will_correct) {
         contour_input.goal_only = false;
         c.verification = verify_offsets(contour_input);
+        // The verification measures the wall at vertices; the contour measured it at every face.
+        if (contoured.faces_below_wall > 0) {
+          c.verification.valid = false;
+          c.verification.failures.push_back(std::to_string(contoured.faces_below_wall) +
+                                            " cavity faces come closer to the outer surface than the wall between their vertices");
+        }
       }
       const double cube = f.scale * f.scale * f.scale;
       ContourRound& entry = rounds.emplace_back();

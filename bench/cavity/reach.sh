@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds the reachability benchmark against the core library (Release) and runs it:
-#   bench/cavity/run.sh MESH GOAL [options]      one run
-#   bench/cavity/run.sh --real                   the cases compared with ../shared/tools/reach/carve.py
-#   bench/cavity/run.sh --bottle                 the 100k-vertex demo bottle, stand (the speed figure)
+#   bench/cavity/reach.sh MESH GOAL [options]      one run
+#   bench/cavity/reach.sh --real                   the cases compared with ../shared/tools/reach/carve.py
+#   bench/cavity/reach.sh --bottle                 the 100k-vertex demo bottle, stand (the speed figure)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 if [ ! -f build/liboffsetopt_core.a ]; then
