@@ -782,23 +782,14 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   if (const std::string problem = make_frame(input, options, f); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
   timings.frame = seconds_since(stage_start);
-  say("reachability: can any void reach the goal?");
-  stage_start = Clock::now();
-  ReachabilitySummary reach = reachability_stage({&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
-                                                  options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
-                                                  options.threads});
-  timings.reach = seconds_since(stage_start);
-  if (reach.decided && !reach.reachable) return refuse_unreachable(input, f, std::move(reach), timings, total_start);
-
-  // The basis needs the mesh alone, so it is computed alongside the skeleton. Both give the same
-  // bits on any number of threads, so running them together changes no result. The future's
-  // destructor waits for the basis on every return below.
+  // The basis needs the mesh alone, so it is computed alongside the reachability programme and the
+  // skeleton. All give the same bits on any number of threads, so running them together changes
+  // no result. The future's destructor waits for the basis on every return below.
   struct BasisOutcome {
     LanczosResult harmonics;
     double seconds = 0.0;
   };
   std::future<BasisOutcome> basis_future;
-  say("skeleton: contracting " + std::to_string(n) + " vertices");
   if (k > 0) {
     const bool alongside = options.threads > 1;
     say("basis: " + std::to_string(k) + " manifold harmonics" + (alongside ? ", alongside the skeleton" : ""));
@@ -819,6 +810,18 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     if (!basis_future.valid()) basis_future = std::async(std::launch::deferred, compute_basis);  // computed at get()
   }
 
+  // Reachability, on this thread while the basis is computed on the other: the basis takes longer
+  // than the skeleton, so the programme mostly fills the wait. A goal no void reaches stops here
+  // (the basis in flight is waited for, at most its own time).
+  say("reachability: can any void reach the goal?");
+  stage_start = Clock::now();
+  ReachabilitySummary reach = reachability_stage({&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
+                                                  options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
+                                                  options.threads});
+  timings.reach = seconds_since(stage_start);
+  if (reach.decided && !reach.reachable) return refuse_unreachable(input, f, std::move(reach), timings, total_start);
+
+  say("skeleton: contracting " + std::to_string(n) + " vertices");
   stage_start = Clock::now();
   Band b;
   if (const std::string problem = make_band(input, options, f, b); !problem.empty())
