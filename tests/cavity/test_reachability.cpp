@@ -162,3 +162,20 @@ TEST_CASE("reachability: options are checked") {
   o.block = 0;
   CHECK(!o.check().empty());
 }
+
+TEST_CASE("reachability: a quadric about an origin, re-expanded about zero, has the same values everywhere") {
+  Quadric q;
+  q.origin = Eigen::Vector3d(12.5, -3.0, 40.25);
+  q.coefficients << 0.7, -1.5, 2.25, 0.5, 1.0, -0.75, 0.3, 0.2, -0.6, 0.45;
+  const Vector10d a = q.about_zero();
+  auto value = [](const Vector10d& c, const Eigen::Vector3d& x) {
+    return c(0) + c(1) * x.x() + c(2) * x.y() + c(3) * x.z() + c(4) * x.x() * x.x() + c(5) * x.y() * x.y() +
+           c(6) * x.z() * x.z() + c(7) * x.x() * x.y() + c(8) * x.y() * x.z() + c(9) * x.z() * x.x();
+  };
+  for (const Eigen::Vector3d p : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(12.5, -3.0, 40.25), Eigen::Vector3d(-7, 4.5, 1.25),
+                                  Eigen::Vector3d(30, 20, -10)}) {
+    CAPTURE(p.transpose());
+    const double expected = value(q.coefficients, p - q.origin);
+    CHECK(value(a, p) == doctest::Approx(expected).epsilon(1e-12).scale(1.0 + std::fabs(expected)));
+  }
+}

@@ -160,3 +160,24 @@ TEST_CASE("bottle stand with a one-function basis: the offset void misses, the q
   CHECK(fraction <= 1.02);
   CHECK(fraction == doctest::Approx(w.report.at("optimality").at("fraction").as_number()).epsilon(1e-9));
 }
+
+TEST_CASE("buoy float: the quadric void, corrected by Newton steps, floats level, deeper than the offset void") {
+  const Written w = optimize("buoy", "buoy.obj", "--goal float --fluid-density 0.806");
+  CHECK(w.exit_code == 0);
+  const Json& cavity = w.report.at("cavity");
+  CHECK(cavity.at("written").as_string() == "quadric");
+  check_printable(w);
+  // Fully submerged balance from the written files alone: the buoyancy of the outer volume equals
+  // the weight, the centre of mass is on the vertical through the centre of buoyancy and below it.
+  const Vector10d P = written_properties(w);
+  const Vector10d outer = mass_properties(w.outer);
+  const double diagonal = w.report.at("frame").at("diagonal").as_number();
+  CHECK(std::fabs(0.806 * outer(kMass) - P(kMass)) <= 1e-3 * P(kMass));
+  CHECK(std::hypot(P(kCx) - outer(kCx), P(kCy) - outer(kCy)) <= 1e-4 * diagonal);
+  const double depth = outer(kCz) - P(kCz);
+  CHECK(depth >= w.report.at("parameters").at("margin").as_number());
+  // Chosen because it floats deeper than the offset void did, by more than 1%.
+  REQUIRE_FALSE(cavity.at("offset_objective").is_null());
+  CHECK(-cavity.at("quadric_objective").as_number() > 1.01 * -cavity.at("offset_objective").as_number());
+  CHECK(depth == doctest::Approx(w.report.at("optimality").at("written").as_number()).epsilon(1e-9));
+}
