@@ -2,7 +2,7 @@
 # Rewrites the golden files from a build of the binary (default build/offsetopt): for every line
 # of cases.txt, NAME.json and NAME.ply.sha256 (the digest of the printable solid), and BUILD.txt (`offsetopt --version`: the build they are
 # exact for). Run it after a change that is meant to change results, and commit what it writes
-# together with that change; the golden test (tests/optimize/test_golden.cpp) says which case
+# together with that change; the golden test (tests/golden/test_golden.cpp) says which case
 # differs and where.
 #   tests/golden/regenerate.sh [BINARY]
 set -euo pipefail
