@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Every goal on every mesh of ../shared/meshes (skips cleanly when the folder is absent): exit
-# code, the written cavity, seconds, and the first line of the reason. The README's table of
-# real-mesh outcomes is this script's output. `volume` asks for 30% of the object's volume,
-# `float` for fluid density 0.8 (the object must be lighter than the fluid it displaces).
+# code, the written cavity, seconds, and the first line of the reason. The table of real-mesh
+# outcomes in docs/real-meshes.md is this script's output. `volume` asks for 30% of the object's
+# volume, `float` for fluid density 0.8 (the object must be lighter than the fluid it displaces).
 # usage: bench/optimize/real_goals.sh [BINARY] [EXTRA OPTIONS...]
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
