@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "mass/volume_integrals.h"
-#include "util/det_math.h"
 #include "util/neumaier_sum.h"
 
 namespace offsetopt {
