@@ -339,6 +339,7 @@ class Solver {
       const LpResult r = bounded_simplex(lp, o_.lp, &start);
       ++out_.lps;
       out_.lp_iterations += r.iterations;
+      out_.pricing_passes += r.pricing_passes;
       out_.columns = static_cast<int>(lp.A.cols());
       run.status = r.status;
       run.weights = (-r.y).cwiseMax(0.0);
