@@ -74,11 +74,11 @@ int main(int argc, char** argv) {
   if (r.cells) std::printf("band cells %zu strict, %zu generous; void %zu / %zu\n", r.cells->band_inner.size(), r.cells->band_outer.size(), r.cells->inner.size(), r.cells->outer.size());
   auto opt = [](const std::optional<double>& v) { return v ? std::to_string(*v) : std::string("none"); };
   std::printf("%s\t%s\tvertices %lld\tseconds %.3f\tok %d\treachable %d\tdecided %d\tbest_margin %s\tupper %s\tmargin %.4g\t"
-              "binding '%s'\tlowest_cz %s\tinput_cz %.4g\tcells %zu/%zu\tqueries %lld\tlps %d\titerations %lld\tcolumns %d\tproves %d %s\n",
+              "binding '%s'\tlowest_cz %s\tinput_cz %.4g\tcells %zu/%zu\tqueries %lld\tlps %d\titerations %lld\tpasses %lld\tcolumns %d\tproves %d %s\n",
               argv[1], argv[2], static_cast<long long>(mesh.V.rows()), seconds, r.ok, r.reachable, r.decided,
               opt(r.best_margin).c_str(), opt(r.best_margin_upper).c_str(), goal.margin, r.binding.c_str(),
               opt(r.lowest_cz).c_str(), P(kCz) - st.ground_z, r.cells ? r.cells->inner.size() : 0,
               r.cells ? r.cells->outer.size() : 0, r.cells ? static_cast<long long>(r.cells->distance_queries) : 0LL, r.lps,
-              r.lp_iterations, r.columns, r.certificate.proves, r.message.c_str());
+              r.lp_iterations, r.pricing_passes, r.columns, r.certificate.proves, r.message.c_str());
   return 0;
 }

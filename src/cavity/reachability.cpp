@@ -7,7 +7,6 @@
 #include "cavity/contour_cavity.h"
 #include "geometry/aabb.h"
 #include "mass/volume_integrals.h"
-#include "util/det_math.h"
 #include "util/neumaier_sum.h"
 
 namespace offsetopt {
@@ -345,6 +344,7 @@ class Solver {
       const LpResult r = bounded_simplex(lp, o_.lp, &start);
       ++out_.lps;
       out_.lp_iterations += r.iterations;
+      out_.pricing_passes += r.pricing_passes;
       out_.columns = static_cast<int>(lp.A.cols());
       run.status = r.status;
       run.weights = (-r.y).cwiseMax(0.0);

@@ -126,6 +126,7 @@ struct Reachability {
   double carvable_volume = 0.0, carvable_volume_outer = 0.0, band_volume = 0.0;
   int lps = 0;
   long long lp_iterations = 0;
+  long long pricing_passes = 0;
   int columns = 0;                   // of the last LP (blocks and split cells)
 };
 
