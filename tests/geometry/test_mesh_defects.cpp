@@ -4,6 +4,9 @@
 // T-junction closed by a sliver. Expected answers are by construction.
 #include <doctest/doctest.h>
 
+#include <cmath>
+
+#include "geometry/exact_triangle_intersection.h"
 #include "geometry/mesh_defects.h"
 #include "geometry/triangle_triangle.h"
 #include "mesh/demo_meshes.h"
@@ -43,24 +46,28 @@ TEST_CASE("the demo bottle, top and buoy have no self-intersecting pairs") {
   }
 }
 
-TEST_CASE("separate_triangles_meet: the demo bottle's cone-strip pair that plain Guigue-Devillers reports one way round") {
+TEST_CASE("triangles_meet_exact: the demo bottle's cone-strip pair that plain Guigue-Devillers reports one way round") {
   // Faces 1056 and 1185 of the demo bottle: three corners on each of two rulings of a cone, so
-  // a corner of each lies exactly on the other's plane; they do not meet.
+  // a corner of each lies on the other's plane up to rounding; they are 3.4 apart in that plane.
   const V3 f[3] = {V3(1.7999999999999936, -35, 4), V3(5.2305999115346031, -34.831465433526894, 4),
                    V3(9.3368499115346033, -34.831465433526894, 13.125)};
   const V3 g[3] = {V3(5.9062499999999938, -35, 13.125), V3(13.443099911534604, -34.831465433526894, 22.25),
                    V3(10.012499999999994, -35, 22.25)};
-  CHECK_FALSE(separate_triangles_meet(f, g));
-  CHECK_FALSE(separate_triangles_meet(g, f));
-  // Moved 12 units down the ruling (more than one ring step), g overlaps f in their common plane.
-  const V3 shift = (g[2] - g[0]).normalized() * -12.0;
-  const V3 h[3] = {g[0] + shift, g[1] + shift, g[2] + shift};
-  CHECK(separate_triangles_meet(f, h));
-  CHECK(separate_triangles_meet(h, f));
-  // A clear crossing and a clear miss.
+  CHECK_FALSE(triangles_meet_exact(f, g));
+  CHECK_FALSE(triangles_meet_exact(g, f));
+  // Exactly coplanar (z = 0) and overlapping, touching at one point, and 2^-40 apart.
   const V3 t[3] = {V3(0, 0, 0), V3(4, 0, 0), V3(0, 4, 0)};
+  const V3 overlap[3] = {V3(1, 1, 0), V3(5, 1, 0), V3(1, 5, 0)};
+  const V3 touch[3] = {V3(2, 2, 0), V3(5, 2, 0), V3(2, 5, 0)};  // (2, 2) is on the edge x + y = 4
+  const V3 apart[3] = {V3(2, 2.0 + std::ldexp(1.0, -40), 0), V3(5, 2, 0), V3(2, 5, 0)};
+  CHECK(triangles_meet_exact(t, overlap));
+  CHECK(triangles_meet_exact(t, touch));
+  CHECK(triangles_meet_exact(touch, t));
+  CHECK_FALSE(triangles_meet_exact(t, apart));
+  CHECK_FALSE(triangles_meet_exact(apart, t));
+  // A clear crossing and a clear miss.
   const V3 crossing[3] = {V3(1, 1, -1), V3(1, 1.5, 2), V3(1.5, 1, 2)};
   const V3 above[3] = {V3(1, 1, 1), V3(1, 1.5, 2), V3(1.5, 1, 2)};
-  CHECK(separate_triangles_meet(t, crossing));
-  CHECK_FALSE(separate_triangles_meet(t, above));
+  CHECK(triangles_meet_exact(t, crossing));
+  CHECK_FALSE(triangles_meet_exact(t, above));
 }

@@ -1,0 +1,113 @@
+#include "geometry/exact_triangle_intersection.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/convex_hull_2d.h"
+#include "geometry/convex_hull_3d.h"
+
+namespace offsetopt {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using Vec2 = Eigen::Vector2d;
+
+int sign(double x) { return x > 0.0 ? 1 : x < 0.0 ? -1 : 0; }
+
+Vec2 drop(const Vec3& p, int axis) {
+  switch (axis) {
+    case 0: return {p.y(), p.z()};
+    case 1: return {p.z(), p.x()};
+    default: return {p.x(), p.y()};
+  }
+}
+
+// The axis whose projection keeps the triangle's area largest (exactly non-zero when the
+// triangle is not collinear: some projection of a plane triangle has area).
+int projection_axis(const Vec3& p, const Vec3& q, const Vec3& r) {
+  int best = 2;
+  double largest = -1.0;
+  for (int axis = 2; axis >= 0; --axis) {
+    const double area = std::fabs(orient2d(drop(p, axis), drop(q, axis), drop(r, axis)));
+    if (area > largest) {
+      largest = area;
+      best = axis;
+    }
+  }
+  return best;
+}
+
+bool in_box(const Vec2& a, const Vec2& b, const Vec2& p) {
+  return std::min(a.x(), b.x()) <= p.x() && p.x() <= std::max(a.x(), b.x()) && std::min(a.y(), b.y()) <= p.y() &&
+         p.y() <= std::max(a.y(), b.y());
+}
+
+// Closed segments a-b and c-d of the plane (neither a point) share a point.
+bool segments_meet_2d(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const int o1 = sign(orient2d(a, b, c)), o2 = sign(orient2d(a, b, d));
+  const int o3 = sign(orient2d(c, d, a)), o4 = sign(orient2d(c, d, b));
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  // A point exactly on the other segment's line: on it when inside its bounding box.
+  return (o1 == 0 && in_box(a, b, c)) || (o2 == 0 && in_box(a, b, d)) || (o3 == 0 && in_box(c, d, a)) ||
+         (o4 == 0 && in_box(c, d, b));
+}
+
+// x in the closed triangle t (t not collinear).
+bool point_in_triangle_2d(const Vec2& x, const Vec2 t[3]) {
+  const int turn = sign(orient2d(t[0], t[1], t[2]));
+  for (int k = 0; k < 3; ++k)
+    if (sign(orient2d(t[k], t[(k + 1) % 3], x)) * turn < 0) return false;
+  return true;
+}
+
+// Segment a-b lying in the plane of triangle p-q-r.
+bool coplanar_segment_meets_triangle(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r) {
+  const int axis = projection_axis(p, q, r);
+  const Vec2 t[3] = {drop(p, axis), drop(q, axis), drop(r, axis)};
+  const Vec2 a2 = drop(a, axis), b2 = drop(b, axis);
+  if (point_in_triangle_2d(a2, t) || point_in_triangle_2d(b2, t)) return true;
+  for (int k = 0; k < 3; ++k)
+    if (segments_meet_2d(a2, b2, t[k], t[(k + 1) % 3])) return true;
+  return false;
+}
+
+}  // namespace
+
+bool collinear_exact(const Vec3& p, const Vec3& q, const Vec3& r) {
+  for (int axis = 0; axis < 3; ++axis)
+    if (orient2d(drop(p, axis), drop(q, axis), drop(r, axis)) != 0.0) return false;
+  return true;
+}
+
+bool segment_meets_triangle_exact(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r) {
+  const int oa = sign(orient3d(p, q, r, a)), ob = sign(orient3d(p, q, r, b));
+  if (oa * ob > 0) return false;  // both strictly on one side
+  if (oa == 0 && ob == 0) return coplanar_segment_meets_triangle(a, b, p, q, r);
+  // The segment reaches the plane at one point (an end, or between the ends), and the line a-b
+  // is not in the plane: it passes through the closed triangle iff it passes no two of its
+  // edges on opposite sides.
+  const int s1 = sign(orient3d(a, b, p, q)), s2 = sign(orient3d(a, b, q, r)), s3 = sign(orient3d(a, b, r, p));
+  const bool negative = s1 < 0 || s2 < 0 || s3 < 0, positive = s1 > 0 || s2 > 0 || s3 > 0;
+  return !(negative && positive);
+}
+
+bool triangles_meet_exact(const Vec3 a[3], const Vec3 b[3]) {
+  int side_a[3], side_b[3];
+  for (int k = 0; k < 3; ++k) {
+    side_a[k] = sign(orient3d(b[0], b[1], b[2], a[k]));
+    side_b[k] = sign(orient3d(a[0], a[1], a[2], b[k]));
+  }
+  auto one_side = [](const int s[3]) { return (s[0] > 0 && s[1] > 0 && s[2] > 0) || (s[0] < 0 && s[1] < 0 && s[2] < 0); };
+  if (one_side(side_a) || one_side(side_b)) return false;
+  // Two closed triangles meet iff an edge of one meets the other: where their planes cross, the
+  // common part ends on an edge of one of them; where they are coplanar, edges cross or one
+  // triangle holds the other, whose edges then lie in it.
+  for (int k = 0; k < 3; ++k) {
+    if (segment_meets_triangle_exact(a[k], a[(k + 1) % 3], b[0], b[1], b[2])) return true;
+    if (segment_meets_triangle_exact(b[k], b[(k + 1) % 3], a[0], a[1], a[2])) return true;
+  }
+  return false;
+}
+
+}  // namespace offsetopt

@@ -1,0 +1,62 @@
+#include "geometry/faces_intersect_exact.h"
+
+#include "geometry/convex_hull_2d.h"
+#include "geometry/convex_hull_3d.h"
+#include "geometry/exact_triangle_intersection.h"
+
+namespace offsetopt {
+
+namespace {
+
+// r and s strictly on the same side of the line u-w, all four points in one plane (u, w, r not
+// collinear): in the projection where u, w, r keep their area, the signs are the plane's.
+bool same_side_in_plane(const Eigen::Vector3d& u, const Eigen::Vector3d& w, const Eigen::Vector3d& r,
+                        const Eigen::Vector3d& s) {
+  int axis = 2;
+  double largest = -1.0;
+  Eigen::Vector2d p[4][3];
+  for (int a = 0; a < 3; ++a) {
+    const int i = (a + 1) % 3, j = (a + 2) % 3;
+    p[0][a] = {u[i], u[j]};
+    p[1][a] = {w[i], w[j]};
+    p[2][a] = {r[i], r[j]};
+    p[3][a] = {s[i], s[j]};
+  }
+  for (int a = 2; a >= 0; --a) {
+    const double area = orient2d(p[0][a], p[1][a], p[2][a]);
+    if ((area < 0 ? -area : area) > largest) {
+      largest = area < 0 ? -area : area;
+      axis = a;
+    }
+  }
+  const double side_r = orient2d(p[0][axis], p[1][axis], p[2][axis]);
+  const double side_s = orient2d(p[0][axis], p[1][axis], p[3][axis]);
+  return (side_r > 0 && side_s > 0) || (side_r < 0 && side_s < 0);
+}
+
+}  // namespace
+
+bool faces_intersect_exact(const Eigen::Vector3d f[3], const int f_ids[3], const Eigen::Vector3d g[3], const int g_ids[3]) {
+  int shared = 0, in_f[3] = {-1, -1, -1}, in_g[3] = {-1, -1, -1};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (f_ids[i] == g_ids[j] && shared < 3) {
+        in_f[shared] = i;
+        in_g[shared] = j;
+        ++shared;
+      }
+  if (shared == 0) return triangles_meet_exact(f, g);
+  if (shared == 1) {
+    const int i = in_f[0], j = in_g[0];
+    return segment_meets_triangle_exact(g[(j + 1) % 3], g[(j + 2) % 3], f[0], f[1], f[2]) ||
+           segment_meets_triangle_exact(f[(i + 1) % 3], f[(i + 2) % 3], g[0], g[1], g[2]);
+  }
+  // A common edge u-w; r and s the corners off it (the same corner for a duplicate face).
+  const Eigen::Vector3d& u = f[in_f[0]];
+  const Eigen::Vector3d& w = f[in_f[1]];
+  const Eigen::Vector3d& r = f[3 - in_f[0] - in_f[1]];
+  const Eigen::Vector3d& s = g[3 - in_g[0] - in_g[1]];
+  return orient3d(u, w, r, s) == 0.0 && same_side_in_plane(u, w, r, s);
+}
+
+}  // namespace offsetopt
