@@ -1,5 +1,6 @@
 #include "geometry/exact_triangle_intersection.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -23,19 +24,17 @@ Vec2 drop(const Vec3& p, int axis) {
   }
 }
 
-// The axis whose projection keeps the triangle's area largest (exactly non-zero when the
-// triangle is not collinear: some projection of a plane triangle has area).
-int projection_axis(const Vec3& p, const Vec3& q, const Vec3& r) {
-  int best = 2;
-  double largest = -1.0;
-  for (int axis = 2; axis >= 0; --axis) {
-    const double area = std::fabs(orient2d(drop(p, axis), drop(q, axis), drop(r, axis)));
-    if (area > largest) {
-      largest = area;
-      best = axis;
-    }
-  }
-  return best;
+// An axis whose projection keeps the triangle's area exactly non-zero, or -1 when the corners
+// are collinear. Dropping axis k leaves the k-th component of the normal as the projected area,
+// so the axes are tried from the largest component of the rounded normal: the first is almost
+// always it, decided by orient2d's floating-point filter.
+int plane_axis(const Vec3& p, const Vec3& q, const Vec3& r) {
+  const Vec3 n = (q - p).cross(r - p).cwiseAbs();
+  int order[3] = {0, 1, 2};
+  std::sort(order, order + 3, [&n](int a, int b) { return n[a] > n[b] || (n[a] == n[b] && a < b); });
+  for (const int axis : order)
+    if (orient2d(drop(p, axis), drop(q, axis), drop(r, axis)) != 0.0) return axis;
+  return -1;
 }
 
 bool in_box(const Vec2& a, const Vec2& b, const Vec2& p) {
@@ -63,7 +62,7 @@ bool point_in_triangle_2d(const Vec2& x, const Vec2 t[3]) {
 
 // Segment a-b lying in the plane of triangle p-q-r.
 bool coplanar_segment_meets_triangle(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r) {
-  const int axis = projection_axis(p, q, r);
+  const int axis = plane_axis(p, q, r);
   const Vec2 t[3] = {drop(p, axis), drop(q, axis), drop(r, axis)};
   const Vec2 a2 = drop(a, axis), b2 = drop(b, axis);
   if (point_in_triangle_2d(a2, t) || point_in_triangle_2d(b2, t)) return true;
@@ -74,11 +73,7 @@ bool coplanar_segment_meets_triangle(const Vec3& a, const Vec3& b, const Vec3& p
 
 }  // namespace
 
-bool collinear_exact(const Vec3& p, const Vec3& q, const Vec3& r) {
-  for (int axis = 0; axis < 3; ++axis)
-    if (orient2d(drop(p, axis), drop(q, axis), drop(r, axis)) != 0.0) return false;
-  return true;
-}
+bool collinear_exact(const Vec3& p, const Vec3& q, const Vec3& r) { return plane_axis(p, q, r) < 0; }
 
 bool segment_meets_triangle_exact(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r) {
   const int oa = sign(orient3d(p, q, r, a)), ob = sign(orient3d(p, q, r, b));

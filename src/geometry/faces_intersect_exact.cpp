@@ -1,5 +1,8 @@
 #include "geometry/faces_intersect_exact.h"
 
+#include <Eigen/Geometry>
+#include <algorithm>
+
 #include "geometry/convex_hull_2d.h"
 #include "geometry/convex_hull_3d.h"
 #include "geometry/exact_triangle_intersection.h"
@@ -9,29 +12,21 @@ namespace offsetopt {
 namespace {
 
 // r and s strictly on the same side of the line u-w, all four points in one plane (u, w, r not
-// collinear): in the projection where u, w, r keep their area, the signs are the plane's.
+// collinear): in a projection where u, w, r keep their area, the signs are the plane's.
 bool same_side_in_plane(const Eigen::Vector3d& u, const Eigen::Vector3d& w, const Eigen::Vector3d& r,
                         const Eigen::Vector3d& s) {
-  int axis = 2;
-  double largest = -1.0;
-  Eigen::Vector2d p[4][3];
-  for (int a = 0; a < 3; ++a) {
-    const int i = (a + 1) % 3, j = (a + 2) % 3;
-    p[0][a] = {u[i], u[j]};
-    p[1][a] = {w[i], w[j]};
-    p[2][a] = {r[i], r[j]};
-    p[3][a] = {s[i], s[j]};
+  const Eigen::Vector3d n = (w - u).cross(r - u).cwiseAbs();
+  int order[3] = {0, 1, 2};
+  std::sort(order, order + 3, [&n](int a, int b) { return n[a] > n[b] || (n[a] == n[b] && a < b); });
+  for (const int axis : order) {
+    const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+    const Eigen::Vector2d u2(u[i], u[j]), w2(w[i], w[j]);
+    const double side_r = orient2d(u2, w2, Eigen::Vector2d(r[i], r[j]));
+    if (side_r == 0.0) continue;
+    const double side_s = orient2d(u2, w2, Eigen::Vector2d(s[i], s[j]));
+    return (side_r > 0 && side_s > 0) || (side_r < 0 && side_s < 0);
   }
-  for (int a = 2; a >= 0; --a) {
-    const double area = orient2d(p[0][a], p[1][a], p[2][a]);
-    if ((area < 0 ? -area : area) > largest) {
-      largest = area < 0 ? -area : area;
-      axis = a;
-    }
-  }
-  const double side_r = orient2d(p[0][axis], p[1][axis], p[2][axis]);
-  const double side_s = orient2d(p[0][axis], p[1][axis], p[3][axis]);
-  return (side_r > 0 && side_s > 0) || (side_r < 0 && side_s < 0);
+  return false;
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "cavity/contour_cavity.h"
 #include "shape/offset_field.h"
 #include "cavity/printable_solid.h"
+#include "cavity/round_for_output.h"
 #include "cavity/verify_offsets.h"
 #include "skeleton/laplacian_contraction.h"
 #include "util/format_double.h"
@@ -431,6 +432,7 @@ class OffsetSolve {
 // written cavity", step 4): the goal is solved again on the offset model's integrals plus the
 // difference the contour made, warm-started, until the written solid verifies.
 struct Cavity {
+  Mesh outer;                  // the outer surface as written (rounded to the output's precision)
   Mesh written;                // the cavity's shells, normals out of the void
   Verification verification;
   CavitySummary summary;
@@ -450,13 +452,28 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
   verify_input.fixed = b.band.fixed;
   verify_input.bound_violation = solve.bound_violation();
   verify_input.threads = options.threads;
+  verify_input.precision = options.output_precision;
   c.verification = verify_offsets(verify_input);
+  // As written: rounded to the output's precision and verified again (only when it can pass:
+  // on real meshes the offset surface rarely verifies even unrounded).
+  RoundedForOutput offset_written;
+  if (options.output_precision != StoredPrecision::exact && c.verification.goal_met && c.verification.valid) {
+    offset_written = round_for_output(solve.outer, solve.inner, b.band.fixed, options.output_precision);
+    verify_input.outer = &offset_written.outer;
+    verify_input.inner = &offset_written.inner;
+    verify_input.rounding = &offset_written;
+    c.verification = verify_offsets(verify_input);
+  } else {
+    offset_written.outer = solve.outer;
+    offset_written.inner = solve.inner;
+  }
   timings.verify = seconds_since(stage_start);
   c.summary.mode = options.cavity;
   c.summary.offset_goal_met = c.verification.goal_met;
   c.summary.offset_valid = c.verification.valid;
   c.summary.offset_failures = c.verification.failures;
-  c.written = solve.inner;
+  c.outer = offset_written.outer;
+  c.written = offset_written.inner;
   const bool offset_verified = c.verification.goal_met && c.verification.valid;
   const bool want_contour = options.cavity == CavityMode::contour ||
                             (options.cavity == CavityMode::automatic && !offset_verified);
@@ -468,7 +485,9 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
   } else if (want_contour) {
     stage_start = Clock::now();
     ContourCavityOptions cavity_options;
-    cavity_options.wall = f.wall;
+    // The wall survives the rounding of both surfaces to the output's precision.
+    cavity_options.wall =
+        f.wall + rounding_wall_margin(solve.outer.V.size() ? solve.outer.V.cwiseAbs().maxCoeff() : 0.0, options.output_precision);
     cavity_options.cells_per_wall = options.cavity_cells_per_wall;
     cavity_options.margin_cells = options.cavity_margin_cells;
     cavity_options.threads = options.threads;
@@ -490,6 +509,7 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
       VerifyInput contour_input = verify_input;
       contour_input.outer = &solve.outer;
       contour_input.inner = &contoured.cavity;
+      contour_input.rounding = nullptr;
       contour_input.fixed.clear();
       contour_input.bound_violation = 0.0;  // the band bounds the offset model, not the contour
       // The goal first: a contour whose goal is missed and that a correction will replace needs
@@ -497,7 +517,12 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
       contour_input.goal_only = true;
       c.verification = verify_offsets(contour_input);
       const bool will_correct = !c.verification.goal_met && solve.constraints_met && round < options.max_correction_rounds;
+      RoundedForOutput written;
       if (!will_correct) {
+        written = round_for_output(solve.outer, contoured.cavity, {}, options.output_precision);
+        contour_input.outer = &written.outer;
+        contour_input.inner = &written.inner;
+        contour_input.rounding = &written;
         contour_input.goal_only = false;
         c.verification = verify_offsets(contour_input);
       }
@@ -521,7 +546,8 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
       say("cavity round " + std::to_string(round) + ": " + std::to_string(contoured.active_cells) + " cells contoured, " +
           std::to_string(contoured.shells) + " shells, goal " + (c.verification.goal_met ? "met" : "not met") + ", " +
           (will_correct ? "corrected next" : c.verification.valid ? "valid" : "not valid"));
-      c.written = contoured.cavity;
+      c.outer = will_correct ? solve.outer : written.outer;
+      c.written = will_correct ? contoured.cavity : written.inner;
       // Stops at a verified contour, an invalid one (a correction cannot mend it), a goal whose
       // constraints the solver could not meet, or the last round.
       if (!will_correct) break;
@@ -702,10 +728,10 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   timings.total = seconds_since(total_start);
 
   OptimizeResult result;
-  result.outer = solve.outer;
+  result.outer = cavity.outer;
   result.inner = cavity.written;
-  result.printable = cavity.summary.contoured ? hollow_solid(solve.outer, cavity.written)
-                                              : printable_solid(solve.outer, cavity.written, b.band.fixed);
+  result.printable = cavity.summary.contoured ? hollow_solid(cavity.outer, cavity.written)
+                                              : printable_solid(cavity.outer, cavity.written, b.band.fixed);
   result.skeleton = Mesh{b.contraction.V, input.F};
   result.goal = f.setup;
   result.frame = {f.origin, f.scale, f.diag, f.wall, f.outer_max, f.margin, f.ground_tol};
