@@ -264,6 +264,10 @@ double orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen:
                            std::fabs(u.z()) * (std::fabs(v.x() * w.y()) + std::fabs(v.y() * w.x()));
   // Shewchuk's bound for this evaluation is 7.8e-16 x permanent; 1e-14 leaves a wide margin.
   if (std::fabs(det) > 1e-14 * permanent) return det;
+  // Four points on one axis-aligned plane are coplanar: contoured cavities put their vertices on
+  // grid planes, and their exact zeros would otherwise all take the slow path.
+  for (int k = 0; k < 3; ++k)
+    if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return 0.0;
   return orient3d_exact(a, b, c, d);
 }
 

@@ -75,16 +75,30 @@ bool coplanar_segment_meets_triangle(const Vec3& a, const Vec3& b, const Vec3& p
 
 bool collinear_exact(const Vec3& p, const Vec3& q, const Vec3& r) { return plane_axis(p, q, r) < 0; }
 
-bool segment_meets_triangle_exact(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r) {
-  const int oa = sign(orient3d(p, q, r, a)), ob = sign(orient3d(p, q, r, b));
+namespace {
+
+// The segment test once the sides of its ends (orient3d signs against the triangle's plane) are
+// known.
+bool segment_with_sides_meets_triangle(const Vec3& a, const Vec3& b, int oa, int ob, const Vec3& p, const Vec3& q,
+                                       const Vec3& r) {
   if (oa * ob > 0) return false;  // both strictly on one side
   if (oa == 0 && ob == 0) return coplanar_segment_meets_triangle(a, b, p, q, r);
   // The segment reaches the plane at one point (an end, or between the ends), and the line a-b
   // is not in the plane: it passes through the closed triangle iff it passes no two of its
   // edges on opposite sides.
-  const int s1 = sign(orient3d(a, b, p, q)), s2 = sign(orient3d(a, b, q, r)), s3 = sign(orient3d(a, b, r, p));
+  const int s1 = sign(orient3d(a, b, p, q)), s2 = sign(orient3d(a, b, q, r));
+  if (s1 * s2 < 0) return false;
+  const int s3 = sign(orient3d(a, b, r, p));
   const bool negative = s1 < 0 || s2 < 0 || s3 < 0, positive = s1 > 0 || s2 > 0 || s3 > 0;
   return !(negative && positive);
+}
+
+}  // namespace
+
+bool segment_meets_triangle_exact(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r) {
+  const int oa = sign(orient3d(p, q, r, a));
+  const int ob = sign(orient3d(p, q, r, b));
+  return segment_with_sides_meets_triangle(a, b, oa, ob, p, q, r);
 }
 
 bool triangles_meet_exact(const Vec3 a[3], const Vec3 b[3]) {
@@ -99,8 +113,9 @@ bool triangles_meet_exact(const Vec3 a[3], const Vec3 b[3]) {
   // common part ends on an edge of one of them; where they are coplanar, edges cross or one
   // triangle holds the other, whose edges then lie in it.
   for (int k = 0; k < 3; ++k) {
-    if (segment_meets_triangle_exact(a[k], a[(k + 1) % 3], b[0], b[1], b[2])) return true;
-    if (segment_meets_triangle_exact(b[k], b[(k + 1) % 3], a[0], a[1], a[2])) return true;
+    const int j = (k + 1) % 3;
+    if (segment_with_sides_meets_triangle(a[k], a[j], side_a[k], side_a[j], b[0], b[1], b[2])) return true;
+    if (segment_with_sides_meets_triangle(b[k], b[j], side_b[k], side_b[j], a[0], a[1], a[2])) return true;
   }
   return false;
 }
