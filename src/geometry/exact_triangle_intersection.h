@@ -14,6 +14,14 @@
 
 namespace offsetopt {
 
+// Signs of orient3d (geometry/convex_hull_3d.h: > 0 when d is on the side (b − a) × (c − a)
+// points to) and orient2d, exact, with a second filter in extended precision between the
+// floating-point one and the exact expansions: surfaces with flat regions (a contoured cavity
+// under a CAD face) put many corners within rounding of one plane, where the first filter
+// cannot decide and the expansions would be the bulk of a search.
+int orient3d_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d);
+int orient2d_sign(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
+
 // The three points lie on one line (two equal points included): the triangle has no plane.
 // CGAL's self-intersection search reports such a face by itself and tests it against nothing.
 bool collinear_exact(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r);

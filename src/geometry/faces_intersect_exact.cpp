@@ -21,10 +21,9 @@ bool same_side_in_plane(const Eigen::Vector3d& u, const Eigen::Vector3d& w, cons
   for (const int axis : order) {
     const int i = (axis + 1) % 3, j = (axis + 2) % 3;
     const Eigen::Vector2d u2(u[i], u[j]), w2(w[i], w[j]);
-    const double side_r = orient2d(u2, w2, Eigen::Vector2d(r[i], r[j]));
-    if (side_r == 0.0) continue;
-    const double side_s = orient2d(u2, w2, Eigen::Vector2d(s[i], s[j]));
-    return (side_r > 0 && side_s > 0) || (side_r < 0 && side_s < 0);
+    const int side_r = orient2d_sign(u2, w2, Eigen::Vector2d(r[i], r[j]));
+    if (side_r == 0) continue;
+    return side_r * orient2d_sign(u2, w2, Eigen::Vector2d(s[i], s[j])) > 0;
   }
   return false;
 }
@@ -51,7 +50,7 @@ bool faces_intersect_exact(const Eigen::Vector3d f[3], const int f_ids[3], const
   const Eigen::Vector3d& w = f[in_f[1]];
   const Eigen::Vector3d& r = f[3 - in_f[0] - in_f[1]];
   const Eigen::Vector3d& s = g[3 - in_g[0] - in_g[1]];
-  return orient3d(u, w, r, s) == 0.0 && same_side_in_plane(u, w, r, s);
+  return orient3d_sign(u, w, r, s) == 0 && same_side_in_plane(u, w, r, s);
 }
 
 }  // namespace offsetopt

@@ -89,7 +89,7 @@ long long pairs_of(const std::vector<V3>& points, const std::vector<std::array<i
 
 }  // namespace
 
-TEST_CASE("check's pair rule on hand-built pairs: touching along an edge or at a corner, or coplanar and adjacent, is no pair; crossing, folding and touching apart are") {
+TEST_CASE("check's pair rule on hand-built pairs: touching along an edge or at a corner, or coplanar and adjacent, is no pair, crossing, folding and touching apart are") {
   const double tiny = std::ldexp(1.0, -40);
   // A common edge 0-1, the third corners on opposite sides in one plane: one flat surface.
   CHECK(pairs_of({V3(0, 0, 0), V3(4, 0, 0), V3(2, 3, 0), V3(2, -3, 0)}, {{0, 1, 2}, {1, 0, 3}}) == 0);
