@@ -71,7 +71,7 @@ TEST_CASE("a CAD wall that nearest-float rounding folds is re-rounded to float32
   CHECK(r.outer.F == wall.F);
 }
 
-TEST_CASE("exact precision leaves the meshes as they are; the wall margin is 0 there and covers the moves in float32") {
+TEST_CASE("exact precision leaves the meshes as they are, and the wall margin is 0 there and covers the moves in float32") {
   const Mesh wall = cad_wall();
   const Mesh empty{Vertices(0, 3), Faces(0, 3)};
   const RoundedForOutput r = round_for_output(wall, empty, {}, StoredPrecision::exact);
