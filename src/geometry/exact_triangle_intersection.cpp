@@ -32,8 +32,8 @@ Vec2 drop(const Vec3& p, int axis) {
 // always it, decided by orient2d's floating-point filter.
 int plane_axis(const Vec3& p, const Vec3& q, const Vec3& r) {
   const Vec3 n = (q - p).cross(r - p).cwiseAbs();
-  int order[3] = {0, 1, 2};
-  std::sort(order, order + 3, [&n](int a, int b) { return n[a] > n[b] || (n[a] == n[b] && a < b); });
+  const int first = n.x() >= n.y() ? (n.x() >= n.z() ? 0 : 2) : (n.y() >= n.z() ? 1 : 2);
+  const int order[3] = {first, (first + 1) % 3, (first + 2) % 3};
   for (const int axis : order)
     if (orient2d_sign(drop(p, axis), drop(q, axis), drop(r, axis)) != 0) return axis;
   return -1;
@@ -75,6 +75,27 @@ bool coplanar_segment_meets_triangle(const Vec3& a, const Vec3& b, const Vec3& p
 
 }  // namespace
 
+namespace {
+
+// Three points sharing two coordinates lie on one axis-parallel line.
+bool on_axis_line(const Vec3& p, const Vec3& q, const Vec3& r) {
+  int shared = 0;
+  for (int k = 0; k < 3; ++k) shared += p[k] == q[k] && p[k] == r[k] ? 1 : 0;
+  return shared >= 2;
+}
+
+// Zero determinants that comparisons decide: the four points on one axis-aligned plane, or three
+// of them on one axis-parallel line. Real inputs are full of both (a posed base at z = 0,
+// vertical walls with stacked vertices, contoured cavities on grid planes), and each would
+// otherwise go through both filters and the exact expansions.
+bool exactly_degenerate(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  for (int k = 0; k < 3; ++k)
+    if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return true;
+  return on_axis_line(a, b, c) || on_axis_line(a, b, d) || on_axis_line(a, c, d) || on_axis_line(b, c, d);
+}
+
+}  // namespace
+
 int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const Vec3 u = b - a, v = c - a, w = d - a;
   const double det = u.x() * (v.y() * w.z() - v.z() * w.y()) - u.y() * (v.x() * w.z() - v.z() * w.x()) +
@@ -83,6 +104,7 @@ int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
                            std::fabs(u.y()) * (std::fabs(v.x() * w.z()) + std::fabs(v.z() * w.x())) +
                            std::fabs(u.z()) * (std::fabs(v.x() * w.y()) + std::fabs(v.y() * w.x()));
   if (std::fabs(det) > 1e-14 * permanent) return sign(det);
+  if (exactly_degenerate(a, b, c, d)) return 0;
   // The same evaluation in x87 extended precision (unit roundoff 2^-64): Shewchuk's bound for it
   // is (7 + 56 eps) eps = 3.8e-19 of the permanent; 1e-18 leaves a margin.
   long double U[3], W[3], X[3];

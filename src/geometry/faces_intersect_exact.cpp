@@ -16,8 +16,8 @@ namespace {
 bool same_side_in_plane(const Eigen::Vector3d& u, const Eigen::Vector3d& w, const Eigen::Vector3d& r,
                         const Eigen::Vector3d& s) {
   const Eigen::Vector3d n = (w - u).cross(r - u).cwiseAbs();
-  int order[3] = {0, 1, 2};
-  std::sort(order, order + 3, [&n](int a, int b) { return n[a] > n[b] || (n[a] == n[b] && a < b); });
+  const int first = n.x() >= n.y() ? (n.x() >= n.z() ? 0 : 2) : (n.y() >= n.z() ? 1 : 2);
+  const int order[3] = {first, (first + 1) % 3, (first + 2) % 3};
   for (const int axis : order) {
     const int i = (axis + 1) % 3, j = (axis + 2) % 3;
     const Eigen::Vector2d u2(u[i], u[j]), w2(w[i], w[j]);

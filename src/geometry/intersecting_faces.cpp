@@ -10,13 +10,24 @@
 
 namespace offsetopt {
 
-bool mesh_faces_intersect(const TriangleBvh& bvh, int f, int g) {
+namespace {
+
+// The rule for two faces whose corners are known not to be collinear.
+bool planar_faces_intersect(const TriangleBvh& bvh, int f, int g) {
   const auto& F = bvh.faces();
   const Eigen::Vector3d a[3] = {bvh.corner(f, 0), bvh.corner(f, 1), bvh.corner(f, 2)};
   const Eigen::Vector3d b[3] = {bvh.corner(g, 0), bvh.corner(g, 1), bvh.corner(g, 2)};
-  if (collinear_exact(a[0], a[1], a[2]) || collinear_exact(b[0], b[1], b[2])) return false;
   const int ids_f[3] = {F(f, 0), F(f, 1), F(f, 2)}, ids_g[3] = {F(g, 0), F(g, 1), F(g, 2)};
   return faces_intersect_exact(a, ids_f, b, ids_g);
+}
+
+bool collinear_face(const TriangleBvh& bvh, int f) { return collinear_exact(bvh.corner(f, 0), bvh.corner(f, 1), bvh.corner(f, 2)); }
+
+}  // namespace
+
+bool mesh_faces_intersect(const TriangleBvh& bvh, int f, int g) {
+  if (collinear_face(bvh, f) || collinear_face(bvh, g)) return false;
+  return planar_faces_intersect(bvh, f, g);
 }
 
 bool unrelated_faces_meet(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]) {
@@ -44,8 +55,15 @@ bool record_pair(IntersectingFaces& out, int f, int g, std::size_t max_pairs) {
 
 IntersectingFaces self_intersections_from(const TriangleBvh& bvh, std::vector<std::pair<int, int>> start, std::size_t max_pairs) {
   IntersectingFaces out;
+  // Collinearity once per face, on demand (each face meets about 15 candidates).
+  std::vector<signed char> collinear(static_cast<std::size_t>(bvh.faces().rows()), -1);
+  auto flat = [&](int f) {
+    signed char& c = collinear[static_cast<std::size_t>(f)];
+    if (c < 0) c = collinear_face(bvh, f) ? 1 : 0;
+    return c == 1;
+  };
   traverse_face_pairs(bvh, bvh, true, std::move(start), [&](int f, int g) {
-    if (!bvh.face_box(f).overlaps(bvh.face_box(g)) || !mesh_faces_intersect(bvh, f, g)) return true;
+    if (!bvh.face_box(f).overlaps(bvh.face_box(g)) || flat(f) || flat(g) || !planar_faces_intersect(bvh, f, g)) return true;
     return record_pair(out, std::min(f, g), std::max(f, g), max_pairs);
   });
   std::sort(out.pairs.begin(), out.pairs.end());
