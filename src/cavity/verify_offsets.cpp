@@ -290,6 +290,16 @@ Verification verify_offsets(const VerifyInput& in) {
                                                           " thin at inner vertex " + std::to_string(defects.thinnest_vertex) +
                                                           ", less than the requested " + format_double(in.wall));
   check.require(in.bound_violation <= 1e-6 * diag, "the offsets leave their bounds by " + format_double(in.bound_violation));
+  v.precision = in.precision;
+  if (in.rounding) {
+    v.vertices_moved_for_rounding = in.rounding->vertices_moved;
+    v.rounding_new_defects = in.rounding->outer_new_pairs + in.rounding->inner_new_pairs;
+    check.require(v.rounding_new_defects == 0,
+                  "rounded to float32 as the STL file stores it, the surfaces have " + std::to_string(v.rounding_new_defects) +
+                      " self-intersecting face pairs or collinear faces that the unrounded surfaces lack (outer " +
+                      std::to_string(in.rounding->outer_new_pairs) + ", cavity " + std::to_string(in.rounding->inner_new_pairs) +
+                      "); a .ply, .obj or .3mf output keeps every digit");
+  }
   out.valid = out.failures.size() == goal_failures;
   return out;
 }

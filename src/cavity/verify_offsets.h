@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "cavity/round_for_output.h"
 #include "mesh/mesh.h"
 #include "shape/goal.h"
 
@@ -47,6 +48,10 @@ struct VerifyInput {
   int threads = 2;              // for the intersection and wall searches; same result for any count
   bool goal_only = false;       // the goal's figures only: `valid` stays false and no validity
                                 // figure is measured (a contour that will be corrected anyway)
+  // When outer and inner are the meshes as they read back from the files (round_for_output.h):
+  // the defects the rounding made and could not undo, refused like any other.
+  const RoundedForOutput* rounding = nullptr;
+  StoredPrecision precision = StoredPrecision::exact;
 };
 
 // Whether the solid stands on its support polygon (mass/stability.h), input units.
@@ -92,6 +97,11 @@ struct ValidityFigures {
   std::optional<double> min_wall_measured;  // absent when no cavity vertex was measured
   int min_wall_vertex = -1;
   double largest_bound_violation = 0.0;
+  // The precision the surfaces were verified at (that of the files written) and what rounding to
+  // it took: vertices moved off their nearest float32 point, defects it left (0 when verified).
+  StoredPrecision precision = StoredPrecision::exact;
+  int vertices_moved_for_rounding = 0;
+  long long rounding_new_defects = 0;
 };
 
 struct Verification {

@@ -203,6 +203,9 @@ int run_optimize(const Args& args) {
     throw UsageError("--goal volume needs --target-volume V");
   for (const std::string* path : {&output, &report_path, &inner_path, &outer_path, &skeleton_path, &preview_path})
     if (!path->empty()) refuse_overwriting_input(*path, {mesh_path});
+  // Verified as the files read back: float32 when any surface of the solid goes to an STL.
+  for (const std::string* path : {&output, &inner_path, &outer_path})
+    if (!path->empty() && stored_precision(*path) == StoredPrecision::float32) options.output_precision = StoredPrecision::float32;
 
   const auto load_start = std::chrono::steady_clock::now();
   LoadOptions load_options;

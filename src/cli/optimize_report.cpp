@@ -262,6 +262,14 @@ Json verification_json(const Verification& verification) {
     m["min_wall_measured"] = v->min_wall_measured ? Json(*v->min_wall_measured) : Json();
     m["min_wall_vertex"] = v->min_wall_vertex;
     m["largest_bound_violation"] = v->largest_bound_violation;
+    if (v->precision == StoredPrecision::float32) {
+      // Verified as an STL reads back (absent for .ply, .obj, .3mf outputs, which keep every digit).
+      Json rounding = Json::object();
+      rounding["precision"] = "float32";
+      rounding["vertices_moved"] = v->vertices_moved_for_rounding;
+      rounding["new_defects"] = v->rounding_new_defects;
+      m["rounded_for_output"] = rounding;
+    }
     m["goal_met"] = verification.goal_met;
     m["valid"] = verification.valid;
     m["failures"] = strings(verification.failures);

@@ -45,6 +45,8 @@ double orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen:
   // Shewchuk's bound for the plain evaluation: (3 + 16 eps) eps (|left| + |right|), eps = 2^-53.
   const double bound = 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right));
   if (std::fabs(det) > bound) return det;
+  // Three points on one axis-parallel line are collinear (projections of grid-plane points).
+  if ((a.x() == b.x() && a.x() == c.x()) || (a.y() == b.y() && a.y() == c.y())) return 0.0;
   return orient2d_exact(a, b, c);
 }
 

@@ -13,6 +13,23 @@ namespace offsetopt {
 
 namespace {
 
+// grow_expansion (util/exact_expansion.h) dropping zero components: the expansion stays exact
+// and short. Coplanar inputs (every call of a flat CAD face's fan) end here, and most of the
+// 192 products below are zero because most coordinate differences are exact.
+void grow_without_zeros(std::array<double, 200>& e, std::size_t& length, double term) {
+  if (term == 0.0) return;
+  double q = term;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < length; ++i) {
+    double sum, error;
+    two_sum(q, e[i], sum, error);
+    if (error != 0.0) e[kept++] = error;
+    q = sum;
+  }
+  if (q != 0.0) e[kept++] = q;
+  length = kept;
+}
+
 double orient3d_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
   // det [b − a; c − a; d − a], each difference an exact (value, error) pair, each of the 6 × 8
   // triple products an exact sum of 4 doubles.
@@ -30,19 +47,20 @@ double orient3d_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const 
     for (int i = 0; i < 2; ++i)
       for (int j = 0; j < 2; ++j)
         for (int k = 0; k < 2; ++k) {
+          const double x = u[t[0]][i], y = v[t[1]][j], z = w[t[2]][k];
+          if (x == 0.0 || y == 0.0 || z == 0.0) continue;
           double p1, e1, p2, e2, p3, e3;
-          two_product(u[t[0]][i], v[t[1]][j], p1, e1);
-          two_product(p1, w[t[2]][k], p2, e2);
-          two_product(e1, w[t[2]][k], p3, e3);
+          two_product(x, y, p1, e1);
+          two_product(p1, z, p2, e2);
+          two_product(e1, z, p3, e3);
           const double sign = t[3];
-          grow_expansion(expansion, length, sign * e3);
-          grow_expansion(expansion, length, sign * e2);
-          grow_expansion(expansion, length, sign * p3);
-          grow_expansion(expansion, length, sign * p2);
+          grow_without_zeros(expansion, length, sign * e3);
+          grow_without_zeros(expansion, length, sign * e2);
+          grow_without_zeros(expansion, length, sign * p3);
+          grow_without_zeros(expansion, length, sign * p2);
         }
-  for (std::size_t i = length; i-- > 0;)
-    if (expansion[i] != 0.0) return expansion[i];
-  return 0.0;
+  // Nonoverlapping and sorted by magnitude: the last component carries the sign.
+  return length == 0 ? 0.0 : expansion[length - 1];
 }
 
 struct HullFace {
@@ -246,6 +264,10 @@ double orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen:
                            std::fabs(u.z()) * (std::fabs(v.x() * w.y()) + std::fabs(v.y() * w.x()));
   // Shewchuk's bound for this evaluation is 7.8e-16 x permanent; 1e-14 leaves a wide margin.
   if (std::fabs(det) > 1e-14 * permanent) return det;
+  // Four points on one axis-aligned plane are coplanar: contoured cavities put their vertices on
+  // grid planes, and their exact zeros would otherwise all take the slow path.
+  for (int k = 0; k < 3; ++k)
+    if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return 0.0;
   return orient3d_exact(a, b, c, d);
 }
 

@@ -5,35 +5,42 @@
 #include <array>
 #include <iterator>
 
-#include "geometry/triangle_triangle.h"
+#include "geometry/exact_triangle_intersection.h"
+#include "geometry/faces_intersect_exact.h"
 
 namespace offsetopt {
 
-bool mesh_faces_intersect(const TriangleBvh& bvh, int f, int g) {
+namespace {
+
+// The rule for two faces whose corners are known not to be collinear.
+bool planar_faces_intersect(const TriangleBvh& bvh, int f, int g) {
   const auto& F = bvh.faces();
-  std::array<int, 3> shared_in_f{}, shared_in_g{};
-  int shared = 0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (F(f, i) == F(g, j)) {
-        shared_in_f[static_cast<std::size_t>(shared)] = i;
-        shared_in_g[static_cast<std::size_t>(shared)] = j;
-        ++shared;
-      }
-  const Eigen::Vector3d p1 = bvh.corner(f, 0), q1 = bvh.corner(f, 1), r1 = bvh.corner(f, 2);
-  const Eigen::Vector3d p2 = bvh.corner(g, 0), q2 = bvh.corner(g, 1), r2 = bvh.corner(g, 2);
-  if (shared == 0) return triangles_intersect(p1, q1, r1, p2, q2, r2);
-  if (shared >= 3) return true;
-  if (shared == 2) {
-    const Eigen::Vector3d nf = (q1 - p1).cross(r1 - p1), ng = (q2 - p2).cross(r2 - p2);
-    const double sine = nf.cross(ng).norm(), scale = nf.norm() * ng.norm();
-    return nf.dot(ng) < 0.0 && sine <= 1e-9 * scale;
-  }
-  // One shared vertex: test the opposite edge of each face against the other face.
-  const int sf = shared_in_f[0], sg = shared_in_g[0];
-  const Eigen::Vector3d fa = bvh.corner(f, (sf + 1) % 3), fb = bvh.corner(f, (sf + 2) % 3);
-  const Eigen::Vector3d ga = bvh.corner(g, (sg + 1) % 3), gb = bvh.corner(g, (sg + 2) % 3);
-  return segment_intersects_triangle(fa, fb, p2, q2, r2) || segment_intersects_triangle(ga, gb, p1, q1, r1);
+  const Eigen::Vector3d a[3] = {bvh.corner(f, 0), bvh.corner(f, 1), bvh.corner(f, 2)};
+  const Eigen::Vector3d b[3] = {bvh.corner(g, 0), bvh.corner(g, 1), bvh.corner(g, 2)};
+  const int ids_f[3] = {F(f, 0), F(f, 1), F(f, 2)}, ids_g[3] = {F(g, 0), F(g, 1), F(g, 2)};
+  return faces_intersect_exact(a, ids_f, b, ids_g);
+}
+
+bool collinear_face(const TriangleBvh& bvh, int f) { return collinear_exact(bvh.corner(f, 0), bvh.corner(f, 1), bvh.corner(f, 2)); }
+
+}  // namespace
+
+bool mesh_faces_intersect(const TriangleBvh& bvh, int f, int g) {
+  if (collinear_face(bvh, f) || collinear_face(bvh, g)) return false;
+  return planar_faces_intersect(bvh, f, g);
+}
+
+bool unrelated_faces_meet(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]) {
+  const bool flat_a = collinear_exact(a[0], a[1], a[2]), flat_b = collinear_exact(b[0], b[1], b[2]);
+  if (flat_a && flat_b) return false;  // neither has a plane: both are reported by themselves
+  if (!flat_a && !flat_b) return triangles_meet_exact(a, b);
+  // A collinear triangle is the union of its edges.
+  const Eigen::Vector3d* line = flat_a ? a : b;
+  const Eigen::Vector3d* face = flat_a ? b : a;
+  for (int k = 0; k < 3; ++k)
+    if (line[k] != line[(k + 1) % 3] && segment_meets_triangle_exact(line[k], line[(k + 1) % 3], face[0], face[1], face[2]))
+      return true;
+  return false;
 }
 
 namespace {
@@ -48,8 +55,15 @@ bool record_pair(IntersectingFaces& out, int f, int g, std::size_t max_pairs) {
 
 IntersectingFaces self_intersections_from(const TriangleBvh& bvh, std::vector<std::pair<int, int>> start, std::size_t max_pairs) {
   IntersectingFaces out;
+  // Collinearity once per face, on demand (each face meets about 15 candidates).
+  std::vector<signed char> collinear(static_cast<std::size_t>(bvh.faces().rows()), -1);
+  auto flat = [&](int f) {
+    signed char& c = collinear[static_cast<std::size_t>(f)];
+    if (c < 0) c = collinear_face(bvh, f) ? 1 : 0;
+    return c == 1;
+  };
   traverse_face_pairs(bvh, bvh, true, std::move(start), [&](int f, int g) {
-    if (!bvh.face_box(f).overlaps(bvh.face_box(g)) || !mesh_faces_intersect(bvh, f, g)) return true;
+    if (!bvh.face_box(f).overlaps(bvh.face_box(g)) || flat(f) || flat(g) || !planar_faces_intersect(bvh, f, g)) return true;
     return record_pair(out, std::min(f, g), std::max(f, g), max_pairs);
   });
   std::sort(out.pairs.begin(), out.pairs.end());
@@ -86,9 +100,10 @@ IntersectingFaces merge_intersections(const IntersectingFaces& a, const Intersec
 IntersectingFaces intersecting_faces(const TriangleBvh& a, const TriangleBvh& b, std::size_t max_pairs) {
   IntersectingFaces out;
   traverse_face_pairs(a, b, false, {{0, 0}}, [&](int f, int g) {
-    if (!a.face_box(f).overlaps(b.face_box(g)) ||
-        !triangles_intersect(a.corner(f, 0), a.corner(f, 1), a.corner(f, 2), b.corner(g, 0), b.corner(g, 1), b.corner(g, 2)))
-      return true;
+    if (!a.face_box(f).overlaps(b.face_box(g))) return true;
+    const Eigen::Vector3d p[3] = {a.corner(f, 0), a.corner(f, 1), a.corner(f, 2)};
+    const Eigen::Vector3d q[3] = {b.corner(g, 0), b.corner(g, 1), b.corner(g, 2)};
+    if (!unrelated_faces_meet(p, q)) return true;
     return record_pair(out, f, g, max_pairs);
   });
   std::sort(out.pairs.begin(), out.pairs.end());

@@ -1,12 +1,13 @@
 // Pairs of intersecting triangles found by a simultaneous traversal of two BVHs (or of one BVH
-// with itself): self-intersections of an offset surface, crossings between an inner and an
-// outer surface. Face tests are geometry/triangle_triangle.h.
+// with itself): self-intersections of an offset surface or a cavity, crossings between an inner
+// and an outer surface. Every decision is exact (geometry/exact_triangle_intersection.h).
 //
-// Within one mesh, faces that share vertices touch by construction and only count when they
-// overlap beyond what they share: two faces on a common edge intersect when they are folded onto
-// each other (normals opposite within 1e-9 rad); two faces on a common vertex intersect when the
-// edge opposite that vertex in one meets the other. Faces sharing all three vertices (duplicates)
-// are reported. Between two meshes, faces are unrelated and any contact counts.
+// Within one mesh the rule is geometry/faces_intersect_exact.h's (CGAL's self_intersections
+// semantics) with corners compared by vertex index: faces on a common edge count only when
+// coplanar and folded onto each other, faces on a common vertex when the edge opposite it in one
+// meets the other, duplicates always; faces with collinear corners are not tested (a caller that
+// must refuse them counts them itself). Between two meshes, faces are unrelated and any contact
+// counts; a collinear face is tested as its edges.
 #pragma once
 #include <utility>
 #include <vector>
@@ -36,5 +37,8 @@ IntersectingFaces intersecting_faces(const TriangleBvh& a, const TriangleBvh& b,
 
 // The rule above for two faces of one mesh, exposed for tests.
 bool mesh_faces_intersect(const TriangleBvh& bvh, int f, int g);
+
+// The rule above for two faces of different meshes.
+bool unrelated_faces_meet(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]);
 
 }  // namespace offsetopt

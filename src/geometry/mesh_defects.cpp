@@ -8,7 +8,8 @@
 #include <vector>
 
 #include "geometry/bvh.h"
-#include "geometry/triangle_triangle.h"
+#include "geometry/exact_triangle_intersection.h"
+#include "geometry/faces_intersect_exact.h"
 
 namespace offsetopt {
 
@@ -58,102 +59,6 @@ struct VirtualCorner {
   int edge;
 };
 
-// 2-D orientation of (a, b, c), 0 within a relative 1e-12 (collinear in exact arithmetic: the
-// corners of two faces of one cone strip lie on a common ruling).
-double orient2(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
-  const Eigen::Vector2d u = b - a, v = c - a;
-  const double o = u.x() * v.y() - u.y() * v.x();
-  return std::fabs(o) <= 1e-12 * u.norm() * v.norm() ? 0.0 : o;
-}
-
-bool in_box(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
-  return std::min(a.x(), b.x()) <= p.x() && p.x() <= std::max(a.x(), b.x()) && std::min(a.y(), b.y()) <= p.y() &&
-         p.y() <= std::max(a.y(), b.y());
-}
-
-bool segments_meet(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
-  const double o1 = orient2(a, b, c), o2 = orient2(a, b, d), o3 = orient2(c, d, a), o4 = orient2(c, d, b);
-  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) return true;
-  return (o1 == 0 && in_box(a, b, c)) || (o2 == 0 && in_box(a, b, d)) || (o3 == 0 && in_box(c, d, a)) ||
-         (o4 == 0 && in_box(c, d, b));
-}
-
-bool inside_triangle(const Eigen::Vector2d& p, const Eigen::Vector2d t[3]) {
-  const double d1 = orient2(t[0], t[1], p), d2 = orient2(t[1], t[2], p), d3 = orient2(t[2], t[0], p);
-  return !((d1 < 0 || d2 < 0 || d3 < 0) && (d1 > 0 || d2 > 0 || d3 > 0));
-}
-
-// Coplanar closed triangles meet: in the projection dropping the normal's dominant axis, an edge
-// of one meets an edge of the other, or one contains a corner of the other.
-bool coplanar_triangles_meet(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3], const Eigen::Vector3d& normal) {
-  int axis = 0;
-  for (int k = 1; k < 3; ++k)
-    if (std::fabs(normal[k]) > std::fabs(normal[axis])) axis = k;
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  Eigen::Vector2d pa[3], pb[3];
-  for (int k = 0; k < 3; ++k) {
-    pa[k] = Eigen::Vector2d(a[k][u], a[k][v]);
-    pb[k] = Eigen::Vector2d(b[k][u], b[k][v]);
-  }
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (segments_meet(pa[i], pa[(i + 1) % 3], pb[j], pb[(j + 1) % 3])) return true;
-  return inside_triangle(pa[0], pb) || inside_triangle(pb[0], pa);
-}
-
-// Closed triangles a and b, no corner shared, meet. Guigue-Devillers (triangle_triangle.h) on
-// plain doubles takes the signs of distances that are exactly zero in exact arithmetic from
-// rounding: surfaces of revolution put a corner of one face exactly on the plane of a face two
-// rings away (a straight meridian), and its sign picks a wrong case (134 false pairs on the demo
-// bottle). Here a corner within a relative 1e-12 of the other plane is on it, and the two
-// intervals in which the triangles meet the planes' common line are compared.
-bool separate_triangles_meet_impl(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]) {
-  double size = 0.0, magnitude = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    size = std::max({size, (a[k] - a[(k + 1) % 3]).norm(), (b[k] - b[(k + 1) % 3]).norm(), (a[k] - b[0]).norm()});
-    magnitude = std::max({magnitude, a[k].cwiseAbs().maxCoeff(), b[k].cwiseAbs().maxCoeff()});
-  }
-  const double tolerance = 1e-12 * (size + magnitude);
-  const Eigen::Vector3d na = (a[1] - a[0]).cross(a[2] - a[0]), nb = (b[1] - b[0]).cross(b[2] - b[0]);
-  const double la = na.norm(), lb = nb.norm();
-  if (!(la > 0.0) || !(lb > 0.0)) return triangles_intersect(a[0], a[1], a[2], b[0], b[1], b[2]);
-  // Signed distances to the other plane, snapped to 0 within the tolerance.
-  double da[3], db[3];
-  for (int k = 0; k < 3; ++k) {
-    da[k] = (a[k] - b[0]).dot(nb) / lb;
-    db[k] = (b[k] - a[0]).dot(na) / la;
-    if (std::fabs(da[k]) <= tolerance) da[k] = 0.0;
-    if (std::fabs(db[k]) <= tolerance) db[k] = 0.0;
-  }
-  auto one_side = [](const double d[3]) {
-    return (d[0] > 0 && d[1] > 0 && d[2] > 0) || (d[0] < 0 && d[1] < 0 && d[2] < 0);
-  };
-  if (one_side(da) || one_side(db)) return false;
-  const Eigen::Vector3d line = na.cross(nb);
-  const bool coplanar = (da[0] == 0 && da[1] == 0 && da[2] == 0) || (db[0] == 0 && db[1] == 0 && db[2] == 0) ||
-                        line.norm() <= 1e-12 * la * lb;
-  if (coplanar) return coplanar_triangles_meet(a, b, na);
-  // Not coplanar: the interval of each triangle on the common line, as parameters along `line`.
-  auto interval = [&line](const Eigen::Vector3d p[3], const double d[3], double& lo, double& hi) {
-    lo = HUGE_VAL;
-    hi = -HUGE_VAL;
-    auto take = [&](const Eigen::Vector3d& x) {
-      const double t = x.dot(line);
-      lo = std::min(lo, t);
-      hi = std::max(hi, t);
-    };
-    for (int k = 0; k < 3; ++k) {
-      const int j = (k + 1) % 3;
-      if (d[k] == 0.0) take(p[k]);
-      if ((d[k] > 0 && d[j] < 0) || (d[k] < 0 && d[j] > 0)) take(p[k] + (p[j] - p[k]) * (d[k] / (d[k] - d[j])));
-    }
-  };
-  double alo, ahi, blo, bhi;
-  interval(a, da, alo, ahi);
-  interval(b, db, blo, bhi);
-  return std::max(alo, blo) <= std::min(ahi, bhi);
-}
-
 constexpr std::size_t kMaxVirtualCorners = 64;  // per face; T-junction chains are short
 constexpr int kMaxPropagationRounds = 16;
 constexpr std::size_t kMaxPinchGroup = 256;  // vertices at one position checked pair by pair
@@ -163,21 +68,39 @@ class PairRule {
   explicit PairRule(const Mesh& mesh) : mesh_(mesh), canonical_(canonical_vertices(mesh.V)) {
     const Eigen::Index nf = mesh.F.rows();
     corners_.resize(static_cast<std::size_t>(nf));
-    zero_area_.assign(static_cast<std::size_t>(nf), 0);
+    collinear_.assign(static_cast<std::size_t>(nf), 0);
+    sliver_.assign(static_cast<std::size_t>(nf), 0);
     virtual_.resize(static_cast<std::size_t>(nf));
     for (Eigen::Index f = 0; f < nf; ++f) {
       auto& c = corners_[static_cast<std::size_t>(f)];
       for (int k = 0; k < 3; ++k) c[static_cast<std::size_t>(k)] = canonical_[static_cast<std::size_t>(mesh.F(f, k))];
       const bool distinct = c[0] != c[1] && c[1] != c[2] && c[0] != c[2];
-      const Eigen::Vector3d n = (corner(f, 1) - corner(f, 0)).cross(corner(f, 2) - corner(f, 0));
-      zero_area_[static_cast<std::size_t>(f)] = distinct && n.x() == 0.0 && n.y() == 0.0 && n.z() == 0.0;
+      const bool collinear = collinear_exact(corner(f, 0), corner(f, 1), corner(f, 2));
+      collinear_[static_cast<std::size_t>(f)] = collinear;
+      sliver_[static_cast<std::size_t>(f)] = collinear && distinct;
     }
     link_t_junctions();
   }
 
-  bool zero_area(int f) const { return zero_area_[static_cast<std::size_t>(f)] != 0; }
+  // No plane: not tested (CGAL reports such a face by itself, as a pair (f, f)).
+  bool collinear(int f) const { return collinear_[static_cast<std::size_t>(f)] != 0; }
 
   bool intersect(int f, int g) const {
+    const auto& cf = corners_[static_cast<std::size_t>(f)];
+    const auto& cg = corners_[static_cast<std::size_t>(g)];
+    const Eigen::Vector3d pf[3] = {corner(f, 0), corner(f, 1), corner(f, 2)};
+    const Eigen::Vector3d pg[3] = {corner(g, 0), corner(g, 1), corner(g, 2)};
+    if (!faces_intersect_exact(pf, cf.data(), pg, cg.data())) return false;
+    if (virtual_[static_cast<std::size_t>(f)].empty() && virtual_[static_cast<std::size_t>(g)].empty()) return true;
+    return !joined_at_t_junction(f, g);
+  }
+
+ private:
+  // A pair the exact rule counts, but whose contact is only where a zero-area face closes a
+  // T-junction between them: the junction's middle corner is a corner of one face and lies on an
+  // edge of the other, so the two touch there by construction (as faces sharing a corner do).
+  // With that corner counted as shared, the rule of faces_intersect_exact.h applies again.
+  bool joined_at_t_junction(int f, int g) const {
     const auto& cf = corners_[static_cast<std::size_t>(f)];
     const auto& cg = corners_[static_cast<std::size_t>(g)];
     // Shared corners: (corner of f or -1, corner of g or -1, edge it lies on when virtual).
@@ -186,10 +109,12 @@ class PairRule {
     };
     std::array<Shared, 6> shared{};
     int count = 0;
+    bool any_virtual = false;
     auto note = [&](int vertex, int in_f, int in_g, int edge_of_f, int edge_of_g) {
       for (int s = 0; s < count; ++s)
         if (shared[static_cast<std::size_t>(s)].vertex == vertex) return;
       shared[static_cast<std::size_t>(count++)] = {vertex, in_f, in_g, edge_of_f, edge_of_g};
+      any_virtual = any_virtual || in_f < 0 || in_g < 0;
     };
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
@@ -200,39 +125,38 @@ class PairRule {
     for (const VirtualCorner& v : virtual_[static_cast<std::size_t>(f)])
       for (int j = 0; j < 3; ++j)
         if (cg[static_cast<std::size_t>(j)] == v.vertex) note(v.vertex, -1, j, v.edge, -1);
-
+    if (!any_virtual || count >= 3) return false;
     const Eigen::Vector3d p1 = corner(f, 0), q1 = corner(f, 1), r1 = corner(f, 2);
     const Eigen::Vector3d p2 = corner(g, 0), q2 = corner(g, 1), r2 = corner(g, 2);
-    if (count == 0) {
-      const Eigen::Vector3d a[3] = {p1, q1, r1}, b[3] = {p2, q2, r2};
-      return separate_triangles_meet_impl(a, b);
-    }
-    if (count >= 3) return true;
     if (count == 2) {
-      const Eigen::Vector3d nf = (q1 - p1).cross(r1 - p1), ng = (q2 - p2).cross(r2 - p2);
-      const double sine = nf.cross(ng).norm(), scale = nf.norm() * ng.norm();
-      return nf.dot(ng) < 0.0 && sine <= 1e-9 * scale;
+      // Both touch along the segment between the two shared points, which lies on an edge of
+      // each: they overlap only when coplanar and folded onto one side of it.
+      const Eigen::Vector3d u = mesh_.V.row(shared[0].vertex).transpose(), w = mesh_.V.row(shared[1].vertex).transpose();
+      const Eigen::Vector3d& off_f = !collinear_exact(u, w, p1) ? p1 : !collinear_exact(u, w, q1) ? q1 : r1;
+      const Eigen::Vector3d& off_g = !collinear_exact(u, w, p2) ? p2 : !collinear_exact(u, w, q2) ? q2 : r2;
+      const int ids[3] = {0, 1, 2}, other[3] = {0, 1, 3};
+      const Eigen::Vector3d a[3] = {u, w, off_f}, b[3] = {u, w, off_g};
+      return !faces_intersect_exact(a, ids, b, other);
     }
     const Shared& s = shared[0];
     bool hit = false;
     // The edge of each face opposite the shared corner, or, where the corner lies on an edge of
     // the face, the face's other two edges.
     if (s.in_f >= 0) {
-      hit = hit || segment_intersects_triangle(corner(f, (s.in_f + 1) % 3), corner(f, (s.in_f + 2) % 3), p2, q2, r2);
+      hit = hit || segment_meets_triangle_exact(corner(f, (s.in_f + 1) % 3), corner(f, (s.in_f + 2) % 3), p2, q2, r2);
     } else {
-      hit = hit || segment_intersects_triangle(corner(f, s.edge_of_f), corner(f, (s.edge_of_f + 1) % 3), p2, q2, r2) ||
-            segment_intersects_triangle(corner(f, s.edge_of_f), corner(f, (s.edge_of_f + 2) % 3), p2, q2, r2);
+      hit = hit || segment_meets_triangle_exact(corner(f, s.edge_of_f), corner(f, (s.edge_of_f + 1) % 3), p2, q2, r2) ||
+            segment_meets_triangle_exact(corner(f, s.edge_of_f), corner(f, (s.edge_of_f + 2) % 3), p2, q2, r2);
     }
     if (s.in_g >= 0) {
-      hit = hit || segment_intersects_triangle(corner(g, (s.in_g + 1) % 3), corner(g, (s.in_g + 2) % 3), p1, q1, r1);
+      hit = hit || segment_meets_triangle_exact(corner(g, (s.in_g + 1) % 3), corner(g, (s.in_g + 2) % 3), p1, q1, r1);
     } else {
-      hit = hit || segment_intersects_triangle(corner(g, s.edge_of_g), corner(g, (s.edge_of_g + 1) % 3), p1, q1, r1) ||
-            segment_intersects_triangle(corner(g, s.edge_of_g), corner(g, (s.edge_of_g + 2) % 3), p1, q1, r1);
+      hit = hit || segment_meets_triangle_exact(corner(g, s.edge_of_g), corner(g, (s.edge_of_g + 1) % 3), p1, q1, r1) ||
+            segment_meets_triangle_exact(corner(g, s.edge_of_g), corner(g, (s.edge_of_g + 2) % 3), p1, q1, r1);
     }
-    return hit;
+    return !hit;
   }
 
- private:
   Eigen::Vector3d corner(Eigen::Index f, int k) const { return mesh_.V.row(mesh_.F(f, k)).transpose(); }
 
   // The middle corner of each zero-area face becomes a virtual corner of the faces across the
@@ -245,8 +169,8 @@ class PairRule {
       }
     };
     std::vector<int> slivers;
-    for (std::size_t f = 0; f < zero_area_.size(); ++f)
-      if (zero_area_[f]) slivers.push_back(static_cast<int>(f));
+    for (std::size_t f = 0; f < sliver_.size(); ++f)
+      if (sliver_[f]) slivers.push_back(static_cast<int>(f));
     if (slivers.empty()) return;
     std::vector<EdgeFace> edges;
     edges.reserve(3 * corners_.size());
@@ -295,20 +219,17 @@ class PairRule {
   const Mesh& mesh_;
   std::vector<int> canonical_;
   std::vector<std::array<int, 3>> corners_;
-  std::vector<char> zero_area_;
+  std::vector<char> collinear_, sliver_;
   std::vector<std::vector<VirtualCorner>> virtual_;
 };
 
 }  // namespace
 
-bool separate_triangles_meet(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]) {
-  return separate_triangles_meet_impl(a, b);
-}
-
 SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap) {
   SelfIntersectionReport out;
   if (mesh.F.rows() == 0 || cap == 0 || !usable(mesh)) return out;
   const PairRule rule(mesh);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) out.collinear_faces += rule.collinear(static_cast<int>(f)) ? 1 : 0;
   const TriangleBvh bvh(mesh.V, mesh.F);
   std::pair<int, int> first{-1, -1};
   long long candidates = 0;
@@ -320,7 +241,7 @@ SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap
       out.truncated = true;
       return false;
     }
-    if (rule.zero_area(f) || rule.zero_area(g)) return true;
+    if (rule.collinear(f) || rule.collinear(g)) return true;
     if (!bvh.face_box(f).overlaps(bvh.face_box(g))) return true;
     if (!rule.intersect(f, g)) return true;
     const std::pair<int, int> pair{std::min(f, g), std::max(f, g)};

@@ -5,24 +5,16 @@
 //
 // Self-intersections (find_self_intersections): pairs of faces (f, g), f < g, numbered as rows of
 // mesh.F, whose closed triangles meet other than where the mesh joins them. A simultaneous
-// traversal of the face BVH with itself (geometry/bvh.h), exact face boxes, then a pair rule
-// like geometry/intersecting_faces.h's, with these differences:
-//   - corners are compared by position (vertices at one position count as one corner), so the
-//     faces of a pinch touching at the pinch point are not a pair (find_pinches reports those);
-//   - zero-area faces with three distinct collinear corners (CAD T-junction fillers) are not
-//     tested themselves, and their middle corner counts as a corner of every face across the
-//     edge it lies on (through chains of such faces), so the faces meeting at a T-junction are
-//     joined as if they shared it;
-//   - no shared corner: any contact counts, decided with corners within a relative 1e-12 of the
-//     other face's plane counted as on it (plain Guigue-Devillers, triangle_triangle.h, takes
-//     their signs from rounding and reported 1 to 134 false pairs on each demo mesh of
-//     revolution, whose cone strips put corners exactly on other faces' planes), then the two
-//     intervals on the planes' common line (or, coplanar, a 2-D test with snapped orientations);
-//   - one shared corner: the edges opposite it (or, for a corner one face has only on an edge,
-//     that face's other two edges) must meet the other face; two shared corners: the faces
-//     count only when folded onto each other (normals opposite within 1e-9 rad); three: a
-//     duplicate, always a pair (as in intersecting_faces.h).
-// Plain double arithmetic: faces that nearly touch (within the tolerance) may go either way.
+// traversal of the face BVH with itself (geometry/bvh.h), exact face boxes, then the exact pair
+// rule of geometry/faces_intersect_exact.h (CGAL's self_intersections semantics), with corners
+// compared by position (vertices at one position are one corner, as a reader that merges
+// duplicate points sees them; the faces of a pinch touching at the pinch point are then not a
+// pair, and find_pinches reports the pinch). Two things stay outside that rule:
+//   - faces with collinear corners (exactly) have no plane and are not tested; CGAL lists each
+//     as a pair (f, f), here they are counted apart (collinear_faces);
+//   - a zero-area face with three distinct corners (a CAD T-junction filler) joins the faces
+//     across its long edge at its middle corner: a pair whose only contact is that corner (through
+//     chains of such faces) is not counted, where CGAL counts it.
 // Stops after `cap` pairs, or after the candidate pairs below (work_cap_reached; truncated
 // then, and the first pair is the smallest of those found).
 // Cost: O(F log F) plus the overlapping face boxes; 0.75 to 2.1 s for the 346k faces of the
@@ -54,15 +46,10 @@ struct SelfIntersectionReport {
   bool work_cap_reached = false;  // stopped at the candidate-pair cap above
   long long candidate_pairs = 0;  // leaf face pairs visited (the cost)
   int first_face = -1, second_face = -1;  // the smallest pair found (first < second), or -1
+  long long collinear_faces = 0;  // faces with collinear corners, not tested
 };
 
 SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap = 1000000);
-
-// The test find_self_intersections applies to two faces without a shared corner, for callers
-// whose faces are unrelated (two meshes, e.g. a cavity against the outer surface): closed
-// triangles, touching counts, corners within a relative 1e-12 of the other plane count as on
-// it. Zero-area triangles are tested as their edges (triangle_triangle.h).
-bool separate_triangles_meet(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]);
 
 struct PinchReport {
   long long pairs = 0;  // vertex pairs at one position

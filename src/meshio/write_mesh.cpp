@@ -123,6 +123,13 @@ std::string mesh_to_bytes(const std::string& extension, const Mesh& mesh, const 
   throw MeshInputError("unsupported output extension '" + extension + "' (use .obj, .stl, .ply or .3mf)");
 }
 
+StoredPrecision stored_precision(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const auto dot = path.rfind('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return StoredPrecision::exact;
+  return lower(path.substr(dot)) == ".stl" ? StoredPrecision::float32 : StoredPrecision::exact;
+}
+
 void write_mesh(const std::string& path, const Mesh& mesh, const std::string& unit) {
   const auto slash = path.find_last_of('/');
   const auto dot = path.rfind('.');

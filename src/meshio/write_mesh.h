@@ -14,6 +14,12 @@ namespace offsetopt {
 // not scaled, only labelled); the other formats carry no unit and ignore it.
 void write_mesh(const std::string& path, const Mesh& mesh, const std::string& unit = "millimeter");
 
+// How the coordinates of a file written with that extension read back: STL stores float32, so
+// every coordinate comes back rounded to the nearest float; OBJ and 3MF store shortest
+// round-trip text and PLY float64, so they come back exactly. Unknown extensions: exact.
+enum class StoredPrecision { exact, float32 };
+StoredPrecision stored_precision(const std::string& path);
+
 // The same bytes write_mesh would put in a file with that extension.
 std::string mesh_to_bytes(const std::string& extension, const Mesh& mesh, const std::string& unit = "millimeter");
 

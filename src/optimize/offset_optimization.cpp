@@ -18,6 +18,7 @@
 #include "cavity/contour_cavity.h"
 #include "shape/offset_field.h"
 #include "cavity/printable_solid.h"
+#include "cavity/round_for_output.h"
 #include "cavity/verify_offsets.h"
 #include "optimize/quadric_void.h"
 #include "skeleton/laplacian_contraction.h"
@@ -442,6 +443,7 @@ class OffsetSolve {
 // written cavity", step 4): the goal is solved again on the offset model's integrals plus the
 // difference the contour made, warm-started, until the written solid verifies.
 struct Cavity {
+  Mesh outer;                  // the outer surface as written (rounded to the output's precision)
   Mesh written;                // the cavity's shells, normals out of the void
   Verification verification;
   CavitySummary summary;
@@ -461,13 +463,28 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
   verify_input.fixed = b.band.fixed;
   verify_input.bound_violation = solve.bound_violation();
   verify_input.threads = options.threads;
+  verify_input.precision = options.output_precision;
   c.verification = verify_offsets(verify_input);
+  // As written: rounded to the output's precision and verified again (only when it can pass:
+  // on real meshes the offset surface rarely verifies even unrounded).
+  RoundedForOutput offset_written;
+  if (options.output_precision != StoredPrecision::exact && c.verification.goal_met && c.verification.valid) {
+    offset_written = round_for_output(solve.outer, solve.inner, b.band.fixed, options.output_precision);
+    verify_input.outer = &offset_written.outer;
+    verify_input.inner = &offset_written.inner;
+    verify_input.rounding = &offset_written;
+    c.verification = verify_offsets(verify_input);
+  } else {
+    offset_written.outer = solve.outer;
+    offset_written.inner = solve.inner;
+  }
   timings.verify = seconds_since(stage_start);
   c.summary.mode = options.cavity;
   c.summary.offset_goal_met = c.verification.goal_met;
   c.summary.offset_valid = c.verification.valid;
   c.summary.offset_failures = c.verification.failures;
-  c.written = solve.inner;
+  c.outer = offset_written.outer;
+  c.written = offset_written.inner;
   const bool offset_verified = c.verification.goal_met && c.verification.valid;
   const bool want_contour = options.cavity == CavityMode::contour ||
                             (options.cavity == CavityMode::automatic && !offset_verified);
@@ -479,7 +496,9 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
   } else if (want_contour) {
     stage_start = Clock::now();
     ContourCavityOptions cavity_options;
-    cavity_options.wall = f.wall;
+    // The wall survives the rounding of both surfaces to the output's precision.
+    cavity_options.wall =
+        f.wall + rounding_wall_margin(solve.outer.V.size() ? solve.outer.V.cwiseAbs().maxCoeff() : 0.0, options.output_precision);
     cavity_options.cells_per_wall = options.cavity_cells_per_wall;
     cavity_options.margin_cells = options.cavity_margin_cells;
     cavity_options.threads = options.threads;
@@ -501,6 +520,7 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
       VerifyInput contour_input = verify_input;
       contour_input.outer = &solve.outer;
       contour_input.inner = &contoured.cavity;
+      contour_input.rounding = nullptr;
       contour_input.fixed.clear();
       contour_input.bound_violation = 0.0;  // the band bounds the offset model, not the contour
       // The goal first: a contour whose goal is missed and that a correction will replace needs
@@ -508,7 +528,12 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
       contour_input.goal_only = true;
       c.verification = verify_offsets(contour_input);
       const bool will_correct = !c.verification.goal_met && solve.constraints_met && round < options.max_correction_rounds;
+      RoundedForOutput written;
       if (!will_correct) {
+        written = round_for_output(solve.outer, contoured.cavity, {}, options.output_precision);
+        contour_input.outer = &written.outer;
+        contour_input.inner = &written.inner;
+        contour_input.rounding = &written;
         contour_input.goal_only = false;
         c.verification = verify_offsets(contour_input);
         // The verification measures the wall at vertices; the contour measured it at every face.
@@ -538,7 +563,8 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
       say("cavity round " + std::to_string(round) + ": " + std::to_string(contoured.active_cells) + " cells contoured, " +
           std::to_string(contoured.shells) + " shells, goal " + (c.verification.goal_met ? "met" : "not met") + ", " +
           (will_correct ? "corrected next" : c.verification.valid ? "valid" : "not valid"));
-      c.written = contoured.cavity;
+      c.outer = will_correct ? solve.outer : written.outer;
+      c.written = will_correct ? contoured.cavity : written.inner;
       // Stops at a verified contour, an invalid one (a correction cannot mend it), a goal whose
       // constraints the solver could not meet, or the last round.
       if (!will_correct) break;
@@ -631,7 +657,9 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
   in.goal_in_frame = f.goal;
   in.origin = f.origin;
   in.diagonal = f.diag;
-  in.contour.wall = f.wall;
+  // The wall survives the rounding of both surfaces to the output's precision.
+  in.contour.wall =
+      f.wall + rounding_wall_margin(solve.outer.V.size() ? solve.outer.V.cwiseAbs().maxCoeff() : 0.0, options.output_precision);
   in.contour.cells_per_wall = options.cavity_cells_per_wall;
   in.contour.margin_cells = options.cavity_margin_cells;
   in.contour.threads = options.threads;
@@ -641,6 +669,7 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
   in.verify.ground_tol = f.ground_tol;
   in.verify.wall = f.wall;
   in.verify.threads = options.threads;
+  in.verify.precision = options.output_precision;
   in.max_rounds = options.max_correction_rounds;
   in.headroom = kCorrectionHeadroom;
   const QuadricVoid q = write_quadric_void(in);
@@ -650,10 +679,11 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
   say(std::string("quadric void: ") + std::to_string(q.rounds.size()) + " contours, " +
       (quadric_verified ? "verified" : q.message.empty() ? "not verified" : q.message));
   if (quadric_verified) c.summary.quadric_objective = written_score(f, solve.outer, q.written, q.verification);
-  const bool take = forced ? !q.rounds.empty()
+  const bool take = forced ? q.written.F.rows() > 0
                            : quadric_verified && (!offset_verified || *c.summary.offset_objective - *c.summary.quadric_objective >
                                                                            options.quadric_tie * std::fabs(*c.summary.quadric_objective));
   if (take) {
+    c.outer = q.outer;
     c.written = q.written;
     c.verification = q.verification;
     c.summary.written = WrittenCavity::quadric;
@@ -662,6 +692,8 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
                                                format_double(options.quadric_tie * 100.0) + "%"
                                          : "the offset void misses a goal the quadric void reaches";
     if (forced && !q.message.empty()) refuse(q.message);
+  } else if (forced) {
+    refuse("no quadric void was written: " + (q.message.empty() ? std::string("unknown") : q.message));
   } else {
     c.summary.choice = !quadric_verified ? "the quadric void did not verify: " +
                                                (q.message.empty() ? (q.verification.failures.empty() ? std::string("unknown")
@@ -865,10 +897,10 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   timings.total = seconds_since(total_start);
 
   OptimizeResult result;
-  result.outer = solve.outer;
+  result.outer = cavity.outer;
   result.inner = cavity.written;
-  result.printable = cavity.summary.contoured() ? hollow_solid(solve.outer, cavity.written)
-                                              : printable_solid(solve.outer, cavity.written, b.band.fixed);
+  result.printable = cavity.summary.contoured() ? hollow_solid(cavity.outer, cavity.written)
+                                                : printable_solid(cavity.outer, cavity.written, b.band.fixed);
   result.skeleton = Mesh{b.contraction.V, input.F};
   result.goal = f.setup;
   result.frame = {f.origin, f.scale, f.diag, f.wall, f.outer_max, f.margin, f.ground_tol};

@@ -96,6 +96,11 @@ struct OptimizeOptions {
   // thread, one stage after another (the lowest peak memory). The output is bit for bit the same
   // for any count.
   int threads = 2;
+  // The coarsest precision of the mesh files to be written (meshio/write_mesh.h, stored_precision
+  // of -o, --inner, --outer-mesh): float32 when any is STL. The surfaces are rounded to it before
+  // the final verification (cavity/round_for_output.h), so what is verified is what reads back,
+  // and the contour keeps the rounding's margin on top of the wall.
+  StoredPrecision output_precision = StoredPrecision::exact;
 
   static AlOptions default_solver_params() {
     AlOptions p;

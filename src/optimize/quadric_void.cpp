@@ -6,6 +6,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
+#include "cavity/round_for_output.h"
 #include "mass/volume_integrals.h"
 #include "util/neumaier_sum.h"
 
@@ -182,11 +183,22 @@ QuadricVoid write_quadric_void(const QuadricVoidInput& input) {
     }
     const bool will_correct = step.has_value();
     if (!will_correct) {
+      // As written: rounded to the file's precision, then verified, the faces' wall included.
+      const RoundedForOutput rounded = round_for_output(*input.outer, contoured.cavity, {}, input.verify.precision);
+      verify.outer = &rounded.outer;
+      verify.inner = &rounded.inner;
+      verify.rounding = &rounded;
       verify.goal_only = false;
       out.verification = verify_offsets(verify);
+      if (contoured.faces_below_wall > 0) {
+        out.verification.valid = false;
+        out.verification.failures.push_back(std::to_string(contoured.faces_below_wall) +
+                                            " cavity faces come closer to the outer surface than the wall between their vertices");
+      }
+      out.outer = rounded.outer;
+      out.written = rounded.inner;
     }
     record_round(contoured, round == 0 ? written : predicted, written, s, out.verification, will_correct, out);
-    out.written = contoured.cavity;
     if (!will_correct) break;
     predicted = written + J * *step;  // the next round's integrals to first order
     c += *step;

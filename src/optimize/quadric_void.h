@@ -35,13 +35,15 @@ struct QuadricVoidInput {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // of the normalised frame, input units
   double diagonal = 1.0;                  // its scale is 1 / diagonal
   ContourCavityOptions contour;
-  VerifyInput verify;                     // outer, goal, tolerances; inner is set per round
+  VerifyInput verify;                     // outer, goal, tolerances, precision; inner is set per round
   int max_rounds = 6;                     // corrections after the first contour
   double headroom = 0.01;                 // fraction of the user's margins aimed inside them
 };
 
 struct QuadricVoid {
-  Mesh written;                           // the last contour (empty when none was made)
+  // The last contour and the outer surface as they read back from the files (rounded to
+  // verify.precision, cavity/round_for_output.h); empty when no contour was made.
+  Mesh outer, written;
   Verification verification;              // of the last contour
   std::vector<ContourRound> rounds;
   Quadric quadric;                        // of the last round, input units

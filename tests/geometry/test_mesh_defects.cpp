@@ -4,6 +4,11 @@
 // T-junction closed by a sliver. Expected answers are by construction.
 #include <doctest/doctest.h>
 
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "geometry/exact_triangle_intersection.h"
 #include "geometry/mesh_defects.h"
 #include "geometry/triangle_triangle.h"
 #include "mesh/demo_meshes.h"
@@ -43,24 +48,67 @@ TEST_CASE("the demo bottle, top and buoy have no self-intersecting pairs") {
   }
 }
 
-TEST_CASE("separate_triangles_meet: the demo bottle's cone-strip pair that plain Guigue-Devillers reports one way round") {
+TEST_CASE("triangles_meet_exact: the demo bottle's cone-strip pair that plain Guigue-Devillers reports one way round") {
   // Faces 1056 and 1185 of the demo bottle: three corners on each of two rulings of a cone, so
-  // a corner of each lies exactly on the other's plane; they do not meet.
+  // a corner of each lies on the other's plane up to rounding; they are 3.4 apart in that plane.
   const V3 f[3] = {V3(1.7999999999999936, -35, 4), V3(5.2305999115346031, -34.831465433526894, 4),
                    V3(9.3368499115346033, -34.831465433526894, 13.125)};
   const V3 g[3] = {V3(5.9062499999999938, -35, 13.125), V3(13.443099911534604, -34.831465433526894, 22.25),
                    V3(10.012499999999994, -35, 22.25)};
-  CHECK_FALSE(separate_triangles_meet(f, g));
-  CHECK_FALSE(separate_triangles_meet(g, f));
-  // Moved 12 units down the ruling (more than one ring step), g overlaps f in their common plane.
-  const V3 shift = (g[2] - g[0]).normalized() * -12.0;
-  const V3 h[3] = {g[0] + shift, g[1] + shift, g[2] + shift};
-  CHECK(separate_triangles_meet(f, h));
-  CHECK(separate_triangles_meet(h, f));
-  // A clear crossing and a clear miss.
+  CHECK_FALSE(triangles_meet_exact(f, g));
+  CHECK_FALSE(triangles_meet_exact(g, f));
+  // Exactly coplanar (z = 0) and overlapping, touching at one point, and 2^-40 apart.
   const V3 t[3] = {V3(0, 0, 0), V3(4, 0, 0), V3(0, 4, 0)};
+  const V3 overlap[3] = {V3(1, 1, 0), V3(5, 1, 0), V3(1, 5, 0)};
+  const V3 touch[3] = {V3(2, 2, 0), V3(5, 2, 0), V3(2, 5, 0)};  // (2, 2) is on the edge x + y = 4
+  const V3 apart[3] = {V3(2, 2.0 + std::ldexp(1.0, -40), 0), V3(5, 2, 0), V3(2, 5, 0)};
+  CHECK(triangles_meet_exact(t, overlap));
+  CHECK(triangles_meet_exact(t, touch));
+  CHECK(triangles_meet_exact(touch, t));
+  CHECK_FALSE(triangles_meet_exact(t, apart));
+  CHECK_FALSE(triangles_meet_exact(apart, t));
+  // A clear crossing and a clear miss.
   const V3 crossing[3] = {V3(1, 1, -1), V3(1, 1.5, 2), V3(1.5, 1, 2)};
   const V3 above[3] = {V3(1, 1, 1), V3(1, 1.5, 2), V3(1.5, 1, 2)};
-  CHECK(separate_triangles_meet(t, crossing));
-  CHECK_FALSE(separate_triangles_meet(t, above));
+  CHECK(triangles_meet_exact(t, crossing));
+  CHECK_FALSE(triangles_meet_exact(t, above));
+}
+
+namespace {
+
+// Two faces as a mesh of their own (find_self_intersections needs no closed surface).
+long long pairs_of(const std::vector<V3>& points, const std::vector<std::array<int, 3>>& faces) {
+  Mesh m;
+  m.V.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) m.V.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  m.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    m.F.row(static_cast<Eigen::Index>(f)) << faces[f][0], faces[f][1], faces[f][2];
+  return find_self_intersections(m).pairs;
+}
+
+}  // namespace
+
+TEST_CASE("check's pair rule on hand-built pairs: touching along an edge or at a corner, or coplanar and adjacent, is no pair, crossing, folding and touching apart are") {
+  const double tiny = std::ldexp(1.0, -40);
+  // A common edge 0-1, the third corners on opposite sides in one plane: one flat surface.
+  CHECK(pairs_of({V3(0, 0, 0), V3(4, 0, 0), V3(2, 3, 0), V3(2, -3, 0)}, {{0, 1, 2}, {1, 0, 3}}) == 0);
+  // ... on the same side in one plane: folded onto each other.
+  CHECK(pairs_of({V3(0, 0, 0), V3(4, 0, 0), V3(2, 3, 0), V3(1, 1, 0)}, {{0, 1, 2}, {1, 0, 3}}) == 1);
+  // ... a hinge (not coplanar), however sharp.
+  CHECK(pairs_of({V3(0, 0, 0), V3(4, 0, 0), V3(2, 3, 0), V3(2, 3, tiny)}, {{0, 1, 2}, {1, 0, 3}}) == 0);
+  // A common corner only, coplanar, the faces on either side of it: a bow tie.
+  CHECK(pairs_of({V3(0, 0, 0), V3(2, 1, 0), V3(2, -1, 0), V3(-2, 1, 0), V3(-2, -1, 0)}, {{0, 1, 2}, {0, 4, 3}}) == 0);
+  // ... overlapping beyond the corner.
+  CHECK(pairs_of({V3(0, 0, 0), V3(2, 1, 0), V3(2, -1, 0), V3(3, 2, 0), V3(3, 0, 0)}, {{0, 1, 2}, {0, 4, 3}}) == 1);
+  // ... the second's opposite edge through the first's interior (not coplanar).
+  CHECK(pairs_of({V3(0, 0, 0), V3(4, 0, 0), V3(0, 4, 0), V3(1, 1, -1), V3(1, 1, 1)}, {{0, 1, 2}, {0, 3, 4}}) == 1);
+  // No common corner: a corner of one exactly on the other's edge (closed triangles touch).
+  CHECK(pairs_of({V3(0, 0, 0), V3(4, 0, 0), V3(0, 4, 0), V3(2, 2, 0), V3(5, 2, 0), V3(2, 5, 0)}, {{0, 1, 2}, {3, 4, 5}}) == 1);
+  // ... coplanar and 2^-40 apart.
+  CHECK(pairs_of({V3(0, 0, 0), V3(4, 0, 0), V3(0, 4, 0), V3(2, 2 + tiny, 0), V3(5, 2, 0), V3(2, 5, 0)}, {{0, 1, 2}, {3, 4, 5}}) == 0);
+  // ... crossing.
+  CHECK(pairs_of({V3(0, 0, 0), V3(4, 0, 0), V3(0, 4, 0), V3(1, 1, -1), V3(1, 1.5, 2), V3(1.5, 1, 2)}, {{0, 1, 2}, {3, 4, 5}}) == 1);
+  // Corners at one position are one corner: two faces meeting at a welded corner only.
+  CHECK(pairs_of({V3(0, 0, 0), V3(2, 1, 0), V3(2, -1, 0), V3(0, 0, 0), V3(-2, 1, 1), V3(-2, -1, 1)}, {{0, 1, 2}, {3, 4, 5}}) == 0);
 }

@@ -1,0 +1,185 @@
+#include "geometry/exact_triangle_intersection.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/convex_hull_2d.h"
+#include "geometry/convex_hull_3d.h"
+
+namespace offsetopt {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using Vec2 = Eigen::Vector2d;
+
+int sign(double x) { return x > 0.0 ? 1 : x < 0.0 ? -1 : 0; }
+
+int sign(long double x) { return x > 0.0L ? 1 : x < 0.0L ? -1 : 0; }
+
+Vec2 drop(const Vec3& p, int axis) {
+  switch (axis) {
+    case 0: return {p.y(), p.z()};
+    case 1: return {p.z(), p.x()};
+    default: return {p.x(), p.y()};
+  }
+}
+
+// An axis whose projection keeps the triangle's area exactly non-zero, or -1 when the corners
+// are collinear. Dropping axis k leaves the k-th component of the normal as the projected area,
+// so the axes are tried from the largest component of the rounded normal: the first is almost
+// always it, decided by orient2d's floating-point filter.
+int plane_axis(const Vec3& p, const Vec3& q, const Vec3& r) {
+  const Vec3 n = (q - p).cross(r - p).cwiseAbs();
+  const int first = n.x() >= n.y() ? (n.x() >= n.z() ? 0 : 2) : (n.y() >= n.z() ? 1 : 2);
+  const int order[3] = {first, (first + 1) % 3, (first + 2) % 3};
+  for (const int axis : order)
+    if (orient2d_sign(drop(p, axis), drop(q, axis), drop(r, axis)) != 0) return axis;
+  return -1;
+}
+
+bool in_box(const Vec2& a, const Vec2& b, const Vec2& p) {
+  return std::min(a.x(), b.x()) <= p.x() && p.x() <= std::max(a.x(), b.x()) && std::min(a.y(), b.y()) <= p.y() &&
+         p.y() <= std::max(a.y(), b.y());
+}
+
+// Closed segments a-b and c-d of the plane (neither a point) share a point.
+bool segments_meet_2d(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const int o1 = orient2d_sign(a, b, c), o2 = orient2d_sign(a, b, d);
+  const int o3 = orient2d_sign(c, d, a), o4 = orient2d_sign(c, d, b);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  // A point exactly on the other segment's line: on it when inside its bounding box.
+  return (o1 == 0 && in_box(a, b, c)) || (o2 == 0 && in_box(a, b, d)) || (o3 == 0 && in_box(c, d, a)) ||
+         (o4 == 0 && in_box(c, d, b));
+}
+
+// x in the closed triangle t (t not collinear).
+bool point_in_triangle_2d(const Vec2& x, const Vec2 t[3]) {
+  const int turn = orient2d_sign(t[0], t[1], t[2]);
+  for (int k = 0; k < 3; ++k)
+    if (orient2d_sign(t[k], t[(k + 1) % 3], x) * turn < 0) return false;
+  return true;
+}
+
+// Segment a-b lying in the plane of triangle p-q-r.
+bool coplanar_segment_meets_triangle(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r) {
+  const int axis = plane_axis(p, q, r);
+  const Vec2 t[3] = {drop(p, axis), drop(q, axis), drop(r, axis)};
+  const Vec2 a2 = drop(a, axis), b2 = drop(b, axis);
+  if (point_in_triangle_2d(a2, t) || point_in_triangle_2d(b2, t)) return true;
+  for (int k = 0; k < 3; ++k)
+    if (segments_meet_2d(a2, b2, t[k], t[(k + 1) % 3])) return true;
+  return false;
+}
+
+}  // namespace
+
+namespace {
+
+// Three points sharing two coordinates lie on one axis-parallel line.
+bool on_axis_line(const Vec3& p, const Vec3& q, const Vec3& r) {
+  int shared = 0;
+  for (int k = 0; k < 3; ++k) shared += p[k] == q[k] && p[k] == r[k] ? 1 : 0;
+  return shared >= 2;
+}
+
+// Zero determinants that comparisons decide: the four points on one axis-aligned plane, or three
+// of them on one axis-parallel line. Real inputs are full of both (a posed base at z = 0,
+// vertical walls with stacked vertices, contoured cavities on grid planes), and each would
+// otherwise go through both filters and the exact expansions.
+bool exactly_degenerate(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  for (int k = 0; k < 3; ++k)
+    if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return true;
+  return on_axis_line(a, b, c) || on_axis_line(a, b, d) || on_axis_line(a, c, d) || on_axis_line(b, c, d);
+}
+
+}  // namespace
+
+int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const double det = u.x() * (v.y() * w.z() - v.z() * w.y()) - u.y() * (v.x() * w.z() - v.z() * w.x()) +
+                     u.z() * (v.x() * w.y() - v.y() * w.x());
+  const double permanent = std::fabs(u.x()) * (std::fabs(v.y() * w.z()) + std::fabs(v.z() * w.y())) +
+                           std::fabs(u.y()) * (std::fabs(v.x() * w.z()) + std::fabs(v.z() * w.x())) +
+                           std::fabs(u.z()) * (std::fabs(v.x() * w.y()) + std::fabs(v.y() * w.x()));
+  if (std::fabs(det) > 1e-14 * permanent) return sign(det);
+  if (exactly_degenerate(a, b, c, d)) return 0;
+  // The same evaluation in x87 extended precision (unit roundoff 2^-64): Shewchuk's bound for it
+  // is (7 + 56 eps) eps = 3.8e-19 of the permanent; 1e-18 leaves a margin.
+  long double U[3], W[3], X[3];
+  for (int k = 0; k < 3; ++k) {
+    U[k] = static_cast<long double>(b[k]) - static_cast<long double>(a[k]);
+    W[k] = static_cast<long double>(c[k]) - static_cast<long double>(a[k]);
+    X[k] = static_cast<long double>(d[k]) - static_cast<long double>(a[k]);
+  }
+  const long double m0 = W[1] * X[2] - W[2] * X[1], m1 = W[0] * X[2] - W[2] * X[0], m2 = W[0] * X[1] - W[1] * X[0];
+  const long double det_l = U[0] * m0 - U[1] * m1 + U[2] * m2;
+  auto mag = [](long double x) { return x < 0.0L ? -x : x; };
+  const long double permanent_l = mag(U[0]) * (mag(W[1] * X[2]) + mag(W[2] * X[1])) +
+                                  mag(U[1]) * (mag(W[0] * X[2]) + mag(W[2] * X[0])) +
+                                  mag(U[2]) * (mag(W[0] * X[1]) + mag(W[1] * X[0]));
+  if (mag(det_l) > 1e-18L * permanent_l) return sign(det_l);
+  return sign(orient3d(a, b, c, d));
+}
+
+int orient2d_sign(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const double left = (a.x() - c.x()) * (b.y() - c.y()), right = (a.y() - c.y()) * (b.x() - c.x());
+  if (std::fabs(left - right) > 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right))) return sign(left - right);
+  // Extended precision: (3 + 16 eps) eps = 1.6e-19 with eps = 2^-64.
+  const long double l = (static_cast<long double>(a.x()) - c.x()) * (static_cast<long double>(b.y()) - c.y());
+  const long double r = (static_cast<long double>(a.y()) - c.y()) * (static_cast<long double>(b.x()) - c.x());
+  const long double magnitude = (l < 0.0L ? -l : l) + (r < 0.0L ? -r : r);
+  const long double difference = l - r;
+  if ((difference < 0.0L ? -difference : difference) > 1e-18L * magnitude) return sign(difference);
+  return sign(orient2d(a, b, c));
+}
+
+bool collinear_exact(const Vec3& p, const Vec3& q, const Vec3& r) { return plane_axis(p, q, r) < 0; }
+
+namespace {
+
+// The segment test once the sides of its ends (orient3d signs against the triangle's plane) are
+// known.
+bool segment_with_sides_meets_triangle(const Vec3& a, const Vec3& b, int oa, int ob, const Vec3& p, const Vec3& q,
+                                       const Vec3& r) {
+  if (oa * ob > 0) return false;  // both strictly on one side
+  if (oa == 0 && ob == 0) return coplanar_segment_meets_triangle(a, b, p, q, r);
+  // The segment reaches the plane at one point (an end, or between the ends), and the line a-b
+  // is not in the plane: it passes through the closed triangle iff it passes no two of its
+  // edges on opposite sides.
+  const int s1 = orient3d_sign(a, b, p, q), s2 = orient3d_sign(a, b, q, r);
+  if (s1 * s2 < 0) return false;
+  const int s3 = orient3d_sign(a, b, r, p);
+  const bool negative = s1 < 0 || s2 < 0 || s3 < 0, positive = s1 > 0 || s2 > 0 || s3 > 0;
+  return !(negative && positive);
+}
+
+}  // namespace
+
+bool segment_meets_triangle_exact(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r) {
+  const int oa = orient3d_sign(p, q, r, a);
+  const int ob = orient3d_sign(p, q, r, b);
+  return segment_with_sides_meets_triangle(a, b, oa, ob, p, q, r);
+}
+
+bool triangles_meet_exact(const Vec3 a[3], const Vec3 b[3]) {
+  int side_a[3], side_b[3];
+  for (int k = 0; k < 3; ++k) {
+    side_a[k] = orient3d_sign(b[0], b[1], b[2], a[k]);
+    side_b[k] = orient3d_sign(a[0], a[1], a[2], b[k]);
+  }
+  auto one_side = [](const int s[3]) { return (s[0] > 0 && s[1] > 0 && s[2] > 0) || (s[0] < 0 && s[1] < 0 && s[2] < 0); };
+  if (one_side(side_a) || one_side(side_b)) return false;
+  // Two closed triangles meet iff an edge of one meets the other: where their planes cross, the
+  // common part ends on an edge of one of them; where they are coplanar, edges cross or one
+  // triangle holds the other, whose edges then lie in it.
+  for (int k = 0; k < 3; ++k) {
+    const int j = (k + 1) % 3;
+    if (segment_with_sides_meets_triangle(a[k], a[j], side_a[k], side_a[j], b[0], b[1], b[2])) return true;
+    if (segment_with_sides_meets_triangle(b[k], b[j], side_b[k], side_b[j], a[0], a[1], a[2])) return true;
+  }
+  return false;
+}
+
+}  // namespace offsetopt

@@ -1,0 +1,36 @@
+// Exact contact tests between closed triangles and segments, the semantics of CGAL's
+// do_intersect on a kernel with exact predicates (Epick): every decision is the sign of an
+// orient3d or orient2d determinant of input coordinates (geometry/convex_hull_3d.h and
+// convex_hull_2d.h: a floating-point filter, then exact expansions), never a tolerance and never
+// a constructed point. Touching counts: a corner on the other triangle's edge, an edge through
+// its interior, coplanar triangles sharing only a boundary point all meet. Exact for finite
+// coordinates below ~1e100 in magnitude.
+//
+// Coplanar cases are decided in the projection that drops one coordinate axis, chosen where the
+// triangle's projection has non-zero exact area: there, 2-D orientations of points of the plane
+// have the same signs as in the plane, so the projection loses nothing.
+#pragma once
+#include <Eigen/Core>
+
+namespace offsetopt {
+
+// Signs of orient3d (geometry/convex_hull_3d.h: > 0 when d is on the side (b − a) × (c − a)
+// points to) and orient2d, exact, with a second filter in extended precision between the
+// floating-point one and the exact expansions: surfaces with flat regions (a contoured cavity
+// under a CAD face) put many corners within rounding of one plane, where the first filter
+// cannot decide and the expansions would be the bulk of a search.
+int orient3d_sign(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d);
+int orient2d_sign(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
+
+// The three points lie on one line (two equal points included): the triangle has no plane.
+// CGAL's self-intersection search reports such a face by itself and tests it against nothing.
+bool collinear_exact(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r);
+
+// Closed segment a-b (a != b) against the closed triangle p-q-r (not collinear).
+bool segment_meets_triangle_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& p,
+                                  const Eigen::Vector3d& q, const Eigen::Vector3d& r);
+
+// Closed triangles a and b (neither collinear) share at least one point.
+bool triangles_meet_exact(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]);
+
+}  // namespace offsetopt
