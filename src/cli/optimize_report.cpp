@@ -248,6 +248,10 @@ Json verification_json(const Verification& verification) {
     m["inner_self_intersections"] = v->inner_self_intersections;
     m["inner_outer_crossings"] = v->inner_outer_crossings;
     m["cavity_unmatched_edges"] = v->cavity_unmatched_edges;
+    if (v->outer_new_self_intersections) {
+      m["outer_new_self_intersections"] = *v->outer_new_self_intersections;
+      m["outer_own_self_intersections"] = v->outer_own_self_intersections.value_or(0);
+    }
     m["requested_wall"] = v->requested_wall;
     m["min_wall_measured"] = v->min_wall_measured ? Json(*v->min_wall_measured) : Json();
     m["min_wall_vertex"] = v->min_wall_vertex;

@@ -11,6 +11,7 @@
 #include <Eigen/Cholesky>
 
 #include "geometry/bvh.h"
+#include "geometry/intersecting_faces.h"
 #include "geometry/mesh_defects.h"
 #include "mass/mass_properties.h"
 #include "mass/stability.h"
@@ -235,6 +236,7 @@ struct Band {
   ContractionResult contraction;
   TriangleBvh bvh;                 // of the input
   SelfIntersectionReport input_self;  // the input's own self-intersections (as `check` counts them)
+  std::vector<std::pair<int, int>> input_pairs;  // with --outer: the pairs the outer surface may keep
   OffsetField field;
   OffsetBand band;
   int fixed_count = 0;
@@ -273,6 +275,7 @@ std::string make_band(const Mesh& input, const OptimizeOptions& options, const F
   if (options.fix.kind != FixRegion::Kind::none && b.fixed_count == 0)
     return "--fix " + options.fix.text + " selects no vertex";
   if (options.outer) {
+    b.input_pairs = self_intersections(b.bvh, 100000).pairs;
     // The base stays where it is: no outer offset within reach of the ground, so the object keeps
     // its contact set and its pose.
     band.outer_limit.resize(n);
@@ -450,6 +453,7 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
   verify_input.fixed = b.band.fixed;
   verify_input.bound_violation = solve.bound_violation();
   verify_input.threads = options.threads;
+  if (options.outer) verify_input.outer_own_pairs = &b.input_pairs;
   c.verification = verify_offsets(verify_input);
   timings.verify = seconds_since(stage_start);
   c.summary.mode = options.cavity;
