@@ -100,6 +100,14 @@ Json field_json(const FieldSummary& field) {
   j["parts_left_solid_after_repairs"] = field.left_solid_vertices_after_repairs;
   j["clamped_at_wall"] = field.clamped_at_wall;
   j["clamped_at_skeleton"] = field.clamped_at_skeleton;
+  if (const auto& limit = field.outer_limit) {
+    Json o = Json::object();
+    o["free_limited"] = limit->free_limited;
+    o["focal_limited"] = limit->focal_limited;
+    o["nearest_limited"] = limit->nearest_limited;
+    o["mean_fraction"] = limit->mean_fraction;
+    j["outer_limit"] = o;
+  }
   return j;
 }
 

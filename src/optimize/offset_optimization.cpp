@@ -5,7 +5,6 @@
 #include <future>
 #include <limits>
 #include <memory>
-#include <set>
 #include <system_error>
 
 #include <Eigen/Cholesky>
@@ -17,7 +16,9 @@
 #include "mass/stability.h"
 #include "mass/volume_integrals.h"
 #include "cavity/contour_cavity.h"
+#include "shape/lipschitz_envelope.h"
 #include "shape/offset_field.h"
+#include "shape/outer_offset_limit.h"
 #include "cavity/printable_solid.h"
 #include "cavity/verify_offsets.h"
 #include "skeleton/laplacian_contraction.h"
@@ -53,37 +54,6 @@ bool fit_bottom_sphere(const Mesh& mesh, double zmin, double height, Eigen::Vect
     return true;
   }
   return false;
-}
-
-// The largest field below `values` with slope at most `slope` along mesh edges:
-// out_i = min_j (values_j + slope * edge-path length from j to i) (Dijkstra; ties by index, so
-// deterministic). Keeps the bounds from jumping between neighbours, where a jump folds the inner
-// surface.
-Eigen::VectorXd lipschitz_envelope(const Mesh& mesh, const Eigen::VectorXd& values, double slope) {
-  const Eigen::Index n = mesh.V.rows();
-  std::vector<std::vector<std::pair<int, double>>> neighbours(static_cast<std::size_t>(n));
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) {
-      const int a = mesh.F(f, c), b = mesh.F(f, (c + 1) % 3);
-      const double length = (mesh.V.row(a) - mesh.V.row(b)).norm() * slope;
-      neighbours[static_cast<std::size_t>(a)].emplace_back(b, length);
-      neighbours[static_cast<std::size_t>(b)].emplace_back(a, length);
-    }
-  Eigen::VectorXd out = values;
-  std::set<std::pair<double, int>> queue;
-  for (Eigen::Index i = 0; i < n; ++i) queue.emplace(out(i), static_cast<int>(i));
-  while (!queue.empty()) {
-    const auto [value, i] = *queue.begin();
-    queue.erase(queue.begin());
-    for (const auto& [j, length] : neighbours[static_cast<std::size_t>(i)]) {
-      if (value + length < out(j)) {
-        queue.erase({out(j), j});
-        out(j) = value + length;
-        queue.emplace(out(j), j);
-      }
-    }
-  }
-  return out;
 }
 
 OptimizeResult failure(OptimizeStatus status, const std::string& message) {
@@ -237,6 +207,8 @@ struct Band {
   TriangleBvh bvh;                 // of the input
   SelfIntersectionReport input_self;  // the input's own self-intersections (as `check` counts them)
   std::vector<std::pair<int, int>> input_pairs;  // with --outer: the pairs the outer surface may keep
+  OuterOffsetLimit outer;          // with --outer: how far each vertex may thicken, input units
+  OuterLimitSummary outer_summary;
   OffsetField field;
   OffsetBand band;
   int fixed_count = 0;
@@ -278,10 +250,24 @@ std::string make_band(const Mesh& input, const OptimizeOptions& options, const F
     b.input_pairs = self_intersections(b.bvh, 100000).pairs;
     // The base stays where it is: no outer offset within reach of the ground, so the object keeps
     // its contact set and its pose.
-    band.outer_limit.resize(n);
+    Eigen::VectorXd requested(n);
     for (Eigen::Index i = 0; i < n; ++i)
-      band.outer_limit(i) =
-          input.V(i, 2) <= f.zmin + 2.0 * f.outer_max + f.ground_tol ? 0.0 : f.outer_max * f.scale;
+      requested(i) = input.V(i, 2) <= f.zmin + 2.0 * f.outer_max + f.ground_tol || band.fixed[static_cast<std::size_t>(i)]
+                         ? 0.0
+                         : f.outer_max;
+    // Each vertex thickens at most as far as the surface cannot fold there (shape/outer_offset_limit.h).
+    OuterOffsetLimitOptions limit_options;
+    limit_options.threads = options.threads;
+    b.outer = outer_offset_limit(input, b.bvh, b.field.outer, b.field.normals, requested, limit_options);
+    band.outer_limit = b.outer.limit * f.scale;
+    b.outer_summary = {b.outer.free_limited, b.outer.focal_limited, b.outer.nearest_limited, 0.0};
+    int away = 0;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (requested(i) > 0.0) {
+        b.outer_summary.mean_fraction += b.outer.limit(i) / f.outer_max;
+        ++away;
+      }
+    if (away > 0) b.outer_summary.mean_fraction /= away;
   }
   b.mark_left_solid();
   b.left_solid_count_initial = b.left_solid_count;
@@ -553,6 +539,7 @@ FieldSummary field_summary(const OptimizeOptions& options, const Band& b, const 
   field.fixed = b.fixed_count;
   field.left_solid_vertices = b.left_solid_count_initial;
   field.left_solid_vertices_after_repairs = b.left_solid_count;
+  if (options.outer) field.outer_limit = b.outer_summary;
   for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(b.band.fixed.size()); ++i) {
     if (b.band.fixed[static_cast<std::size_t>(i)] || b.left_solid[static_cast<std::size_t>(i)]) continue;
     const double span = options.ramp;
