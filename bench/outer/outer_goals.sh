@@ -3,6 +3,7 @@
 # solid, then (when a CGAL validity binary is given) the independent pair count of the input and
 # of every written solid. The table of docs/outer.md is this script's output.
 # usage: bench/outer/outer_goals.sh BINARY OUTDIR [VALIDITY_BINARY] [EXTRA OPTIONS...]
+#   MESHES (environment) overrides the list of meshes.
 #   OUTDIR keeps <mesh>.<goal>.stl, .json and .err; VALIDITY_BINARY is ../shared/tools/validity built.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -18,8 +19,9 @@ pairs() {  # self-intersecting pairs by the CGAL check, or - without it
   "$validity" "$1" 2>/dev/null | python3 -c "import json,sys; print(json.loads(sys.stdin.read())['self_intersecting_pairs'])" 2>/dev/null || echo '?'
 }
 printf 'mesh\tgoal\texit\tinput_pairs\tsolid_pairs\tseconds\treason\n'
-for mesh in horse.ply kitten_lowres.obj rocker_arm.off elephant.off fertility.off camel.off armadillo.off \
-  Armadillo.ply 20mm-xyz-cube.stl hinge.stl spinit_kitten.obj spinit_dolphin.obj; do
+meshes=${MESHES:-horse.ply kitten_lowres.obj rocker_arm.off elephant.off fertility.off camel.off armadillo.off \
+  Armadillo.ply 20mm-xyz-cube.stl hinge.stl spinit_kitten.obj spinit_dolphin.obj}
+for mesh in $meshes; do
   [[ -f $shared/$mesh ]] || continue
   volume=$("$binary" inspect "$shared/$mesh" --json - 2>/dev/null |
     python3 -c "import json,sys; print(json.load(sys.stdin)['volume'] * 0.3)" 2>/dev/null || echo 1)

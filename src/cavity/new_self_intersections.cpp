@@ -29,6 +29,7 @@ NewSelfIntersections new_self_intersections(const Mesh& surface, const std::vect
       out.first_face = pair.first;
       out.second_face = pair.second;
     }
+    out.new_pairs.push_back(pair);
     if (static_cast<std::size_t>(++out.pairs) == cap) {
       out.truncated = true;
       break;

@@ -19,6 +19,7 @@ struct NewSelfIntersections {
   long long own_pairs_kept = 0;  // pairs that are the source's own
   bool truncated = false;      // the search stopped at its cap: there may be more
   int first_face = -1, second_face = -1;  // the smallest new pair, or -1
+  std::vector<std::pair<int, int>> new_pairs;  // sorted, `pairs` of them
 };
 
 // `own_pairs` sorted (as IntersectingFaces::pairs are). `threads` (>= 1): the search in two parts

@@ -106,6 +106,7 @@ Json field_json(const FieldSummary& field) {
     o["focal_limited"] = limit->focal_limited;
     o["nearest_limited"] = limit->nearest_limited;
     o["mean_fraction"] = limit->mean_fraction;
+    o["fold_repairs"] = limit->fold_repairs;
     j["outer_limit"] = o;
   }
   return j;

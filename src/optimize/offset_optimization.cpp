@@ -19,6 +19,8 @@
 #include "shape/lipschitz_envelope.h"
 #include "shape/offset_field.h"
 #include "shape/outer_offset_limit.h"
+#include "shape/shrink_outer_limit.h"
+#include "cavity/new_self_intersections.h"
 #include "cavity/printable_solid.h"
 #include "cavity/verify_offsets.h"
 #include "skeleton/laplacian_contraction.h"
@@ -113,6 +115,7 @@ namespace {
 using Progress = std::function<void(const std::string&)>;
 
 constexpr double kCorrectionHeadroom = 0.01;  // see OffsetSolve::correct
+constexpr int kOuterFoldRepairs = 4;           // see OffsetSolve::solve
 
 // Stage "frame": ground, support polygon, scale, and the goal in input units (for verification)
 // and in the normalised frame (for the solver).
@@ -259,7 +262,7 @@ std::string make_band(const Mesh& input, const OptimizeOptions& options, const F
     limit_options.threads = options.threads;
     b.outer = outer_offset_limit(input, b.bvh, b.field.outer, b.field.normals, requested, limit_options);
     band.outer_limit = b.outer.limit * f.scale;
-    b.outer_summary = {b.outer.free_limited, b.outer.focal_limited, b.outer.nearest_limited, 0.0};
+    b.outer_summary = {b.outer.free_limited, b.outer.focal_limited, b.outer.nearest_limited, 0.0, 0};
     int away = 0;
     for (Eigen::Index i = 0; i < n; ++i)
       if (requested(i) > 0.0) {
@@ -385,6 +388,26 @@ class OffsetSolve {
 
   // Solves from x and sets the surfaces; false when the goal's constraints are not met.
   bool solve(int round) {
+    minimize(round);
+    // The outer limits are local estimates (shape/outer_offset_limit.h): where the thickened
+    // surface still folds, its limits there are halved (the last time set to 0) and the problem is
+    // solved again from where it ended.
+    for (int repair = 0; options_.outer && repair < kOuterFoldRepairs; ++repair) {
+      const NewSelfIntersections folds = new_self_intersections(outer, b_.input_pairs, 100000, options_.threads);
+      if (folds.pairs == 0) break;
+      const double factor = repair + 1 < kOuterFoldRepairs ? 0.5 : 0.0;
+      b_.band.outer_limit =
+          shrink_outer_limit(f_.normalized, b_.band.outer_limit, folds.new_pairs, factor, OuterOffsetLimitOptions{}.slope);
+      problem_->set_outer_limit(b_.band.outer_limit);
+      ++b_.outer_summary.fold_repairs;
+      say_("outer fold repair " + std::to_string(b_.outer_summary.fold_repairs) + ": " + std::to_string(folds.pairs) +
+           " face pairs cross, their limits lowered");
+      minimize(round);
+    }
+    return constraints_met;
+  }
+
+  void minimize(int round) {
     solved = augmented_lagrangian_minimize(problem_->constrained_problem(), x_, params(round));
     total_evaluations += solved.evaluations;
     if (solved.x.size() == x_.size()) x_ = solved.x;  // an invalid problem leaves x where it was
@@ -400,7 +423,6 @@ class OffsetSolve {
     const bool refused = solved.status == AlStatus::invalid_input || solved.status == AlStatus::numerical_issue;
     constraints_met = !refused && solved.status != AlStatus::infeasible &&
                       solved.max_violation <= 100.0 * options_.solver.feasibility_tolerance;
-    return constraints_met;
   }
 
   const Mesh& input_;

@@ -140,6 +140,7 @@ struct FrameSummary {
 struct OuterLimitSummary {
   int free_limited = 0, focal_limited = 0, nearest_limited = 0;
   double mean_fraction = 0.0;
+  int fold_repairs = 0;             // solves repeated with limits lowered where the surface still folded
 };
 
 struct FieldSummary {
