@@ -2,7 +2,7 @@
 // the requested offset, and a ring whose hole is narrower than that. Without the limit the
 // thickened surface intersects itself; with it (any offset between 0 and the limit) it does not.
 // Crossings are counted by the independent test code (tests/mass/geometry_checks.h), not by the
-// verifier's BVH search.
+// verifier's BVH search. shrink_outer_limit (shape/shrink_outer_limit.h) on a sphere.
 #include <doctest/doctest.h>
 
 #include "../mass/geometry_checks.h"
@@ -10,6 +10,7 @@
 #include "geometry/vertex_normals.h"
 #include "mesh/primitives.h"
 #include "shape/outer_offset_limit.h"
+#include "shape/shrink_outer_limit.h"
 
 using namespace offsetopt;
 
@@ -108,4 +109,30 @@ TEST_CASE("outer_offset_limit: options are checked, a zero request stays zero, t
       const int a = sphere.F(f, c), b = sphere.F(f, (c + 1) % 3);
       CHECK(std::fabs(limit.limit(a) - limit.limit(b)) <= options.slope * (sphere.V.row(a) - sphere.V.row(b)).norm() + 1e-12);
     }
+}
+
+TEST_CASE("shrink_outer_limit lowers the corners of crossing faces and their ring, and nothing far away") {
+  const Mesh sphere = make_icosphere(1.0, 3);
+  const Eigen::VectorXd limit = Eigen::VectorXd::Constant(sphere.V.rows(), 0.1);
+  const Eigen::VectorXd shrunk = shrink_outer_limit(sphere, limit, {{0, 1}}, 0.5, 0.5);
+  for (int face : {0, 1})
+    for (int c = 0; c < 3; ++c) CHECK(shrunk(sphere.F(face, c)) == doctest::Approx(0.05));
+  // A vertex sharing a face with a corner of face 0 (but not a corner itself) is lowered too.
+  std::vector<char> corner(static_cast<std::size_t>(sphere.V.rows()), 0);
+  for (int face : {0, 1})
+    for (int c = 0; c < 3; ++c) corner[static_cast<std::size_t>(sphere.F(face, c))] = 1;
+  int ring = 0;
+  for (Eigen::Index f = 0; f < sphere.F.rows(); ++f) {
+    bool touches = false;
+    for (int c = 0; c < 3; ++c) touches = touches || corner[static_cast<std::size_t>(sphere.F(f, c))];
+    if (touches)
+      for (int c = 0; c < 3; ++c) ring += shrunk(sphere.F(f, c)) < 0.1 ? 1 : 0;
+  }
+  CHECK(ring > 0);
+  // The antipode of face 0's first corner keeps its limit; nothing rises.
+  const Eigen::Vector3d p = sphere.V.row(sphere.F(0, 0)).transpose();
+  Eigen::Index far = 0;
+  (sphere.V * p).minCoeff(&far);
+  CHECK(shrunk(far) == 0.1);
+  CHECK((shrunk.array() <= limit.array()).all());
 }
