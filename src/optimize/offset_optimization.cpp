@@ -251,12 +251,18 @@ std::string make_band(const Mesh& input, const OptimizeOptions& options, const F
     return "--fix " + options.fix.text + " selects no vertex";
   if (options.outer) {
     b.input_pairs = self_intersections(b.bvh, 100000).pairs;
-    // The base stays where it is: no outer offset at or below b = zmin + 2 ground_tol. Above it
-    // the limit grows with slope s < 1 from there (outer_offset_limit's envelope), so a vertex at
-    // height z moves by at most s (z - b) and stays above b: the contact set and the pose are kept.
+    // The base stays where it is: no outer offset at or below b = zmin + 2 ground_tol, and above it
+    // a vertex may drop (|w_z| times its offset, either sign) at most half its height above b, so
+    // it stays above b: the contact set and the pose are kept.
     Eigen::VectorXd requested(n);
-    for (Eigen::Index i = 0; i < n; ++i)
-      requested(i) = input.V(i, 2) <= f.zmin + 2.0 * f.ground_tol || band.fixed[static_cast<std::size_t>(i)] ? 0.0 : f.outer_max;
+    const double base = f.zmin + 2.0 * f.ground_tol;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double height = input.V(i, 2) - base;
+      const double drop_per_offset = std::fabs(b.field.outer(i, 2));
+      double wanted = f.outer_max;
+      if (drop_per_offset * wanted > 0.5 * height) wanted = 0.5 * height / drop_per_offset;
+      requested(i) = height <= 0.0 || band.fixed[static_cast<std::size_t>(i)] ? 0.0 : wanted;
+    }
     // Each vertex thickens at most as far as the surface cannot fold there (shape/outer_offset_limit.h).
     OuterOffsetLimitOptions limit_options;
     limit_options.threads = options.threads;
