@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "cavity/new_self_intersections.h"
 #include "geometry/bvh.h"
 #include "geometry/closest_point.h"
 #include "geometry/intersecting_faces.h"
@@ -276,6 +277,15 @@ Verification verify_offsets(const VerifyInput& in) {
                 "the inner surface intersects itself (" + std::to_string(defects.self_intersection_pairs) + more + " face pairs)");
   check.require(defects.crossing_pairs == 0,
                 "the inner surface crosses the outer surface (" + std::to_string(defects.crossing_pairs) + more + " face pairs)");
+  if (in.outer_own_pairs) {
+    const NewSelfIntersections outer_self = new_self_intersections(outer, *in.outer_own_pairs, 100000, in.threads);
+    v.outer_new_self_intersections = outer_self.pairs;
+    v.outer_own_self_intersections = outer_self.own_pairs_kept;
+    check.require(outer_self.pairs == 0, "the thickened outer surface intersects itself (" + std::to_string(outer_self.pairs) +
+                                             (outer_self.truncated ? "+" : "") + " face pairs the input does not have, first: faces " +
+                                             std::to_string(outer_self.first_face) + " and " +
+                                             std::to_string(outer_self.second_face) + ")");
+  }
   const bool measured = std::isfinite(defects.thinnest_wall);
   const long long open_edges = unmatched_edges(inner);
   v.cavity_unmatched_edges = open_edges;

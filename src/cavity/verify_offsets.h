@@ -5,6 +5,7 @@
 #pragma once
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -52,6 +53,11 @@ struct VerifyInput {
   // the defects the rounding made and could not undo, refused like any other.
   const RoundedForOutput* rounding = nullptr;
   StoredPrecision precision = StoredPrecision::exact;
+  // When set, `outer` was moved (an outer offset, the input's connectivity) and is searched for
+  // self-intersections: any pair not listed here (the input's own pairs, sorted, found by
+  // cavity/new_self_intersections.h's rule) fails the verification. Null: `outer` is the input
+  // itself, whose own pairs are the input's (named where it is loaded).
+  const std::vector<std::pair<int, int>>* outer_own_pairs = nullptr;
 };
 
 // Whether the solid stands on its support polygon (mass/stability.h), input units.
@@ -93,6 +99,10 @@ struct ValidityFigures {
   long long inner_self_intersections = 0;  // face pairs (at most the search's cap)
   long long inner_outer_crossings = 0;
   long long cavity_unmatched_edges = 0;
+  // Face pairs of a moved outer surface crossing each other that the input did not have (at most
+  // the search's cap), and how many of the input's own it kept; absent when the outer surface is
+  // the input (VerifyInput::outer_own_pairs null).
+  std::optional<long long> outer_new_self_intersections, outer_own_self_intersections;
   double requested_wall = 0.0;
   std::optional<double> min_wall_measured;  // absent when no cavity vertex was measured
   int min_wall_vertex = -1;
@@ -116,7 +126,8 @@ struct Verification {
 // inertia products 1e-4 of Izz, principal-axis tilt 0.5°, volume 1e-4 relative, buoyancy
 // balance 1e-3 of the mass; the wall measured from every cavity vertex (but those of the opening,
 // which lie on the outer surface) to the outer surface at least the requested one (1e-9 relative
-// for rounding), no exemptions; no self-intersection of the cavity and no cavity/outer crossing.
+// for rounding), no exemptions; no self-intersection of the cavity and no cavity/outer crossing;
+// with a moved outer surface, no self-intersection of it that the input lacked.
 Verification verify_offsets(const VerifyInput& input);
 
 }  // namespace offsetopt

@@ -100,6 +100,15 @@ Json field_json(const FieldSummary& field) {
   j["parts_left_solid_after_repairs"] = field.left_solid_vertices_after_repairs;
   j["clamped_at_wall"] = field.clamped_at_wall;
   j["clamped_at_skeleton"] = field.clamped_at_skeleton;
+  if (const auto& limit = field.outer_limit) {
+    Json o = Json::object();
+    o["free_limited"] = limit->free_limited;
+    o["focal_limited"] = limit->focal_limited;
+    o["nearest_limited"] = limit->nearest_limited;
+    o["mean_fraction"] = limit->mean_fraction;
+    o["fold_repairs"] = limit->fold_repairs;
+    j["outer_limit"] = o;
+  }
   return j;
 }
 
@@ -258,6 +267,10 @@ Json verification_json(const Verification& verification) {
     m["inner_self_intersections"] = v->inner_self_intersections;
     m["inner_outer_crossings"] = v->inner_outer_crossings;
     m["cavity_unmatched_edges"] = v->cavity_unmatched_edges;
+    if (v->outer_new_self_intersections) {
+      m["outer_new_self_intersections"] = *v->outer_new_self_intersections;
+      m["outer_own_self_intersections"] = v->outer_own_self_intersections.value_or(0);
+    }
     m["requested_wall"] = v->requested_wall;
     m["min_wall_measured"] = v->min_wall_measured ? Json(*v->min_wall_measured) : Json();
     m["min_wall_vertex"] = v->min_wall_vertex;

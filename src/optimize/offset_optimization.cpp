@@ -5,18 +5,22 @@
 #include <future>
 #include <limits>
 #include <memory>
-#include <set>
 #include <system_error>
 
 #include <Eigen/Cholesky>
 
 #include "geometry/bvh.h"
+#include "geometry/intersecting_faces.h"
 #include "geometry/mesh_defects.h"
 #include "mass/mass_properties.h"
 #include "mass/stability.h"
 #include "mass/volume_integrals.h"
 #include "cavity/contour_cavity.h"
+#include "shape/lipschitz_envelope.h"
 #include "shape/offset_field.h"
+#include "shape/outer_offset_limit.h"
+#include "shape/shrink_outer_limit.h"
+#include "cavity/new_self_intersections.h"
 #include "cavity/printable_solid.h"
 #include "cavity/round_for_output.h"
 #include "cavity/verify_offsets.h"
@@ -54,37 +58,6 @@ bool fit_bottom_sphere(const Mesh& mesh, double zmin, double height, Eigen::Vect
     return true;
   }
   return false;
-}
-
-// The largest field below `values` with slope at most `slope` along mesh edges:
-// out_i = min_j (values_j + slope * edge-path length from j to i) (Dijkstra; ties by index, so
-// deterministic). Keeps the bounds from jumping between neighbours, where a jump folds the inner
-// surface.
-Eigen::VectorXd lipschitz_envelope(const Mesh& mesh, const Eigen::VectorXd& values, double slope) {
-  const Eigen::Index n = mesh.V.rows();
-  std::vector<std::vector<std::pair<int, double>>> neighbours(static_cast<std::size_t>(n));
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) {
-      const int a = mesh.F(f, c), b = mesh.F(f, (c + 1) % 3);
-      const double length = (mesh.V.row(a) - mesh.V.row(b)).norm() * slope;
-      neighbours[static_cast<std::size_t>(a)].emplace_back(b, length);
-      neighbours[static_cast<std::size_t>(b)].emplace_back(a, length);
-    }
-  Eigen::VectorXd out = values;
-  std::set<std::pair<double, int>> queue;
-  for (Eigen::Index i = 0; i < n; ++i) queue.emplace(out(i), static_cast<int>(i));
-  while (!queue.empty()) {
-    const auto [value, i] = *queue.begin();
-    queue.erase(queue.begin());
-    for (const auto& [j, length] : neighbours[static_cast<std::size_t>(i)]) {
-      if (value + length < out(j)) {
-        queue.erase({out(j), j});
-        out(j) = value + length;
-        queue.emplace(out(j), j);
-      }
-    }
-  }
-  return out;
 }
 
 OptimizeResult failure(OptimizeStatus status, const std::string& message) {
@@ -154,6 +127,7 @@ namespace {
 using Progress = std::function<void(const std::string&)>;
 
 constexpr double kCorrectionHeadroom = 0.01;  // see OffsetSolve::correct
+constexpr int kOuterFoldRepairs = 4;           // see OffsetSolve::solve
 
 // Stage "frame": ground, support polygon, scale, and the goal in input units (for verification)
 // and in the normalised frame (for the solver).
@@ -247,6 +221,9 @@ struct Band {
   ContractionResult contraction;
   TriangleBvh bvh;                 // of the input
   SelfIntersectionReport input_self;  // the input's own self-intersections (as `check` counts them)
+  std::vector<std::pair<int, int>> input_pairs;  // with --outer: the pairs the outer surface may keep
+  OuterOffsetLimit outer;          // with --outer: how far each vertex may thicken, input units
+  OuterLimitSummary outer_summary;
   OffsetField field;
   OffsetBand band;
   int fixed_count = 0;
@@ -285,12 +262,32 @@ std::string make_band(const Mesh& input, const OptimizeOptions& options, const F
   if (options.fix.kind != FixRegion::Kind::none && b.fixed_count == 0)
     return "--fix " + options.fix.text + " selects no vertex";
   if (options.outer) {
-    // The base stays where it is: no outer offset within reach of the ground, so the object keeps
-    // its contact set and its pose.
-    band.outer_limit.resize(n);
+    b.input_pairs = self_intersections(b.bvh, 100000).pairs;
+    // The base stays where it is: no outer offset at or below b = zmin + 2 ground_tol, and above it
+    // a vertex may drop (|w_z| times its offset, either sign) at most half its height above b, so
+    // it stays above b: the contact set and the pose are kept.
+    Eigen::VectorXd requested(n);
+    const double base = f.zmin + 2.0 * f.ground_tol;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double height = input.V(i, 2) - base;
+      const double drop_per_offset = std::fabs(b.field.outer(i, 2));
+      double wanted = f.outer_max;
+      if (drop_per_offset * wanted > 0.5 * height) wanted = 0.5 * height / drop_per_offset;
+      requested(i) = height <= 0.0 || band.fixed[static_cast<std::size_t>(i)] ? 0.0 : wanted;
+    }
+    // Each vertex thickens at most as far as the surface cannot fold there (shape/outer_offset_limit.h).
+    OuterOffsetLimitOptions limit_options;
+    limit_options.threads = options.threads;
+    b.outer = outer_offset_limit(input, b.bvh, b.field.outer, b.field.normals, requested, limit_options);
+    band.outer_limit = b.outer.limit * f.scale;
+    b.outer_summary = {b.outer.free_limited, b.outer.focal_limited, b.outer.nearest_limited, 0.0, 0};
+    int away = 0;
     for (Eigen::Index i = 0; i < n; ++i)
-      band.outer_limit(i) =
-          input.V(i, 2) <= f.zmin + 2.0 * f.outer_max + f.ground_tol ? 0.0 : f.outer_max * f.scale;
+      if (requested(i) > 0.0) {
+        b.outer_summary.mean_fraction += b.outer.limit(i) / f.outer_max;
+        ++away;
+      }
+    if (away > 0) b.outer_summary.mean_fraction /= away;
   }
   b.mark_left_solid();
   b.left_solid_count_initial = b.left_solid_count;
@@ -409,6 +406,26 @@ class OffsetSolve {
 
   // Solves from x and sets the surfaces; false when the goal's constraints are not met.
   bool solve(int round) {
+    minimize(round);
+    // The outer limits are local estimates (shape/outer_offset_limit.h): where the thickened
+    // surface still folds, its limits there are halved (the last time set to 0) and the problem is
+    // solved again from where it ended.
+    for (int repair = 0; options_.outer && repair < kOuterFoldRepairs; ++repair) {
+      const NewSelfIntersections folds = new_self_intersections(outer, b_.input_pairs, 100000, options_.threads);
+      if (folds.pairs == 0) break;
+      const double factor = repair + 1 < kOuterFoldRepairs ? 0.5 : 0.0;
+      b_.band.outer_limit =
+          shrink_outer_limit(f_.normalized, b_.band.outer_limit, folds.new_pairs, factor, OuterOffsetLimitOptions{}.slope);
+      problem_->set_outer_limit(b_.band.outer_limit);
+      ++b_.outer_summary.fold_repairs;
+      say_("outer fold repair " + std::to_string(b_.outer_summary.fold_repairs) + ": " + std::to_string(folds.pairs) +
+           " face pairs cross, their limits lowered");
+      minimize(round);
+    }
+    return constraints_met;
+  }
+
+  void minimize(int round) {
     solved = augmented_lagrangian_minimize(problem_->constrained_problem(), x_, params(round));
     total_evaluations += solved.evaluations;
     if (solved.x.size() == x_.size()) x_ = solved.x;  // an invalid problem leaves x where it was
@@ -424,7 +441,6 @@ class OffsetSolve {
     const bool refused = solved.status == AlStatus::invalid_input || solved.status == AlStatus::numerical_issue;
     constraints_met = !refused && solved.status != AlStatus::infeasible &&
                       solved.max_violation <= 100.0 * options_.solver.feasibility_tolerance;
-    return constraints_met;
   }
 
   const Mesh& input_;
@@ -464,6 +480,7 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
   verify_input.bound_violation = solve.bound_violation();
   verify_input.threads = options.threads;
   verify_input.precision = options.output_precision;
+  if (options.outer) verify_input.outer_own_pairs = &b.input_pairs;
   c.verification = verify_offsets(verify_input);
   // As written: rounded to the output's precision and verified again (only when it can pass:
   // on real meshes the offset surface rarely verifies even unrounded).
@@ -716,6 +733,7 @@ FieldSummary field_summary(const OptimizeOptions& options, const Band& b, const 
   field.fixed = b.fixed_count;
   field.left_solid_vertices = b.left_solid_count_initial;
   field.left_solid_vertices_after_repairs = b.left_solid_count;
+  if (options.outer) field.outer_limit = b.outer_summary;
   for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(b.band.fixed.size()); ++i) {
     if (b.band.fixed[static_cast<std::size_t>(i)] || b.left_solid[static_cast<std::size_t>(i)]) continue;
     const double span = options.ramp;

@@ -151,6 +151,12 @@ struct FrameSummary {
 // The meso-skeleton and the offset field (vertex counts). A part left solid is one thinner than
 // two walls: its band is empty (the wall's lower bound at or above the skeleton's upper one), so it
 // keeps no cavity.
+struct OuterLimitSummary {
+  int free_limited = 0, focal_limited = 0, nearest_limited = 0;
+  double mean_fraction = 0.0;
+  int fold_repairs = 0;             // solves repeated with limits lowered where the surface still folded
+};
+
 struct FieldSummary {
   int contraction_steps = 0;
   ContractionStatus contraction_status = ContractionStatus::step_cap;
@@ -162,6 +168,9 @@ struct FieldSummary {
   int left_solid_vertices_after_repairs = 0;
   int clamped_at_wall = 0;          // final inner offsets within a ramp of the wall ...
   int clamped_at_skeleton = 0;      // ... or of the skeleton
+  // With --outer (shape/outer_offset_limit.h): vertices whose outer limit each rule lowered below
+  // --outer-max, and the mean limit over the vertices away from the ground, as a fraction of it.
+  std::optional<OuterLimitSummary> outer_limit;
 };
 
 struct BasisSummary {

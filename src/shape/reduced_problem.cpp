@@ -44,17 +44,7 @@ ReducedProblem::ReducedProblem(const Mesh& mesh, const OffsetBand& band, const E
     for (Eigen::Index i = 0; i < mesh_.V.rows(); ++i)
       if (band_.fixed[static_cast<std::size_t>(i)]) basis_.row(i).setZero();
   fixed_outer_integrals_ = volume_integrals(mesh_, Eigen::Vector3d::Zero()).values;
-  if (options_.outer) {
-    // Inward, the outer surface may use at most half of the free band (hi − δl), so the wall
-    // coupling lo = δl − δout stays below hi and the inner surface cannot be crossed; in a part
-    // left solid (δl >= hi) it cannot move inward at all.
-    outer_inward_limit_.resize(mesh_.V.rows());
-    for (Eigen::Index i = 0; i < mesh_.V.rows(); ++i) {
-      const double free_band = band_.upper(i) - band_.lower(i);
-      const double half = free_band > 0.0 ? 0.5 * free_band : 0.0;
-      outer_inward_limit_(i) = half < band_.outer_limit(i) ? half : band_.outer_limit(i);
-    }
-  }
+  if (options_.outer) update_outer_inward_limit();
   if (options_.bounds == BoundsMode::hard) build_hard_bounds();
   const Eigen::Index faces = mesh_.F.rows(), half = faces / 2;
   face_parts_[0] = mesh_.F.topRows(half);
@@ -103,6 +93,26 @@ Eigen::MatrixXd ReducedProblem::project_rows(const Eigen::MatrixXd& per_vertex, 
   for (Eigen::Index i = begin; i < end; ++i)
     if (!band_.fixed[static_cast<std::size_t>(i)]) out.col(i) = per_vertex.col(i);
   return out;
+}
+
+// Inward, the outer surface may use at most half of the free band (hi − δl), so the wall coupling
+// lo = δl − δout stays below hi and the inner surface cannot be crossed; in a part left solid
+// (δl >= hi) it cannot move inward at all.
+void ReducedProblem::update_outer_inward_limit() {
+  outer_inward_limit_.resize(mesh_.V.rows());
+  for (Eigen::Index i = 0; i < mesh_.V.rows(); ++i) {
+    const double free_band = band_.upper(i) - band_.lower(i);
+    const double half = free_band > 0.0 ? 0.5 * free_band : 0.0;
+    outer_inward_limit_(i) = half < band_.outer_limit(i) ? half : band_.outer_limit(i);
+  }
+}
+
+void ReducedProblem::set_outer_limit(const Eigen::VectorXd& limit) {
+  if (!options_.outer || limit.size() != mesh_.V.rows()) return;
+  band_.outer_limit = limit;
+  update_outer_inward_limit();
+  if (options_.bounds == BoundsMode::hard) build_hard_bounds();
+  cache_valid_ = false;
 }
 
 void ReducedProblem::build_hard_bounds() {

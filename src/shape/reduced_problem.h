@@ -101,6 +101,11 @@ class ReducedProblem {
   // inside the user's margin, so the next contour's noise does not push the written solid out.
   void set_goal_margins(double margin, double epsilon);
 
+  // New outer limits omax_i (#V, >= 0, the frame's units) for later evaluations: the optimiser
+  // lowers them where the thickened surface folded (shape/shrink_outer_limit.h). The inward limit
+  // and, in hard mode, the linear bounds follow.
+  void set_outer_limit(const Eigen::VectorXd& limit);
+
   // The problem for the augmented Lagrangian; it refers to *this, which must outlive the solve.
   ConstrainedProblem constrained_problem();
 
@@ -112,6 +117,7 @@ class ReducedProblem {
   Eigen::MatrixXd project_rows(const Eigen::MatrixXd& per_vertex, Eigen::Index begin, Eigen::Index end) const;
   void run_parts(const std::function<void(int)>& part) const;  // part(0) and part(1), maybe on two threads
   void build_hard_bounds();
+  void update_outer_inward_limit();
 
   Mesh mesh_;
   OffsetBand band_;

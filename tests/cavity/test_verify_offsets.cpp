@@ -2,11 +2,15 @@
 // is known: the cavity's closedness count against hand-counted defects (a missing face leaves 3
 // directed edges without their opposite; a duplicated face uses 3 edges twice one way; a flipped
 // face leaves 3 edges used twice one way and never the other, 3 each), the wall against the
-// analytic 3, and a goal-only check that measures no validity.
+// analytic 3, a goal-only check that measures no validity, and a moved outer surface's new
+// self-intersections against hand-placed crossing boxes.
 #include <doctest/doctest.h>
 
-#include "mesh/primitives.h"
+#include "../mass/geometry_checks.h"
 #include "cavity/verify_offsets.h"
+#include "geometry/bvh.h"
+#include "geometry/intersecting_faces.h"
+#include "mesh/primitives.h"
 
 using namespace offsetopt;
 
@@ -63,4 +67,59 @@ TEST_CASE("verify_offsets counts a box cavity's unmatched edges and measures its
   const Verification goal_only = check_cavity(outer, drop_face(inner, 0), true);
   CHECK_FALSE(goal_only.validity.has_value());
   CHECK_FALSE(goal_only.valid);
+}
+
+namespace {
+
+// Boxes A = [0, 10]^3, B and C (1 by 0.6 by 1) as one mesh of three shells. A box standing
+// through A's top face (z = 10) crosses it with its 4 sides, 8 triangles, each with an edge through
+// the one top triangle it lies over (B and C each stay on one side of either diagonal of the top).
+Mesh three_boxes(double b_z, double c_z) {
+  const Mesh parts[3] = {make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(10, 10, 10)),
+                         make_box(Eigen::Vector3d(1, 4.2, b_z), Eigen::Vector3d(2, 4.8, b_z + 1)),
+                         make_box(Eigen::Vector3d(8, 5.2, c_z), Eigen::Vector3d(9, 5.8, c_z + 1))};
+  Mesh out;
+  out.V.resize(24, 3);
+  out.F.resize(36, 3);
+  for (int p = 0; p < 3; ++p) {
+    out.V.middleRows(8 * p, 8) = parts[p].V;
+    out.F.middleRows(12 * p, 12) = parts[p].F.array() + 8 * p;
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("verify_offsets counts a moved outer surface's self-intersections that the input lacked, pair by pair") {
+  const Mesh input = three_boxes(9.5, 12.0);  // B crosses A's top: 8 pairs, the input's own
+  const Mesh moved = three_boxes(12.0, 9.5);  // B lifted clear, C lowered through: 8 other pairs
+  REQUIRE(test::self_intersections(input) == 8);
+  REQUIRE(test::self_intersections(moved) == 8);
+  const std::vector<std::pair<int, int>> own = self_intersections(TriangleBvh(input.V, input.F), 1000).pairs;
+  REQUIRE(own.size() == 8);
+  const Mesh inner = make_box(Eigen::Vector3d(3, 3, 3), Eigen::Vector3d(7, 7, 7));
+  VerifyInput in;
+  in.inner = &inner;
+  in.goal.kind = GoalKind::volume;
+  in.goal.target_volume = 64.0;
+  in.diagonal = std::sqrt(300.0);
+  in.wall = 1.0;
+  in.threads = 1;
+  in.outer_own_pairs = &own;
+
+  in.outer = &moved;  // the same count as the input's, none of its pairs: 8 new
+  const Verification crossed = verify_offsets(in);
+  REQUIRE(crossed.validity);
+  CHECK(crossed.validity->outer_new_self_intersections == 8);
+  CHECK(crossed.validity->outer_own_self_intersections == 0);
+  CHECK_FALSE(crossed.valid);
+
+  in.outer = &input;  // unmoved: every pair is the input's own
+  const Verification kept = verify_offsets(in);
+  CHECK(kept.validity->outer_new_self_intersections == 0);
+  CHECK(kept.validity->outer_own_self_intersections == 8);
+  CHECK(kept.valid);
+
+  in.outer_own_pairs = nullptr;  // the outer surface is the input: not searched
+  CHECK_FALSE(verify_offsets(in).validity->outer_new_self_intersections.has_value());
 }

@@ -80,6 +80,9 @@ TEST_CASE("bottle: --goal stand-filled --fill-density 0.8 --outer stands empty a
   CHECK(after.at("empty").at("com_margin").as_number() >= margin);
   CHECK(after.at("filled").at("com_margin").as_number() >= margin);
   CHECK(after.at("inner_outer_crossings").as_integer() == 0);
+  // The thickened outer surface was searched, and adds no crossing (the demo bottle has none).
+  CHECK(after.at("outer_new_self_intersections").as_integer() == 0);
+  CHECK(after.at("outer_own_self_intersections").as_integer() == 0);
 }
 
 TEST_CASE("top: --goal spin puts the centre of mass on the axis and z on the largest principal axis") {
