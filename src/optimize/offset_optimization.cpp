@@ -716,8 +716,10 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
                                                (q.message.empty() ? (q.verification.failures.empty() ? std::string("unknown")
                                                                                                     : q.verification.failures.front())
                                                                   : q.message)
-                                         : "the offset void is within " + format_double(options.quadric_tie * 100.0) +
-                                               "% of the quadric void's objective";
+                                         : *c.summary.offset_objective <= *c.summary.quadric_objective
+                                               ? std::string("the offset void's objective is the better one")
+                                               : "the offset void is within " + format_double(options.quadric_tie * 100.0) +
+                                                     "% of the quadric void's objective";
   }
   return c;
 }

@@ -65,9 +65,9 @@ TEST_CASE("reachability stage: an upright cylinder is reachable, its lowest cent
   CHECK(s.decided);
   REQUIRE(s.lowest_cz);
   // The lowest centre: carve the carvable cylinder (radius R − s, from s to 10 − s) above the final
-  // centre z*, which solves z* = cz(z*). The strict cells lie between the cylinder shrunk by
-  // wall + margin and by wall + margin + √3 h (h = wall / 1.5, margin 0.05), on a 48-gon whose
-  // radius is between 3 cos(π/48) and 3.
+  // centre z*, which solves z* = cz(z*). The stage reads the mid cells (centres a wall deep): they
+  // lie in the cylinder shrunk by wall − r and cover the one shrunk by wall + r (r = √3 h / 2, half
+  // a cell's diagonal, h = wall / 1.5), on a 48-gon whose radius is between 3 cos(π/48) and 3.
   const Vector10d P = mass_properties(mesh);
   auto lowest = [&](double radius, double shrink) {
     const double area = 3.14159265358979 * (radius - shrink) * (radius - shrink), top = 10.0 - shrink;
@@ -75,8 +75,8 @@ TEST_CASE("reachability stage: an upright cylinder is reachable, its lowest cent
     for (int i = 0; i < 200; ++i) z = (P(kMass) * P(kCz) - area * 0.5 * (top * top - z * z)) / (P(kMass) - area * (top - z));
     return z;
   };
-  const double h = 0.2;
-  CHECK(*s.lowest_cz >= lowest(3.0, 0.35) - 1e-9);
-  CHECK(*s.lowest_cz <= lowest(3.0 * std::cos(3.14159265358979 / 48.0), 0.35 + std::sqrt(3.0) * h) + 1e-9);
+  const double r = 0.5 * std::sqrt(3.0) * 0.2;
+  CHECK(*s.lowest_cz >= lowest(3.0, 0.3 - r) - 1e-9);
+  CHECK(*s.lowest_cz <= lowest(3.0 * std::cos(3.14159265358979 / 48.0), 0.3 + r) + 1e-9);
   CHECK(s.remedies.empty());
 }
