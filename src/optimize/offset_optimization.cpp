@@ -264,15 +264,16 @@ std::string make_band(const Mesh& input, const OptimizeOptions& options, const F
   if (options.outer) {
     b.input_pairs = self_intersections(b.bvh, 100000).pairs;
     // The base stays where it is: no outer offset at or below b = zmin + 2 ground_tol, and above it
-    // a vertex may drop (|w_z| times its offset, either sign) at most half its height above b, so
-    // it stays above b: the contact set and the pose are kept.
+    // a vertex may drop (|w_z| times its offset, either sign) at most 0.9 of its height above b, so
+    // it stays above b: the contact set and the pose are kept (half its height cost the horse's
+    // stand margin: 0.92 of the request).
     Eigen::VectorXd requested(n);
     const double base = f.zmin + 2.0 * f.ground_tol;
     for (Eigen::Index i = 0; i < n; ++i) {
       const double height = input.V(i, 2) - base;
       const double drop_per_offset = std::fabs(b.field.outer(i, 2));
       double wanted = f.outer_max;
-      if (drop_per_offset * wanted > 0.5 * height) wanted = 0.5 * height / drop_per_offset;
+      if (drop_per_offset * wanted > 0.9 * height) wanted = 0.9 * height / drop_per_offset;
       requested(i) = height <= 0.0 || band.fixed[static_cast<std::size_t>(i)] ? 0.0 : wanted;
     }
     // Each vertex thickens at most as far as the surface cannot fold there (shape/outer_offset_limit.h).
