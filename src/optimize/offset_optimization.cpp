@@ -932,7 +932,9 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
                    b.input_self.truncated};
   result.cavity = cavity.summary;
   result.after = cavity.verification;
-  if (reach.programme) result.optimality = optimality(f, *reach.programme, cavity.verification);
+  // Not with --outer: the programme's band adds material but does not model the outer surface's
+  // shaving, so its best is no bound on what the thickened solid reaches.
+  if (reach.programme && !options.outer) result.optimality = optimality(f, *reach.programme, cavity.verification);
   result.timings = timings;
   result.reachability = std::move(reach);
   // The input's own crossings are named where it is loaded (cli/cli_support.h, load_input); the
