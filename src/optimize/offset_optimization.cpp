@@ -620,7 +620,8 @@ double written_score(const Frame& f, const Mesh& outer, const Mesh& cavity, cons
 }
 
 std::optional<Optimality> optimality(const Frame& f, const Reachability& reach, const Verification& v) {
-  if (!v.goal_met || !reach.reachable) return std::nullopt;
+  // An invalid solid (a wall below the request) may carve past what any valid void reaches.
+  if (!v.goal_met || !v.valid || !reach.reachable) return std::nullopt;
   Optimality o;
   if (f.goal.kind == GoalKind::floating) {
     if (!reach.best_margin || !(*reach.best_margin > 0.0)) return std::nullopt;
