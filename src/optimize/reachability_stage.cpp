@@ -43,11 +43,12 @@ std::string shortfall(const GoalSpec& goal, const Reachability& r) {
                         : "the best any void reaches keeps the centre of mass only " + format_double(best) + " inside " +
                               binding + ", less than the margin " + required;
     case GoalKind::roly_poly:
-      return "the best any void reaches puts the centre of mass " + format_double(best) +
-             " below the sphere centre, less than the margin " + required;
-    case GoalKind::floating:
-      return "the best any void reaches puts the centre of mass " + format_double(best) +
-             " below the centre of buoyancy, less than the margin " + required;
+    case GoalKind::floating: {
+      const std::string centre = goal.kind == GoalKind::roly_poly ? "the sphere centre" : "the centre of buoyancy";
+      return best < 0.0 ? "the best any void reaches leaves the centre of mass at least " + format_double(-best) + " above " + centre
+                        : "the best any void reaches puts the centre of mass only " + format_double(best) + " below " + centre +
+                              ", less than the margin " + required;
+    }
     default: return "no void meets " + binding;
   }
 }
