@@ -119,28 +119,16 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
     box.lo -= Eigen::Vector3d::Constant(options.outer_max);
     box.hi += Eigen::Vector3d::Constant(options.outer_max);
   }
-  // The contour's spacing and margin (cavity/contour_cavity.cpp), so the inner cells are ones it
-  // can write.
-  double h = wall / options.cells_per_wall;
-  const Eigen::Vector3d extent = box.hi - box.lo;
-  auto nodes_for = [&](double spacing) {
-    double count = 1.0;
-    for (int a = 0; a < 3; ++a) count *= std::ceil(extent(a) / spacing) + 6.0;
-    return count;
-  };
-  for (int grow = 0; grow < 60 && nodes_for(h) > static_cast<double>(options.max_nodes); ++grow) h *= 1.05;
-  if (nodes_for(h) > static_cast<double>(options.max_nodes)) {
+  // The contour's grid and node test (cavity/contour_cavity.h), so the inner cells are ones it
+  // can write whole.
+  NodeGrid& grid = out.grid;
+  if (!cavity_grid(box, wall, options.cells_per_wall, options.max_nodes, grid)) {
     out.message = "the cell grid would need more than " + std::to_string(options.max_nodes) + " nodes";
     return out;
   }
+  const double h = grid.spacing;
   out.margin = options.node_margin >= 0.0 ? options.node_margin
                                           : cavity_node_level(wall, h, options.margin_cells, bounding_box(outer.V)) - wall;
-  NodeGrid& grid = out.grid;
-  grid.spacing = h;
-  grid.origin = box.lo - Eigen::Vector3d(2.2371, 2.3119, 2.4243) * h;
-  grid.nx = static_cast<std::int64_t>(std::ceil(extent.x() / h)) + 6;
-  grid.ny = static_cast<std::int64_t>(std::ceil(extent.y() / h)) + 6;
-  grid.nz = static_cast<std::int64_t>(std::ceil(extent.z() / h)) + 6;
   NodeGrid centres;
   centres.spacing = h;
   centres.origin = grid.origin + Eigen::Vector3d::Constant(0.5 * h);

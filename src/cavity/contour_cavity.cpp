@@ -346,26 +346,6 @@ std::vector<double> face_deficits(const TriangleBvh& outer_bvh, const Mesh& mesh
   return deficit;
 }
 
-// The grid: spacing wall / cells_per_wall, coarser when the box would need too many nodes.
-bool make_grid(const Aabb& box, const ContourCavityOptions& options, NodeGrid& grid) {
-  double h = options.wall / options.cells_per_wall;
-  const Eigen::Vector3d extent = box.hi - box.lo;
-  auto nodes_for = [&](double spacing) {
-    double count = 1.0;
-    for (int a = 0; a < 3; ++a) count *= std::ceil(extent(a) / spacing) + 6.0;
-    return count;
-  };
-  for (int grow = 0; grow < 60 && nodes_for(h) > static_cast<double>(options.max_nodes); ++grow) h *= 1.05;
-  if (nodes_for(h) > static_cast<double>(options.max_nodes)) return false;
-  grid.spacing = h;
-  // Offsets by odd fractions of h: grid rows and nodes then miss the round coordinates of CAD
-  // meshes (the tie-breaking in grid_winding makes such hits correct anyway, but rarer is cheaper).
-  grid.origin = box.lo - Eigen::Vector3d(2.2371, 2.3119, 2.4243) * h;
-  grid.nx = static_cast<std::int64_t>(std::ceil(extent.x() / h)) + 6;
-  grid.ny = static_cast<std::int64_t>(std::ceil(extent.y() / h)) + 6;
-  grid.nz = static_cast<std::int64_t>(std::ceil(extent.z() / h)) + 6;
-  return true;
-}
 
 // Distance pass: a candidate stays cavity when d_out >= level. One query per block of 4³ nodes
 // decides most of them by the Lipschitz bound. Returns the nodes queried one by one.
@@ -683,7 +663,7 @@ ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, con
   out.ok = true;
   if (box.empty()) return out;  // no void
   NodeGrid& grid = out.grid;
-  if (!make_grid(box, options, grid)) {
+  if (!cavity_grid(box, options.wall, options.cells_per_wall, options.max_nodes, grid)) {
     out.ok = false;
     out.message = "the cavity grid would need more than " + std::to_string(options.max_nodes) + " nodes";
     return out;
@@ -730,6 +710,26 @@ ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, con
 }
 
 }  // namespace
+
+bool cavity_grid(const Aabb& box, double wall, double cells_per_wall, std::int64_t max_nodes, NodeGrid& grid) {
+  double h = wall / cells_per_wall;
+  const Eigen::Vector3d extent = box.hi - box.lo;
+  auto nodes_for = [&](double spacing) {
+    double count = 1.0;
+    for (int a = 0; a < 3; ++a) count *= std::ceil(extent(a) / spacing) + 6.0;
+    return count;
+  };
+  for (int grow = 0; grow < 60 && nodes_for(h) > static_cast<double>(max_nodes); ++grow) h *= 1.05;
+  if (nodes_for(h) > static_cast<double>(max_nodes)) return false;
+  grid.spacing = h;
+  // Offsets by odd fractions of h: grid rows and nodes then miss the round coordinates of CAD
+  // meshes (the tie-breaking in grid_winding makes such hits correct anyway, but rarer is cheaper).
+  grid.origin = box.lo - Eigen::Vector3d(2.2371, 2.3119, 2.4243) * h;
+  grid.nx = static_cast<std::int64_t>(std::ceil(extent.x() / h)) + 6;
+  grid.ny = static_cast<std::int64_t>(std::ceil(extent.y() / h)) + 6;
+  grid.nz = static_cast<std::int64_t>(std::ceil(extent.z() / h)) + 6;
+  return true;
+}
 
 double cavity_node_level(double wall, double h, double margin_cells, const Aabb& outer_box) {
   return std::max(wall + margin_cells * h, 1.01 * h) + rounding_hair(wall, outer_box) + kNodeRoom * h;

@@ -78,6 +78,10 @@ struct ContourCavity {
 
 // `outer` is the closed outer surface and `outer_bvh` its tree; `inner` the inner offset surface
 // (closed as a mesh, possibly folded or crossing `outer`). Both in the same units as the wall.
+// The contour's grid over `box`: spacing wall / cells_per_wall, grown by 5% steps while the box
+// would need more than max_nodes nodes; false when even 60 steps do not bring it under.
+bool cavity_grid(const Aabb& box, double wall, double cells_per_wall, std::int64_t max_nodes, NodeGrid& grid);
+
 // The distance to the outer surface from which a grid node of spacing h counts as cavity (the
 // node test above): a cell whose eight nodes all keep it is written whole. `outer_box` bounds the
 // outer surface (the rounding hair grows with the coordinates' size).

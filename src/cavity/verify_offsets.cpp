@@ -314,4 +314,21 @@ Verification verify_offsets(const VerifyInput& in) {
   return out;
 }
 
+VerifiedCavity verify_written_cavity(VerifyInput input, const Mesh& outer, const Mesh& cavity, int faces_below_wall,
+                                    StoredPrecision precision) {
+  VerifiedCavity out;
+  out.rounded = round_for_output(outer, cavity, {}, precision);
+  input.outer = &out.rounded.outer;
+  input.inner = &out.rounded.inner;
+  input.rounding = &out.rounded;
+  input.goal_only = false;
+  out.verification = verify_offsets(input);
+  if (faces_below_wall > 0) {
+    out.verification.valid = false;
+    out.verification.failures.push_back(std::to_string(faces_below_wall) +
+                                        " cavity faces come closer to the outer surface than the wall between their vertices");
+  }
+  return out;
+}
+
 }  // namespace offsetopt

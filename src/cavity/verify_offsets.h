@@ -130,4 +130,15 @@ struct Verification {
 // with a moved outer surface, no self-intersection of it that the input lacked.
 Verification verify_offsets(const VerifyInput& input);
 
+// A contoured cavity as it will be written: `outer` and `cavity` rounded to `precision`
+// (cavity/round_for_output.h) and verified with `input`'s goal and tolerances (its outer, inner
+// and rounding are replaced), and invalid when the contour found `faces_below_wall` faces closer
+// to the outer surface than the wall between their vertices (the verification measures vertices).
+struct VerifiedCavity {
+  RoundedForOutput rounded;
+  Verification verification;
+};
+VerifiedCavity verify_written_cavity(VerifyInput input, const Mesh& outer, const Mesh& cavity, int faces_below_wall,
+                                    StoredPrecision precision);
+
 }  // namespace offsetopt

@@ -546,20 +546,11 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
       contour_input.goal_only = true;
       c.verification = verify_offsets(contour_input);
       const bool will_correct = !c.verification.goal_met && solve.constraints_met && round < options.max_correction_rounds;
-      RoundedForOutput written;
+      VerifiedCavity written;
       if (!will_correct) {
-        written = round_for_output(solve.outer, contoured.cavity, {}, options.output_precision);
-        contour_input.outer = &written.outer;
-        contour_input.inner = &written.inner;
-        contour_input.rounding = &written;
-        contour_input.goal_only = false;
-        c.verification = verify_offsets(contour_input);
-        // The verification measures the wall at vertices; the contour measured it at every face.
-        if (contoured.faces_below_wall > 0) {
-          c.verification.valid = false;
-          c.verification.failures.push_back(std::to_string(contoured.faces_below_wall) +
-                                            " cavity faces come closer to the outer surface than the wall between their vertices");
-        }
+        written = verify_written_cavity(contour_input, solve.outer, contoured.cavity, contoured.faces_below_wall,
+                                        options.output_precision);
+        c.verification = written.verification;
       }
       const double cube = f.scale * f.scale * f.scale;
       ContourRound& entry = rounds.emplace_back();
@@ -581,8 +572,8 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
       say("cavity round " + std::to_string(round) + ": " + std::to_string(contoured.active_cells) + " cells contoured, " +
           std::to_string(contoured.shells) + " shells, goal " + (c.verification.goal_met ? "met" : "not met") + ", " +
           (will_correct ? "corrected next" : c.verification.valid ? "valid" : "not valid"));
-      c.outer = will_correct ? solve.outer : written.outer;
-      c.written = will_correct ? contoured.cavity : written.inner;
+      c.outer = will_correct ? solve.outer : written.rounded.outer;
+      c.written = will_correct ? contoured.cavity : written.rounded.inner;
       // Stops at a verified contour, an invalid one (a correction cannot mend it), a goal whose
       // constraints the solver could not meet, or the last round.
       if (!will_correct) break;

@@ -6,7 +6,6 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
-#include "cavity/round_for_output.h"
 #include "mass/volume_integrals.h"
 #include "util/neumaier_sum.h"
 
@@ -184,19 +183,11 @@ QuadricVoid write_quadric_void(const QuadricVoidInput& input) {
     const bool will_correct = step.has_value();
     if (!will_correct) {
       // As written: rounded to the file's precision, then verified, the faces' wall included.
-      const RoundedForOutput rounded = round_for_output(*input.outer, contoured.cavity, {}, input.verify.precision);
-      verify.outer = &rounded.outer;
-      verify.inner = &rounded.inner;
-      verify.rounding = &rounded;
-      verify.goal_only = false;
-      out.verification = verify_offsets(verify);
-      if (contoured.faces_below_wall > 0) {
-        out.verification.valid = false;
-        out.verification.failures.push_back(std::to_string(contoured.faces_below_wall) +
-                                            " cavity faces come closer to the outer surface than the wall between their vertices");
-      }
-      out.outer = rounded.outer;
-      out.written = rounded.inner;
+      VerifiedCavity written_file =
+          verify_written_cavity(verify, *input.outer, contoured.cavity, contoured.faces_below_wall, input.verify.precision);
+      out.verification = std::move(written_file.verification);
+      out.outer = std::move(written_file.rounded.outer);
+      out.written = std::move(written_file.rounded.inner);
     }
     record_round(contoured, round == 0 ? written : predicted, written, s, out.verification, will_correct, out);
     if (!will_correct) break;
