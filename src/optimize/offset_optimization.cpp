@@ -79,6 +79,24 @@ const char* to_string(CavityMode mode) {
   return "auto";
 }
 
+ContourRound contour_round(const ContourCavity& contoured, const Verification& verification, bool validity_measured) {
+  ContourRound entry;
+  entry.grid = Eigen::Vector3i(static_cast<int>(contoured.grid.nx), static_cast<int>(contoured.grid.ny),
+                               static_cast<int>(contoured.grid.nz));
+  entry.spacing = contoured.grid.spacing;
+  entry.contoured_cells = contoured.active_cells;
+  entry.distance_nodes = contoured.distance_nodes;
+  entry.shells = contoured.shells;
+  entry.shells_filled = contoured.shells_dropped;
+  entry.filled_volume = contoured.dropped_volume;
+  entry.vertices_moved_for_wall = contoured.vertices_moved_for_wall;
+  entry.vertices = static_cast<long long>(contoured.cavity.V.rows());
+  entry.faces = static_cast<long long>(contoured.cavity.F.rows());
+  entry.goal_met = verification.goal_met;
+  if (validity_measured) entry.valid = verification.valid;
+  return entry;
+}
+
 const char* to_string(WrittenCavity written) {
   switch (written) {
     case WrittenCavity::offset: return "offset";
@@ -553,22 +571,10 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
         c.verification = written.verification;
       }
       const double cube = f.scale * f.scale * f.scale;
-      ContourRound& entry = rounds.emplace_back();
+      ContourRound& entry = rounds.emplace_back(contour_round(contoured, c.verification, !will_correct));
       entry.delta_in_frame = delta;
       entry.void_volume_offset = solve.eval.inner_integrals(kIntVolume) / cube;
       entry.void_volume_contour = (solve.eval.inner_integrals(kIntVolume) + delta(kIntVolume)) / cube;
-      entry.grid = Eigen::Vector3i(contoured.grid.nx, contoured.grid.ny, contoured.grid.nz);
-      entry.spacing = contoured.grid.spacing;
-      entry.contoured_cells = contoured.active_cells;
-      entry.distance_nodes = contoured.distance_nodes;
-      entry.shells = contoured.shells;
-      entry.shells_filled = contoured.shells_dropped;
-      entry.filled_volume = contoured.dropped_volume;
-      entry.vertices_moved_for_wall = contoured.vertices_moved_for_wall;
-      entry.vertices = static_cast<long long>(contoured.cavity.V.rows());
-      entry.faces = static_cast<long long>(contoured.cavity.F.rows());
-      entry.goal_met = c.verification.goal_met;
-      if (!will_correct) entry.valid = c.verification.valid;
       say("cavity round " + std::to_string(round) + ": " + std::to_string(contoured.active_cells) + " cells contoured, " +
           std::to_string(contoured.shells) + " shells, goal " + (c.verification.goal_met ? "met" : "not met") + ", " +
           (will_correct ? "corrected next" : c.verification.valid ? "valid" : "not valid"));

@@ -20,6 +20,7 @@
 #include "shape/fix_region.h"
 #include "shape/goal.h"
 #include "shape/reduced_problem.h"
+#include "cavity/contour_cavity.h"
 #include "cavity/verify_offsets.h"
 #include "optimize/reachability_stage.h"
 #include "skeleton/laplacian_contraction.h"
@@ -233,6 +234,10 @@ struct ContourRound {
 
 enum class WrittenCavity { offset, contour, quadric };
 const char* to_string(WrittenCavity written);
+
+// The contour's own figures of a round (grid, cells, shells, faces) and the goal met; `valid` only
+// when validity was measured. The caller sets Δ and the void volumes.
+ContourRound contour_round(const ContourCavity& contoured, const Verification& verification, bool validity_measured);
 
 // Which cavity was written and why: the offset surface's own verification, then the contour rounds,
 // then, where the offset model fell short of a goal some void reaches, the quadric void's rounds.

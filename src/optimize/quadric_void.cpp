@@ -123,23 +123,10 @@ std::optional<Vector10d> newton_step(const GoalValues& values, const Eigen::Matr
 
 void record_round(const ContourCavity& contoured, const Vector10d& predicted, const Vector10d& written, double s,
                   const Verification& verification, bool will_correct, QuadricVoid& out) {
-  ContourRound& entry = out.rounds.emplace_back();
+  ContourRound& entry = out.rounds.emplace_back(contour_round(contoured, verification, !will_correct));
   entry.delta_in_frame = written - predicted;
   entry.void_volume_offset = predicted(kIntVolume) / (s * s * s);
   entry.void_volume_contour = written(kIntVolume) / (s * s * s);
-  entry.grid = Eigen::Vector3i(static_cast<int>(contoured.grid.nx), static_cast<int>(contoured.grid.ny),
-                               static_cast<int>(contoured.grid.nz));
-  entry.spacing = contoured.grid.spacing;
-  entry.contoured_cells = contoured.active_cells;
-  entry.distance_nodes = contoured.distance_nodes;
-  entry.shells = contoured.shells;
-  entry.shells_filled = contoured.shells_dropped;
-  entry.filled_volume = contoured.dropped_volume;
-  entry.vertices_moved_for_wall = contoured.vertices_moved_for_wall;
-  entry.vertices = static_cast<long long>(contoured.cavity.V.rows());
-  entry.faces = static_cast<long long>(contoured.cavity.F.rows());
-  entry.goal_met = verification.goal_met;
-  if (!will_correct) entry.valid = verification.valid;
 }
 
 }  // namespace
