@@ -221,6 +221,7 @@ int run_optimize(const Args& args) {
   };
   const PosedInput posed = pose_input(loaded.mesh, pose_options, mesh_path, true);
   print_warnings(posed.warnings, quiet);
+  options.flatten = pose_options.flatten;
   OptimizeResult result = optimize_offsets(posed.mesh, options, progress);
   if (result.status == OptimizeStatus::bad_input) throw UsageError(mesh_path + ": " + result.message);
   print_warnings(result.warnings, quiet);

@@ -59,6 +59,9 @@ struct OptimizeOptions {
   double gap = 0.05;             // s: inner offsets stop at (1 - s) of the skeleton distance
   double ramp = 2e-3;            // τ of the smooth clamp, fraction of the diagonal
   double start_fraction = 0.5;   // start inside the band (see ReducedOptions)
+  // The --flatten height the input was already cut at (the CLI's pose options; 0: none), so a
+  // flat-base remedy names the height to type.
+  double flatten = 0.0;
   CavityMode cavity = CavityMode::automatic;
   // `auto` tries the quadric void when the offset void misses a goal some void reaches, or when
   // it achieves less than this fraction of the possible lowering (Optimality); the offset void is

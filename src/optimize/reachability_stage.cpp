@@ -1,8 +1,12 @@
 #include "optimize/reachability_stage.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "geometry/bvh.h"
+#include "geometry/flatten_base.h"
 #include "geometry/pose.h"
 #include "mass/mass_properties.h"
 #include "mass/stability.h"
@@ -55,36 +59,105 @@ std::string shortfall(const GoalSpec& goal, const Reachability& r) {
 
 // Another pose for a stand goal: the same cells, their integrals rotated (cavity/reachability.h),
 // the ground and support polygon of the rotated input. Coordinates are R·p (no translation).
-std::optional<ReachabilityRemedy> try_pose(const ReachabilityStageInput& in, const std::shared_ptr<const CarvableCells>& cells,
-                                           const VolumeIntegrals& integrals, const Eigen::Matrix3d& R, const std::string& option) {
-  Mesh turned = *in.input;
-  for (Eigen::Index v = 0; v < turned.V.rows(); ++v) turned.V.row(v) = (R * in.input->V.row(v).transpose()).transpose();
-  const Vector10d P = mass_properties(turned);
+// The goal's support polygon and ground of a re-posed or re-cut input, for a stand remedy.
+struct Standing {
+  GoalSpec goal;
+  double ground_z = 0.0;
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+};
+
+std::optional<Standing> standing_on(const Mesh& mesh, const ReachabilityStageInput& in) {
+  const Vector10d P = mass_properties(mesh);
   StabilityOptions so;
   so.ground_tol = in.ground_tol;
-  const Stability st = compute_stability(turned, Eigen::Vector3d(P(kCx), P(kCy), P(kCz)), so);
+  const Stability st = compute_stability(mesh, Eigen::Vector3d(P(kCx), P(kCy), P(kCz)), so);
   if (st.support_polygon.size() < 3) return std::nullopt;
-  GoalSpec goal = in.goal;
-  goal.support_polygon = st.support_polygon;
+  Standing s;
+  s.goal = in.goal;
+  s.goal.support_polygon = st.support_polygon;
+  s.ground_z = st.ground_z;
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
   int contacts = 0;
-  for (Eigen::Index v = 0; v < turned.V.rows(); ++v)
-    if (turned.V(v, 2) <= st.ground_z + in.ground_tol) {
-      centroid += turned.V.row(v).head<2>().transpose();
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+    if (mesh.V(v, 2) <= st.ground_z + in.ground_tol) {
+      centroid += mesh.V.row(v).head<2>().transpose();
       ++contacts;
     }
   centroid /= std::max(1, contacts);
-  const Eigen::Vector3d lo = in.input->V.colwise().minCoeff().transpose(), hi = in.input->V.colwise().maxCoeff().transpose();
-  ReachabilityOptions o = options_for(in, false);
-  o.lowest_cz = false;
-  const Reachability r = reachability(cells, integrals, R, goal, st.ground_z, Eigen::Vector3d(centroid.x(), centroid.y(), st.ground_z),
-                                      (hi - lo).norm(), o);
-  if (!r.ok) return std::nullopt;
+  s.origin = Eigen::Vector3d(centroid.x(), centroid.y(), st.ground_z);
+  return s;
+}
+
+ReachabilityRemedy remedy_from(const std::string& option, const Reachability& r) {
   ReachabilityRemedy remedy;
   remedy.option = option;
   remedy.reachable = r.reachable;
   remedy.best_margin = r.reachable ? r.best_margin : r.best_margin_upper;
   return remedy;
+}
+
+std::optional<ReachabilityRemedy> try_pose(const ReachabilityStageInput& in, const std::shared_ptr<const CarvableCells>& cells,
+                                           const VolumeIntegrals& integrals, const Eigen::Matrix3d& R, const std::string& option) {
+  Mesh turned = *in.input;
+  for (Eigen::Index v = 0; v < turned.V.rows(); ++v) turned.V.row(v) = (R * in.input->V.row(v).transpose()).transpose();
+  const std::optional<Standing> standing = standing_on(turned, in);
+  if (!standing) return std::nullopt;
+  const Eigen::Vector3d lo = in.input->V.colwise().minCoeff().transpose(), hi = in.input->V.colwise().maxCoeff().transpose();
+  ReachabilityOptions o = options_for(in, false);
+  o.lowest_cz = false;
+  const Reachability r =
+      reachability(cells, integrals, R, standing->goal, standing->ground_z, standing->origin, (hi - lo).norm(), o);
+  if (!r.ok) return std::nullopt;
+  return remedy_from(option, r);
+}
+
+// The input cut flat `height` above its lowest point (geometry/flatten_base.h), as --flatten
+// would cut it, and the programme on it; none when the cut or the programme fails.
+std::optional<Reachability> reach_flattened(const ReachabilityStageInput& in, double height) {
+  FlattenOptions fo;
+  fo.height = height;
+  const FlattenResult cut = flatten_base(*in.input, fo);
+  if (cut.status != FlattenStatus::ok) return std::nullopt;
+  const std::optional<Standing> standing = standing_on(cut.mesh, in);
+  if (!standing) return std::nullopt;
+  const TriangleBvh bvh(cut.mesh.V, cut.mesh.F);
+  ReachabilityOptions o = options_for(in, false);
+  o.lowest_cz = false;
+  Reachability r = reachability(cut.mesh, bvh, standing->goal, standing->ground_z, standing->origin, o);
+  if (!r.ok) return std::nullopt;
+  return r;
+}
+
+// The smallest flat base that lets a void reach a stand goal, to two significant digits and
+// checked at the height named: heights double from 1/32 of the model's height up to a quarter
+// of it, then two bisections, then the named height, rounded up, is checked once more.
+std::optional<ReachabilityRemedy> smallest_flatten(const ReachabilityStageInput& in) {
+  const double tall = in.input->V.col(2).maxCoeff() - in.input->V.col(2).minCoeff();
+  if (!(tall > 0.0)) return std::nullopt;
+  double below = 0.0, above = -1.0;
+  for (double h = tall / 32.0; h <= tall / 4.0 * (1.0 + 1e-12); h *= 2.0) {
+    const std::optional<Reachability> r = reach_flattened(in, h);
+    if (r && r->reachable) {
+      above = h;
+      break;
+    }
+    below = h;
+  }
+  if (above < 0.0) return std::nullopt;
+  for (int step = 0; step < 2; ++step) {
+    const double h = 0.5 * (below + above);
+    const std::optional<Reachability> r = reach_flattened(in, h);
+    (r && r->reachable ? above : below) = h;
+  }
+  // Rounded up to two significant digits, in the text the user will type.
+  const double unit = std::pow(10.0, std::floor(std::log10(above)) - 1.0);
+  const double named_height = std::ceil(above / unit - 1e-9) * unit;
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g", in.flatten + named_height);
+  const double total = std::strtod(text, nullptr);
+  const std::optional<Reachability> r = reach_flattened(in, total - in.flatten);
+  if (!r) return std::nullopt;
+  return remedy_from(std::string("--flatten ") + text, *r);
 }
 
 }  // namespace
@@ -118,13 +191,7 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
   const bool band_helps = in.goal.kind != GoalKind::floating && in.goal.kind != GoalKind::volume;
   if (!in.outer && band_helps) {
     const Reachability with_band = reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, options_for(in, true));
-    if (with_band.ok) {
-      ReachabilityRemedy remedy;
-      remedy.option = "--outer";
-      remedy.reachable = with_band.reachable;
-      remedy.best_margin = with_band.reachable ? with_band.best_margin : with_band.best_margin_upper;
-      s.remedies.push_back(remedy);
-    }
+    if (with_band.ok) s.remedies.push_back(remedy_from("--outer", with_band));
   }
   // Other poses (stand goals): the most stable hull facet and the other five axes up, ranked by
   // the best margin a void reaches there.
@@ -144,6 +211,10 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
       return a.best_margin.value_or(-1e300) > b.best_margin.value_or(-1e300);
     });
     s.remedies.insert(s.remedies.end(), poses.begin(), poses.end());
+    // A new cut means new cells, several times over: only for a refusal, not while the solve may
+    // still meet the goal.
+    if (r.decided)
+      if (auto remedy = smallest_flatten(in)) s.remedies.push_back(*remedy);
   }
   std::string& names = s.remedy_list;
   for (const ReachabilityRemedy& remedy : s.remedies) {
@@ -161,6 +232,11 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
 }
 
 std::string reachability_note(const ReachabilitySummary& summary) {
+  if (summary.reachable) {
+    std::string note = "a void the tool can write reaches it";
+    if (summary.best_margin) note += " (best margin " + format_double(*summary.best_margin) + ")";
+    return note + ", so this is the tool's shortfall, not the model's";
+  }
   std::string note = "undecided whether any void reaches it";
   if (summary.best_margin || summary.best_margin_upper) {
     note += " (best margin " + (summary.best_margin ? format_double(*summary.best_margin) : std::string("none")) + " to " +

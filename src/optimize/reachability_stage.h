@@ -1,7 +1,8 @@
 // Stage "reachability" of the pipeline (DESIGN.md "Reachability: what any void can do"): before
 // the offset solve, can any void reach the goal as posed (cavity/reachability.h)? When no void can
 // (decided, with a certificate), the run stops at once with exit 3 and says by how much, and which
-// remedies the same programme finds to reach it (today: --outer, with its band). When it can, the
+// remedies the same programme finds to reach it: --outer (with its band), other faces down
+// (--pose stable, --up), the smallest flat base (--flatten H). When it can, the
 // run goes on and the report still carries the answer.
 //
 // "Reachable" is read on the mid cells (CarvableCells::mid: the contour's void, which reaches the
@@ -60,13 +61,15 @@ struct ReachabilityStageInput {
   bool outer = false;
   double cavity_cells_per_wall = 1.5, cavity_margin_cells = 0.0;
   int threads = 2;
+  double flatten = 0.0;              // the --flatten height the input was already cut at (0: none)
 };
 
 ReachabilitySummary reachability_stage(const ReachabilityStageInput& in);
 
-// For a run that missed the goal when the programme could not decide: what it found, in one
-// clause ("undecided whether any void reaches it (best margin -0.0087 to -0.0013); try --outer
-// (may), --pose stable").
+// For a run that missed the goal: what the programme found, in one clause. Undecided: "undecided
+// whether any void reaches it (best margin -0.0087 to -0.0013); try --outer (may), --pose stable";
+// reachable: "a void the tool can write reaches it (best margin 0.4), so this is the tool's
+// shortfall, not the model's".
 std::string reachability_note(const ReachabilitySummary& summary);
 
 }  // namespace offsetopt

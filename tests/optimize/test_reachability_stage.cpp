@@ -3,12 +3,15 @@
 // met, the input written as it is) with the shortfall in input units, which is at least what the
 // geometry alone allows (the carvable cylinder leans as far as the solid); an upright cylinder is
 // reachable, and the lowest centre of mass any void reaches lies between the closed forms for the
-// carvable cylinder shrunk by the grid's two error bounds.
+// carvable cylinder shrunk by the grid's two error bounds. A leaning funnel (narrow at the ground)
+// is refused with a flat base among the remedies, and cut at the height named it stands, verified.
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
+#include "geometry/flatten_base.h"
 #include "mass/mass_properties.h"
 #include "mesh/primitives.h"
 #include "optimize/offset_optimization.h"
@@ -21,6 +24,16 @@ namespace {
 // Cylinder of radius 1 from z = 0 to 10, sheared x += lean · z.
 Mesh leaning_cylinder(double lean) {
   Mesh m = make_cylinder(1.0, 0.0, 10.0, 32, 20, 4);
+  for (Eigen::Index v = 0; v < m.V.rows(); ++v) m.V(v, 0) += lean * m.V(v, 2);
+  return m;
+}
+
+// A funnel standing on its narrow end: radius 0.3 + 0.4 z from z = 0 to 3, sheared x += lean · z.
+Mesh leaning_funnel(double lean) {
+  std::vector<std::pair<double, double>> profile{{0.0, 0.0}};
+  for (int i = 0; i <= 12; ++i) profile.emplace_back(0.3 + 0.4 * (3.0 * i / 12.0), 3.0 * i / 12.0);
+  profile.emplace_back(0.0, 3.0);
+  Mesh m = make_revolution(profile, 32);
   for (Eigen::Index v = 0; v < m.V.rows(); ++v) m.V(v, 0) += lean * m.V(v, 2);
   return m;
 }
@@ -79,4 +92,33 @@ TEST_CASE("reachability stage: an upright cylinder is reachable, its lowest cent
   CHECK(*s.lowest_cz >= lowest(3.0, 0.3 - r) - 1e-9);
   CHECK(*s.lowest_cz <= lowest(3.0 * std::cos(3.14159265358979 / 48.0), 0.3 + r) + 1e-9);
   CHECK(s.remedies.empty());
+}
+
+TEST_CASE("reachability stage: a leaning funnel is refused with --flatten H, and cut at H it stands") {
+  const Mesh mesh = leaning_funnel(0.5);
+  OptimizeOptions options;
+  options.goal = GoalKind::stand;
+  options.wall = 0.1;  // 1.6% of the diagonal: a coarser programme than the default, as decisive
+  const OptimizeResult refused = optimize_offsets(mesh, options);
+  REQUIRE(refused.status == OptimizeStatus::goal_not_met);
+  REQUIRE(refused.reachability);
+  CHECK(refused.reachability->decided);
+  const ReachabilityRemedy* flat = nullptr;
+  for (const ReachabilityRemedy& remedy : refused.reachability->remedies)
+    if (remedy.option.rfind("--flatten ", 0) == 0) flat = &remedy;
+  REQUIRE(flat);
+  CHECK(flat->reachable);
+  CHECK(refused.message.find(flat->option) != std::string::npos);
+  // The remedy as the user types it: the base cut at H, the goal met on the written solid.
+  const double height = std::strtod(flat->option.c_str() + 10, nullptr);
+  CHECK(height > 0.0);
+  CHECK(height <= 0.75);  // at most a quarter of the height is searched
+  FlattenOptions cut;
+  cut.height = height;
+  const FlattenResult flattened = flatten_base(mesh, cut);
+  REQUIRE(flattened.status == FlattenStatus::ok);
+  const OptimizeResult stands = optimize_offsets(flattened.mesh, options);
+  CHECK(stands.status == OptimizeStatus::verified);
+  CHECK(stands.after.goal_met);
+  CHECK(stands.after.valid);
 }
