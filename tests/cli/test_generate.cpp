@@ -14,25 +14,16 @@
 #include <sstream>
 #include <string>
 
+#include "../support.h"
 #include "io/json.h"
 #include "mass/mass_properties.h"
 #include "mesh/demo_meshes.h"
 
 using namespace offsetopt;
+using offsetopt::test::read_file;
+using offsetopt::test::RunResult;
 
 namespace {
-
-std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
 
 // A scratch directory for this process, removed with everything in it at exit.
 const std::filesystem::path& scratch_dir() {
@@ -60,7 +51,7 @@ RunResult run(const std::string& arguments) {
   const std::string command = std::string("'") + OFFSETOPT_BINARY + "' " + arguments + " >'" + out.string() + "' 2>'" + err.string() + "'";
   const int status = std::system(command.c_str());
   RunResult result;
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.exit_code = offsetopt::test::exit_code_of(status);
   result.out = read_file(out);
   result.err = read_file(err);
   return result;

@@ -1,6 +1,7 @@
-// Golden files (tests/golden): every case of cases.txt is run through the binary and its report
-// and printable solid are compared with the stored ones. When `offsetopt --version` names the
-// build recorded in BUILD.txt the comparison is byte for byte (the report's "input" path aside);
+// Golden files (tests/golden): every case of cases.txt (one CTest test each) is run through the
+// binary and its report and printable solid are compared with the stored ones. When `offsetopt
+// --version` names the build recorded in BUILD.txt the comparison is byte for byte (the report's
+// "input" path aside);
 // for any other build (another compiler, another CPU, a sanitizer build) it is within stated
 // tolerances, because the solver's path may differ in the last bits and so in its counts:
 //   report: the same keys and strings, numbers within 1e-3 relative plus 1e-6 of the diagonal,
@@ -14,6 +15,7 @@
 // tests/golden/regenerate.sh rewrites them after an intended change.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,24 +25,19 @@
 #include <string>
 #include <vector>
 
+#include "../support.h"
 #include "../temp_dir.h"
 #include "io/json.h"
 #include "meshio/read_raw_mesh.h"
 
 using offsetopt::Json;
+using offsetopt::test::read_file;
 
 namespace {
 
 const std::string kBinary = OFFSETOPT_BINARY;
 const std::string kSource = OFFSETOPT_SOURCE_DIR;
 const std::string kGolden = kSource + "/tests/golden/";
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // Removed with everything in it when the test executable exits.
 const std::string& temp_dir() {
@@ -51,7 +48,7 @@ const std::string& temp_dir() {
 int run(const std::string& command) {
   const int status = std::system(command.c_str());
   REQUIRE(status != -1);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return offsetopt::test::exit_code_of(status);
 }
 
 struct Case {
@@ -150,14 +147,21 @@ void compare_json(const Json& expected, const Json& actual, const std::string& w
 
 }  // namespace
 
+// CTest runs one case per test (tests/CMakeLists.txt sets OFFSETOPT_GOLDEN_CASE to its name);
+// run by hand without it, every case runs.
 TEST_CASE("golden files: every case's report and solid match the stored ones (exactly for the same build)") {
   const std::string version_file = temp_dir() + "/version.txt";
   REQUIRE(run(kBinary + " --version > " + version_file) == 0);
   const bool same_build = read_file(version_file) == read_file(kGolden + "BUILD.txt");
   MESSAGE(std::string(same_build ? "same build as the golden files: byte comparison"
                                   : "another build than the golden files: comparison within tolerances"));
-  const std::vector<Case> cases = read_cases();
+  std::vector<Case> cases = read_cases();
   CHECK(cases.size() >= 10);
+  if (const char* only = std::getenv("OFFSETOPT_GOLDEN_CASE")) {
+    cases.erase(std::remove_if(cases.begin(), cases.end(), [&](const Case& c) { return c.name != only; }), cases.end());
+    INFO("OFFSETOPT_GOLDEN_CASE=", only);
+    REQUIRE(cases.size() == 1);
+  }
   for (const Case& c : cases) {
     CAPTURE(c.name);
     const std::string base = temp_dir() + "/" + c.name;

@@ -10,10 +10,12 @@
 #include <sstream>
 #include <string>
 
+#include "../support.h"
 #include "../temp_dir.h"
 #include "io/json.h"
 
 using offsetopt::Json;
+using offsetopt::test::read_file;
 
 namespace {
 
@@ -29,14 +31,7 @@ const std::string& temp_dir() {
 int run(const std::string& command) {
   const int status = std::system(("timeout 300 " + command + " 2>>" + temp_dir() + "/stderr.txt").c_str());
   REQUIRE(status != -1);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return offsetopt::test::exit_code_of(status);
 }
 
 struct Outcome {

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "../mesh_checks.h"
+#include "../support.h"
 #include "../temp_dir.h"
 #include "geometry/bvh.h"
 #include "geometry/closest_point.h"
@@ -25,6 +26,7 @@
 
 using namespace offsetopt;
 using offsetopt::test::closed_and_oriented;
+using offsetopt::test::read_file;
 
 namespace {
 
@@ -34,13 +36,6 @@ const std::string kMeshes = std::string(OFFSETOPT_SOURCE_DIR) + "/meshes/";
 const std::string& temp_dir() {
   static const TempDir dir("offsetopt-cavity");
   return dir.path();
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 Mesh read_mesh(const std::string& path) {
@@ -61,7 +56,7 @@ Written optimize(const std::string& name, const std::string& mesh, const std::st
                                   base + "_outer.ply --report " + base + ".json 2>/dev/null")
                                      .c_str());
   Written w;
-  w.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  w.exit_code = offsetopt::test::exit_code_of(status);
   w.report = Json::parse(read_file(base + ".json"));
   w.outer = read_mesh(base + "_outer.ply");
   w.cavity = read_mesh(base + "_cavity.ply");
