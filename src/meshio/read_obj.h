@@ -1,6 +1,6 @@
 // Wavefront OBJ reader (v and f statements; everything else is ignored).
 //
-// tinyobjloader 2.0.0rc10 alone is unsafe on hostile input (see DESIGN.md, "Known input
+// tinyobjloader 2.0.0rc10 alone is unsafe on hostile input (see docs/design.md, "Known input
 // pitfalls"), so reading is two passes over the bytes already in memory:
 //  1. our own strict pass over every line: `v` takes 3 to 7 numbers (x y z [w] [r g b]), all
 //     parsed in full with std::from_chars; `f` takes 3 or more corners `v`, `v/vt`, `v/vt/`,
