@@ -214,70 +214,63 @@ pid_t start_job(const std::string& self, const std::string& folder, const std::s
   ::_exit(127);
 }
 
-}  // namespace
-
-int run_batch(const Args& args) {
-  ArgCursor cursor(args);
+struct BatchOptions {
   std::string manifest, format = "obj";
   int jobs_at_once = 1, only_line = 0, shard_index = -1, shard_count = 0;
   bool quiet = false;
+  bool help = false;
+};
+
+BatchOptions parse_batch_options(const Args& args) {
+  ArgCursor cursor(args);
+  BatchOptions o;
   while (!cursor.done()) {
     const std::string& arg = cursor.next();
     require_known_option("batch", kHelp.options, arg);
     if (arg == "--help" || arg == "-h") {
-      write_text("-", format_help(kHelp));
-      return kExitOk;
+      o.help = true;
+      return o;
     } else if (arg == "--jobs") {
-      jobs_at_once = parse_int(cursor.value_of(arg), arg, 1, 256);
+      o.jobs_at_once = parse_int(cursor.value_of(arg), arg, 1, 256);
     } else if (arg == "--line") {
-      only_line = parse_int(cursor.value_of(arg), arg, 1, 1000000);
+      o.only_line = parse_int(cursor.value_of(arg), arg, 1, 1000000);
     } else if (arg == "--shard") {
       const std::string& value = cursor.value_of(arg);
       const std::size_t slash = value.find('/');
       if (slash == std::string::npos) throw UsageError("--shard expects I/N, got '" + value + "'");
-      shard_count = parse_int(value.substr(slash + 1), "--shard N", 1, 1000000);
-      shard_index = parse_int(value.substr(0, slash), "--shard I", 0, shard_count - 1);
+      o.shard_count = parse_int(value.substr(slash + 1), "--shard N", 1, 1000000);
+      o.shard_index = parse_int(value.substr(0, slash), "--shard I", 0, o.shard_count - 1);
     } else if (arg == "--format") {
-      format = cursor.value_of(arg);
-      if (format != "obj" && format != "stl" && format != "ply" && format != "3mf")
-        throw UsageError("--format must be obj, stl, ply or 3mf, got '" + format + "'");
+      o.format = cursor.value_of(arg);
+      if (o.format != "obj" && o.format != "stl" && o.format != "ply" && o.format != "3mf")
+        throw UsageError("--format must be obj, stl, ply or 3mf, got '" + o.format + "'");
     } else if (arg == "--quiet") {
-      quiet = true;
-    } else if (manifest.empty()) {
-      manifest = arg;
+      o.quiet = true;
+    } else if (o.manifest.empty()) {
+      o.manifest = arg;
     } else {
       throw UsageError("batch takes one manifest, got a second one '" + arg + "'");
     }
   }
-  if (manifest.empty()) throw UsageError("batch needs a manifest file (try 'offsetopt batch --help')");
-  if (only_line > 0 && shard_count > 0) throw UsageError("--line and --shard exclude each other");
+  if (o.manifest.empty()) throw UsageError("batch needs a manifest file (try 'offsetopt batch --help')");
+  if (o.only_line > 0 && o.shard_count > 0) throw UsageError("--line and --shard exclude each other");
+  return o;
+}
 
-  std::string text;
-  try {
-    text = read_file_capped(manifest);
-  } catch (const MeshInputError& e) {
-    throw UsageError(e.what());
-  }
-  std::vector<Job> all = read_manifest(manifest, text);
-  if (only_line > static_cast<int>(all.size()))
-    throw UsageError("--line " + std::to_string(only_line) + ": " + manifest + " has " + std::to_string(all.size()) + " lines");
-  std::vector<Job*> selected;
-  for (Job& job : all)
-    if ((only_line == 0 || job.number == only_line) && (shard_count == 0 || (job.number - 1) % shard_count == shard_index))
-      selected.push_back(&job);
+// Where the jobs run: the manifest's folder, this binary and its build.
+struct BatchPlace {
+  std::string folder;
+  std::filesystem::path base;
+  std::string self, build;
+};
 
-  const std::filesystem::path manifest_path(manifest);
-  const std::string folder = manifest_path.parent_path().empty() ? "." : manifest_path.parent_path().string();
-  const std::filesystem::path base(folder);
-  std::string self;
-  {
-    std::error_code ec;
-    self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
-    if (ec || self.empty()) throw std::runtime_error("cannot find this program's path in /proc/self/exe");
-  }
-  const std::string build = std::string(OFFSETOPT_VERSION) + " " + OFFSETOPT_BUILD_ID;
-
-  // Keys and skips, before anything runs.
+// Each selected job's key (what its outputs are made from); the jobs whose key file matches and
+// whose outputs exist are marked skipped, the others returned to run.
+std::vector<Job*> jobs_to_run(const std::vector<Job*>& selected, const BatchOptions& o, const BatchPlace& place) {
+  const std::string& format = o.format;
+  const bool quiet = o.quiet;
+  const std::filesystem::path& base = place.base;
+  const std::string& build = place.build;
   std::vector<Job*> to_run;
   for (Job* job : selected) {
     std::string bytes;
@@ -288,7 +281,7 @@ int run_batch(const Args& args) {
       readable = false;  // the job itself will say why
     }
     std::string options;
-    for (const std::string& o : job->options) options += (options.empty() ? "" : " ") + o;
+    for (const std::string& option : job->options) options += (options.empty() ? "" : " ") + option;
     if (readable)
       job->key = "offsetopt batch key 1\nbuild: " + build + "\ninput: " + job->input + "\ninput_bytes: " +
                  std::to_string(bytes.size()) + "\ninput_fnv1a64: " + fnv1a64_hex(bytes) + "\ngoal: " + job->goal +
@@ -311,8 +304,18 @@ int run_batch(const Args& args) {
       to_run.push_back(job);
     }
   }
+  return to_run;
+}
 
-  // Run, at most jobs_at_once children at a time.
+// Runs the jobs, at most o.jobs_at_once children at a time; fills each job's status, exit code,
+// reason and seconds, and writes the key file of each that ended 0 or 3.
+void run_jobs(const std::vector<Job*>& to_run, const BatchOptions& o, const BatchPlace& place) {
+  const std::string& format = o.format;
+  const bool quiet = o.quiet;
+  const int jobs_at_once = o.jobs_at_once;
+  const std::filesystem::path& base = place.base;
+  const std::string& self = place.self;
+  const std::string& folder = place.folder;
   std::map<pid_t, std::pair<Job*, std::chrono::steady_clock::time_point>> running;
   std::size_t next = 0, finished = 0;
   while (next < to_run.size() || !running.empty()) {
@@ -370,13 +373,19 @@ int run_batch(const Args& args) {
                    job->goal.c_str(), job->exit_code, job->seconds, job->reason.empty() ? "" : ": ",
                    job->reason.c_str(), finished, to_run.size());
   }
+}
 
-  // The summary.
+// Writes MANIFEST.summary.tsv and .json (with the --line / --shard suffix); returns the batch's
+// exit code.
+int write_summary(const std::vector<Job*>& selected, const BatchOptions& o, const BatchPlace& place) {
+  const std::string& manifest = o.manifest;
+  const std::filesystem::path manifest_path(manifest);
+  const std::filesystem::path& base = place.base;
   std::string stem = manifest_path.filename().string();
   if (stem.size() > 4 && stem.compare(stem.size() - 4, 4, ".tsv") == 0) stem.resize(stem.size() - 4);
   std::string suffix = ".summary";
-  if (only_line > 0) suffix += ".line-" + std::to_string(only_line);
-  if (shard_count > 0) suffix += ".shard-" + std::to_string(shard_index) + "-of-" + std::to_string(shard_count);
+  if (o.only_line > 0) suffix += ".line-" + std::to_string(o.only_line);
+  if (o.shard_count > 0) suffix += ".shard-" + std::to_string(o.shard_index) + "-of-" + std::to_string(o.shard_count);
   const std::string summary_base = (base / (stem + suffix)).string();
   std::string tsv = "line\tinput\tgoal\toutput\tstatus\texit\treason\tseconds\n";
   Json rows = Json::array();
@@ -415,10 +424,49 @@ int run_batch(const Args& args) {
   summary["jobs"] = rows;
   write_text(summary_base + ".tsv", tsv, {manifest});
   write_text(summary_base + ".json", summary.dump(2) + "\n", {manifest});
-  if (!quiet)
+  if (!o.quiet)
     std::fprintf(stderr, "batch: %zu lines, %d ran, %d skipped; exit 0: %d, 3: %d, 2: %d, 1: %d; summary %s.tsv\n",
                  selected.size(), ran, skipped, counts[0], counts[3], counts[2], counts[1], summary_base.c_str());
   return worst;
+}
+
+}  // namespace
+
+int run_batch(const Args& args) {
+  const BatchOptions o = parse_batch_options(args);
+  if (o.help) {
+    write_text("-", format_help(kHelp));
+    return kExitOk;
+  }
+  std::string text;
+  try {
+    text = read_file_capped(o.manifest);
+  } catch (const MeshInputError& e) {
+    throw UsageError(e.what());
+  }
+  std::vector<Job> all = read_manifest(o.manifest, text);
+  if (o.only_line > static_cast<int>(all.size()))
+    throw UsageError("--line " + std::to_string(o.only_line) + ": " + o.manifest + " has " + std::to_string(all.size()) +
+                     " lines");
+  std::vector<Job*> selected;
+  for (Job& job : all)
+    if ((o.only_line == 0 || job.number == o.only_line) &&
+        (o.shard_count == 0 || (job.number - 1) % o.shard_count == o.shard_index))
+      selected.push_back(&job);
+
+  const std::filesystem::path manifest_path(o.manifest);
+  BatchPlace place;
+  place.folder = manifest_path.parent_path().empty() ? "." : manifest_path.parent_path().string();
+  place.base = std::filesystem::path(place.folder);
+  {
+    std::error_code ec;
+    place.self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+    if (ec || place.self.empty()) throw std::runtime_error("cannot find this program's path in /proc/self/exe");
+  }
+  place.build = std::string(OFFSETOPT_VERSION) + " " + OFFSETOPT_BUILD_ID;
+
+  run_jobs(jobs_to_run(selected, o, place), o, place);
+  return write_summary(selected, o, place);
 }
 
 }  // namespace offsetopt::cli

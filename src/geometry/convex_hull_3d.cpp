@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numeric>
+#include <cstdint>
 
 #include <Eigen/Geometry>
 
+#include "util/disjoint_sets.h"
 #include "util/exact_expansion.h"
 
 namespace offsetopt {
@@ -248,11 +249,6 @@ class Quickhull {
   std::vector<char> mark_;
 };
 
-int find_root(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
-
 }  // namespace
 
 double orient3d(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, const Eigen::Vector3d& d) {
@@ -293,8 +289,7 @@ ConvexHull3d convex_hull_3d(const std::vector<Eigen::Vector3d>& points, double c
     if (!(length > 0.0)) return 0.0;  // a sliver hull triangle joins its neighbour
     return std::fabs(normal[t].dot(points[point] - points[hull.triangles[t][0]])) / length;
   };
-  std::vector<int> parent(count);
-  std::iota(parent.begin(), parent.end(), 0);
+  DisjointSets coplanar(static_cast<std::size_t>(count));
   for (int t = 0; t < count; ++t)
     for (int e = 0; e < 3; ++e) {
       const int u = adjacency[t][e];
@@ -304,13 +299,12 @@ ConvexHull3d convex_hull_3d(const std::vector<Eigen::Vector3d>& points, double c
         if (hull.triangles[u][k] != hull.triangles[t][e] && hull.triangles[u][k] != hull.triangles[t][(e + 1) % 3])
           far_u = hull.triangles[u][k];
       if (distance_to_plane(t, far_u) <= coplanar_tolerance || distance_to_plane(u, far_t) <= coplanar_tolerance) {
-        const int a = find_root(parent, t), b = find_root(parent, u);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+        coplanar.unite(static_cast<std::uint32_t>(t), static_cast<std::uint32_t>(u));
       }
     }
   std::map<int, int> facet_of_root;
   for (int t = 0; t < count; ++t) {
-    const int root = find_root(parent, t);
+    const int root = static_cast<int>(coplanar.find(static_cast<std::uint32_t>(t)));
     auto it = facet_of_root.find(root);
     if (it == facet_of_root.end()) {
       it = facet_of_root.emplace(root, static_cast<int>(hull.facets.size())).first;

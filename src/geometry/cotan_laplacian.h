@@ -9,8 +9,8 @@
 // (src/spectral) and the contraction (src/skeleton) sit above it and take its operators.
 //
 // Cotangent Laplacian of a triangle mesh (Pinkall & Polthier 1993; Meyer et al. 2003), in the
-// positive semi-definite convention of DESIGN.md and Musialski et al. 2015 eq. 2 (sign flipped to
-// make it PSD):
+// positive semi-definite convention of docs/design.md and Musialski et al. 2015 eq. 2 (sign
+// flipped to make it PSD):
 //   L_ij = -(cot a_ij + cot b_ij) / 2 for each edge ij (a, b the angles opposite it),
 //   L_ii = -sum_j L_ij  (so L * 1 = 0 and the diagonal is >= 0 on a well-shaped mesh).
 // L is #V by #V, symmetric (bit for bit), sparse, both triangles stored. It does not change when

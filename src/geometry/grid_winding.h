@@ -1,5 +1,5 @@
 // Winding numbers of a closed triangle mesh at every node of a grid, one line per grid row
-// (DESIGN.md "The written cavity": signs by one ray per row with prefix sums of signed
+// (docs/design.md "The written cavity": signs by one ray per row with prefix sums of signed
 // crossings). The mesh may fold or cross itself: the winding number still says how often a node
 // is enclosed (inside an offset surface that folds means w >= 1, Jacobson et al. 2013).
 //

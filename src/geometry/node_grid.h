@@ -1,6 +1,6 @@
 // A regular grid of sample points (nodes) in a box, the domain of the implicit cavity
-// (DESIGN.md "The written cavity"): node (i, j, k), 0 <= i < nx, 0 <= j < ny, 0 <= k < nz, sits at
-// origin + spacing (i, j, k), and has the index i + nx (j + ny k). Cell (i, j, k) is the cube
+// (docs/design.md "The written cavity"): node (i, j, k), 0 <= i < nx, 0 <= j < ny, 0 <= k < nz,
+// sits at origin + spacing (i, j, k), and has the index i + nx (j + ny k). Cell (i, j, k) is the cube
 // whose lowest node is (i, j, k); it exists for i < nx - 1, j < ny - 1, k < nz - 1.
 #pragma once
 #include <cstdint>

@@ -1,6 +1,6 @@
 // src/meshio: mesh files. The readers (OBJ, STL, OFF, PLY, 3MF, dispatched by read_raw_mesh.h,
 // with the shared text scanning of read_text.h and the OBJ reader's polygon triangulation,
-// triangulate_polygon.h), the writers (write_mesh.h, write_3mf.h), validation as a printable solid
+// triangulate_obj_face.h), the writers (write_mesh.h, write_3mf.h), validation as a printable solid
 // (validate_mesh.h) and the input boundary every command goes through (load_mesh, this header).
 // Layer: above geometry, beside io; it may include util/, optim/, mesh/, geometry/ and io/ (the
 // zip and XML byte formats 3MF needs), nothing above (sparse, spectral, skeleton, mass, shape,

@@ -9,7 +9,7 @@
 
 #include "meshio/load_mesh.h"
 #include "meshio/read_text.h"
-#include "meshio/triangulate_polygon.h"
+#include "meshio/triangulate_obj_face.h"
 
 namespace offsetopt {
 
@@ -199,7 +199,7 @@ RawMesh read_obj(const std::string& name, const std::string& text) {
   }
 
   // Pass 3: triangles. Polygons whose corners all index a vertex are split in their own plane
-  // (meshio/triangulate_polygon.h); the others keep the fan, for validate_mesh to report.
+  // (meshio/triangulate_obj_face.h); the others keep the fan, for validate_mesh to report.
   {
     const std::int64_t vertices = builder.vertex_count();
     long long budget = kTriangulationBudget;
@@ -220,7 +220,7 @@ RawMesh read_obj(const std::string& name, const std::string& text) {
         points[static_cast<std::size_t>(i)] = Eigen::Vector3d(coordinates[3 * static_cast<std::size_t>(corners[i])],
                                                               coordinates[3 * static_cast<std::size_t>(corners[i]) + 1],
                                                               coordinates[3 * static_cast<std::size_t>(corners[i]) + 2]);
-      const PolygonTriangulationStatus how = triangulate_polygon(points, local, budget);
+      const PolygonTriangulationStatus how = triangulate_obj_face(points, local, budget);
       if (how == PolygonTriangulationStatus::budget_exhausted) {
         fail(name, polygon_line[p], "polygon of " + std::to_string(n) +
                                         " corners is too complex to triangulate (work cap of the ear clipping reached)");

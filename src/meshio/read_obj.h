@@ -1,6 +1,6 @@
 // Wavefront OBJ reader (v and f statements; everything else is ignored).
 //
-// tinyobjloader 2.0.0rc10 alone is unsafe on hostile input (see DESIGN.md, "Known input
+// tinyobjloader 2.0.0rc10 alone is unsafe on hostile input (see docs/design.md, "Known input
 // pitfalls"), so reading is two passes over the bytes already in memory:
 //  1. our own strict pass over every line: `v` takes 3 to 7 numbers (x y z [w] [r g b]), all
 //     parsed in full with std::from_chars; `f` takes 3 or more corners `v`, `v/vt`, `v/vt/`,
@@ -15,7 +15,7 @@
 //     every file and triangulation off. Faces over 255 corners are blanked too (rc10 keeps the
 //     corner count in a byte). Its face list must agree corner by corner with pass 1, or the
 //     file is refused.
-//  3. our own triangulation of every polygon, in its best-fit plane (meshio/triangulate_polygon.h:
+//  3. our own triangulation of every polygon, in its best-fit plane (meshio/triangulate_obj_face.h:
 //     convex polygons fan-triangulated as by the other readers, others ear-clipped), never
 //     tinyobjloader's. A polygon whose ear clipping would exceed the work cap (about 4e8 point
 //     tests per file: a non-convex outline of tens of thousands of corners) is refused with its

@@ -167,17 +167,56 @@ int index_from(std::int64_t value) {
                                                                                                 : static_cast<int>(value);
 }
 
-}  // namespace
+struct PlyHeader {
+  Encoding encoding = Encoding::ascii;
+  std::vector<Element> elements;
+  std::size_t body = 0;  // byte offset of the data
+  int body_line = 0;     // its line number (ASCII)
+};
 
-RawMesh read_ply(const std::string& name, const std::string& bytes) {
-  // Header: text lines up to "end_header"; the body starts right after its line end.
+// One 'property' line (tokens split), added to the last element; notes the positions of x, y, z
+// in 'vertex' and of the index list in 'face'.
+void add_property(const std::string& name, int number, const std::vector<std::string_view>& tokens,
+                  std::vector<Element>& elements) {
+  if (elements.empty()) fail_line(name, number, "property before any element");
+  Property property;
+  if (tokens.size() == 5 && tokens[1] == "list") {
+    property.is_list = true;
+    if (!parse_scalar_type(tokens[2], property.count_type) || !parse_scalar_type(tokens[3], property.type))
+      fail_line(name, number, "unknown type in list property");
+    if (!is_integer(property.count_type))
+      fail_line(name, number, "list count type '" + quote_bytes(tokens[2]) + "' is not an integer type");
+    property.name = std::string(tokens[4]);
+  } else if (tokens.size() == 3) {
+    if (!parse_scalar_type(tokens[1], property.type))
+      fail_line(name, number, "unknown property type '" + quote_bytes(tokens[1]) + "'");
+    property.name = std::string(tokens[2]);
+  } else {
+    fail_line(name, number, "expected 'property <type> <name>' or 'property list <count type> <type> <name>'");
+  }
+  Element& element = elements.back();
+  const int position = static_cast<int>(element.properties.size());
+  if (element.name == "vertex" && !property.is_list) {
+    if (property.name == "x") element.x = position;
+    if (property.name == "y") element.y = position;
+    if (property.name == "z") element.z = position;
+  }
+  if (element.name == "face" && property.is_list && (property.name == "vertex_indices" || property.name == "vertex_index")) {
+    if (!is_integer(property.type))
+      fail_line(name, number, "face index type '" + quote_bytes(tokens[3]) + "' is not an integer type");
+    element.indices = position;
+  }
+  element.properties.push_back(property);
+}
+
+// Header: text lines up to "end_header"; the body starts right after its line end.
+PlyHeader read_header(const std::string& name, const std::string& bytes) {
   LineScanner lines(bytes);
   std::string_view line;
   std::vector<std::string_view> tokens;
   if (!lines.next(line) || line != "ply") throw MeshInputError(name + ": not a PLY file (first line is not 'ply')");
-  Encoding encoding = Encoding::ascii;
+  PlyHeader header;
   bool have_format = false, have_end = false;
-  std::vector<Element> elements;
   while (lines.next(line)) {
     const int number = lines.line_number();
     if (line.find('\0') != std::string_view::npos) fail_line(name, number, "binary data (byte 0x00) in the PLY header");
@@ -191,9 +230,9 @@ RawMesh read_ply(const std::string& name, const std::string& bytes) {
     }
     if (keyword == "format") {
       if (tokens.size() != 3 || tokens[2] != "1.0") fail_line(name, number, "expected 'format <encoding> 1.0'");
-      if (tokens[1] == "ascii") encoding = Encoding::ascii;
-      else if (tokens[1] == "binary_little_endian") encoding = Encoding::little;
-      else if (tokens[1] == "binary_big_endian") encoding = Encoding::big;
+      if (tokens[1] == "ascii") header.encoding = Encoding::ascii;
+      else if (tokens[1] == "binary_little_endian") header.encoding = Encoding::little;
+      else if (tokens[1] == "binary_big_endian") header.encoding = Encoding::big;
       else fail_line(name, number, "unknown PLY format '" + quote_bytes(tokens[1]) + "'");
       have_format = true;
     } else if (keyword == "element") {
@@ -211,70 +250,50 @@ RawMesh read_ply(const std::string& name, const std::string& bytes) {
       element.name = std::string(tokens[1]);
       element.count = static_cast<std::uint64_t>(count);
       element.line = number;
-      elements.push_back(element);
+      header.elements.push_back(element);
     } else if (keyword == "property") {
-      if (elements.empty()) fail_line(name, number, "property before any element");
-      Property property;
-      if (tokens.size() == 5 && tokens[1] == "list") {
-        property.is_list = true;
-        if (!parse_scalar_type(tokens[2], property.count_type) || !parse_scalar_type(tokens[3], property.type))
-          fail_line(name, number, "unknown type in list property");
-        if (!is_integer(property.count_type))
-          fail_line(name, number, "list count type '" + quote_bytes(tokens[2]) + "' is not an integer type");
-        property.name = std::string(tokens[4]);
-      } else if (tokens.size() == 3) {
-        if (!parse_scalar_type(tokens[1], property.type))
-          fail_line(name, number, "unknown property type '" + quote_bytes(tokens[1]) + "'");
-        property.name = std::string(tokens[2]);
-      } else {
-        fail_line(name, number, "expected 'property <type> <name>' or 'property list <count type> <type> <name>'");
-      }
-      Element& element = elements.back();
-      const int position = static_cast<int>(element.properties.size());
-      if (element.name == "vertex" && !property.is_list) {
-        if (property.name == "x") element.x = position;
-        if (property.name == "y") element.y = position;
-        if (property.name == "z") element.z = position;
-      }
-      if (element.name == "face" && property.is_list &&
-          (property.name == "vertex_indices" || property.name == "vertex_index")) {
-        if (!is_integer(property.type))
-          fail_line(name, number, "face index type '" + quote_bytes(tokens[3]) + "' is not an integer type");
-        element.indices = position;
-      }
-      element.properties.push_back(property);
+      add_property(name, number, tokens, header.elements);
     } else {
       fail_line(name, number, "unknown PLY header line '" + quote_bytes(keyword) + "'");
     }
   }
   if (!have_end) throw MeshInputError(name + ": PLY header has no 'end_header'");
   if (!have_format) throw MeshInputError(name + ": PLY header has no 'format' line");
-  const std::size_t body = lines.offset();
-  const int body_line = lines.line_number() + 1;
+  header.body = lines.offset();
+  header.body_line = lines.line_number() + 1;
+  return header;
+}
 
-  // Which elements carry the mesh, and do the counts fit in the file?
-  const Element* vertex_element = nullptr;
-  const Element* face_element = nullptr;
+struct MeshElements {
+  const Element* vertex = nullptr;
+  const Element* face = nullptr;
+};
+
+// Which elements carry the mesh, and do the counts fit in the file?
+MeshElements mesh_elements(const std::string& name, const std::string& bytes, const PlyHeader& header) {
+  const std::vector<Element>& elements = header.elements;
+  MeshElements found;
   std::uint64_t smallest = 0;
   for (const Element& element : elements) {
     if (element.name == "vertex") {
-      if (vertex_element) fail_line(name, element.line, "second 'vertex' element");
+      if (found.vertex) fail_line(name, element.line, "second 'vertex' element");
       if (element.x < 0 || element.y < 0 || element.z < 0) fail_line(name, element.line, "vertex element lacks x, y or z");
-      vertex_element = &element;
+      found.vertex = &element;
     }
     if (element.name == "face") {
-      if (face_element) fail_line(name, element.line, "second 'face' element");
+      if (found.face) fail_line(name, element.line, "second 'face' element");
       if (element.indices < 0) fail_line(name, element.line, "face element has no list 'vertex_indices' or 'vertex_index'");
-      face_element = &element;
+      found.face = &element;
     }
     if (element.name == "tristrips") fail_line(name, element.line, "triangle strips (element 'tristrips') are not supported");
     std::uint64_t per_instance = 0;
     for (const Property& p : element.properties)
-      per_instance += encoding == Encoding::ascii ? 2 : static_cast<std::uint64_t>(size_of(p.is_list ? p.count_type : p.type));
+      per_instance +=
+          header.encoding == Encoding::ascii ? 2 : static_cast<std::uint64_t>(size_of(p.is_list ? p.count_type : p.type));
     smallest = saturating_add(smallest, saturating_mul(element.count, per_instance));
   }
-  const std::uint64_t remaining = bytes.size() - body;
-  if (smallest > remaining + (encoding == Encoding::ascii ? 1 : 0)) {
+  const std::uint64_t remaining = bytes.size() - header.body;
+  if (smallest > remaining + (header.encoding == Encoding::ascii ? 1 : 0)) {
     // At most 8 elements named: a header of thousands of elements must not make a huge line.
     std::string claims;
     for (std::size_t i = 0; i < elements.size() && i < 8; ++i) {
@@ -285,69 +304,71 @@ RawMesh read_ply(const std::string& name, const std::string& bytes) {
     throw MeshInputError(name + ": PLY header claims " + claims + ", more than the " + std::to_string(remaining) +
                          " bytes after the header can hold");
   }
+  return found;
+}
 
-  const bool text = encoding == Encoding::ascii;
-  const MeshFormat format = text ? MeshFormat::ply_ascii
-                                 : encoding == Encoding::little ? MeshFormat::ply_binary_little : MeshFormat::ply_binary_big;
-  RawMeshBuilder builder(name, format, text);
-  builder.reserve(vertex_element ? static_cast<std::int64_t>(vertex_element->count) : 0,
-                  face_element ? static_cast<std::int64_t>(face_element->count) : 0);
+// The binary body: every element's instances in order, the mesh's ones into `builder`.
+void read_binary_body(const std::string& name, const std::string& bytes, const PlyHeader& header,
+                      const MeshElements& mesh, RawMeshBuilder& builder) {
   std::vector<int> corners;
   double xyz[3] = {0, 0, 0};
-
-  if (!text) {
-    BinaryCursor cursor(name, bytes, body, encoding == Encoding::big);
-    for (const Element& element : elements) {
-      // An element without properties holds no bytes: its count (up to the cap, unchecked
-      // against the file size) must not cost a loop.
-      if (element.properties.empty()) continue;
-      for (std::uint64_t i = 0; i < element.count; ++i) {
-        const bool is_vertex = &element == vertex_element, is_face = &element == face_element;
-        cursor.set_context(&element, i);
-        for (std::size_t p = 0; p < element.properties.size(); ++p) {
-          const Property& property = element.properties[p];
-          std::int64_t integer = 0;
-          double real = 0;
-          const int position = static_cast<int>(p);
-          if (!property.is_list) {
-            if (is_vertex && (position == element.x || position == element.y || position == element.z)) {
-              cursor.read(property.type, integer, real);
-              xyz[position == element.x ? 0 : position == element.y ? 1 : 2] = real;
-            } else {
-              cursor.skip(static_cast<std::uint64_t>(size_of(property.type)));
-            }
-            continue;
-          }
-          cursor.read(property.count_type, integer, real);
-          if (integer < 0) throw MeshInputError(name + ": negative list length in " + element_instance(element, i));
-          const std::uint64_t n = static_cast<std::uint64_t>(integer);
-          const std::uint64_t item = static_cast<std::uint64_t>(size_of(property.type));
-          cursor.need(saturating_mul(n, item));
-          if (is_face && position == element.indices) {
-            if (n < 3) throw MeshInputError(name + ": face " + std::to_string(i) + " has " + std::to_string(n) + " corners (at least 3 needed)");
-            corners.resize(static_cast<std::size_t>(n));
-            for (std::uint64_t k = 0; k < n; ++k) {
-              cursor.read(property.type, integer, real);
-              corners[static_cast<std::size_t>(k)] = index_from(integer);
-            }
-            builder.add_polygon(corners.data(), static_cast<int>(n));
+  BinaryCursor cursor(name, bytes, header.body, header.encoding == Encoding::big);
+  for (const Element& element : header.elements) {
+    // An element without properties holds no bytes: its count (up to the cap, unchecked
+    // against the file size) must not cost a loop.
+    if (element.properties.empty()) continue;
+    for (std::uint64_t i = 0; i < element.count; ++i) {
+      const bool is_vertex = &element == mesh.vertex, is_face = &element == mesh.face;
+      cursor.set_context(&element, i);
+      for (std::size_t p = 0; p < element.properties.size(); ++p) {
+        const Property& property = element.properties[p];
+        std::int64_t integer = 0;
+        double real = 0;
+        const int position = static_cast<int>(p);
+        if (!property.is_list) {
+          if (is_vertex && (position == element.x || position == element.y || position == element.z)) {
+            cursor.read(property.type, integer, real);
+            xyz[position == element.x ? 0 : position == element.y ? 1 : 2] = real;
           } else {
-            cursor.skip(n * item);
+            cursor.skip(static_cast<std::uint64_t>(size_of(property.type)));
           }
+          continue;
         }
-        if (is_vertex) builder.add_vertex(xyz[0], xyz[1], xyz[2]);
+        cursor.read(property.count_type, integer, real);
+        if (integer < 0) throw MeshInputError(name + ": negative list length in " + element_instance(element, i));
+        const std::uint64_t n = static_cast<std::uint64_t>(integer);
+        const std::uint64_t item = static_cast<std::uint64_t>(size_of(property.type));
+        cursor.need(saturating_mul(n, item));
+        if (is_face && position == element.indices) {
+          if (n < 3) throw MeshInputError(name + ": face " + std::to_string(i) + " has " + std::to_string(n) + " corners (at least 3 needed)");
+          corners.resize(static_cast<std::size_t>(n));
+          for (std::uint64_t k = 0; k < n; ++k) {
+            cursor.read(property.type, integer, real);
+            corners[static_cast<std::size_t>(k)] = index_from(integer);
+          }
+          builder.add_polygon(corners.data(), static_cast<int>(n));
+        } else {
+          cursor.skip(n * item);
+        }
       }
+      if (is_vertex) builder.add_vertex(xyz[0], xyz[1], xyz[2]);
     }
-    if (cursor.remaining() > 0)
-      builder.warnings().push_back(std::to_string(cursor.remaining()) + " bytes after the last PLY element ignored");
-    return builder.finish();
   }
+  if (cursor.remaining() > 0)
+    builder.warnings().push_back(std::to_string(cursor.remaining()) + " bytes after the last PLY element ignored");
+}
 
-  TextCursor cursor(name, bytes, body, body_line);
-  for (const Element& element : elements) {
+// The ASCII body: whitespace-separated tokens, every element's instances in order, the mesh's
+// ones into `builder` with their line numbers.
+void read_ascii_body(const std::string& name, const std::string& bytes, const PlyHeader& header,
+                     const MeshElements& mesh, RawMeshBuilder& builder) {
+  std::vector<int> corners;
+  double xyz[3] = {0, 0, 0};
+  TextCursor cursor(name, bytes, header.body, header.body_line);
+  for (const Element& element : header.elements) {
     if (element.properties.empty()) continue;  // no tokens, however large the count
     for (std::uint64_t i = 0; i < element.count; ++i) {
-      const bool is_vertex = &element == vertex_element, is_face = &element == face_element;
+      const bool is_vertex = &element == mesh.vertex, is_face = &element == mesh.face;
       int instance_line = 0;
       for (std::size_t p = 0; p < element.properties.size(); ++p) {
         const Property& property = element.properties[p];
@@ -393,6 +414,22 @@ RawMesh read_ply(const std::string& name, const std::string& bytes) {
   std::string_view extra;
   if (cursor.next(extra))
     builder.warnings().push_back("text after the last PLY element (line " + std::to_string(cursor.line()) + ") ignored");
+}
+
+}  // namespace
+
+RawMesh read_ply(const std::string& name, const std::string& bytes) {
+  const PlyHeader header = read_header(name, bytes);
+  const MeshElements mesh = mesh_elements(name, bytes, header);
+  const bool text = header.encoding == Encoding::ascii;
+  const MeshFormat format = text ? MeshFormat::ply_ascii
+                                 : header.encoding == Encoding::little ? MeshFormat::ply_binary_little
+                                                                       : MeshFormat::ply_binary_big;
+  RawMeshBuilder builder(name, format, text);
+  builder.reserve(mesh.vertex ? static_cast<std::int64_t>(mesh.vertex->count) : 0,
+                  mesh.face ? static_cast<std::int64_t>(mesh.face->count) : 0);
+  if (text) read_ascii_body(name, bytes, header, mesh, builder);
+  else read_binary_body(name, bytes, header, mesh, builder);
   return builder.finish();
 }
 

@@ -70,7 +70,7 @@ class RawMeshBuilder {
   // A polygon of n >= 3 corners (indices as found, unchecked) becomes n - 2 triangles.
   void add_polygon(const int* corners, int n, int line = 0);
   // A polygon of n > 3 corners the reader split itself (OBJ: ear clipping in the polygon's
-  // plane, meshio/triangulate_polygon.h): `triangle_corners` holds 3 (n - 2) vertex indices.
+  // plane, meshio/triangulate_obj_face.h): `triangle_corners` holds 3 (n - 2) vertex indices.
   void add_polygon_triangles(const int* triangle_corners, int n, int line = 0);
   std::int64_t vertex_count() const { return static_cast<std::int64_t>(xyz_.size() / 3); }
   std::vector<std::string>& warnings() { return warnings_; }

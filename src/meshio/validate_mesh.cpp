@@ -9,10 +9,11 @@
 #include <Eigen/Geometry>
 
 #include "geometry/aabb.h"
+#include "geometry/mesh_shells.h"
 #include "geometry/ray_triangle.h"
 #include "meshio/read_raw_mesh.h"
+#include "util/disjoint_sets.h"
 #include "util/format_double.h"
-#include "util/neumaier_sum.h"
 
 namespace offsetopt {
 
@@ -23,31 +24,6 @@ constexpr int kMaxShellsForNesting = 10000;
 // over the shells, of the faces of every other shell whose box contains the shell's test point:
 // up to #shells x #F, so a file of 10,000 nested shells inside one large one took minutes.
 constexpr long long kMaxNestingTriangleTests = 100000000;
-
-class DisjointSets {
- public:
-  explicit DisjointSets(std::size_t n) : parent_(n) {
-    for (std::size_t i = 0; i < n; ++i) parent_[i] = static_cast<std::uint32_t>(i);
-  }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-  // The smaller root wins, so the result does not depend on the order of unions.
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return;
-    if (a < b) parent_[b] = a;
-    else parent_[a] = b;
-  }
-
- private:
-  std::vector<std::uint32_t> parent_;
-};
 
 // Sorts `items` by `less`, a strict total order whose first key is bucket(item) in
 // [0, buckets): a counting sort on the bucket, then std::sort inside each (small) bucket. The
@@ -325,29 +301,23 @@ Defect check_manifold_vertices(const Mesh& mesh, DisjointSets& fans) {
   return pinched;
 }
 
-// Connected pieces (faces sharing a vertex), numbered in order of their first face: sets
-// out.face_component and out.components; returns the faces of each, ascending.
-std::vector<std::vector<int>> find_components(const Mesh& mesh, MeshValidation& out) {
-  const long long nv = mesh.V.rows(), nf = mesh.F.rows();
-  std::vector<std::vector<int>> faces_of;
-  DisjointSets vertex_sets(static_cast<std::size_t>(nv));
-  for (long long f = 0; f < nf; ++f) {
-    vertex_sets.unite(static_cast<std::uint32_t>(mesh.F(f, 0)), static_cast<std::uint32_t>(mesh.F(f, 1)));
-    vertex_sets.unite(static_cast<std::uint32_t>(mesh.F(f, 0)), static_cast<std::uint32_t>(mesh.F(f, 2)));
-  }
-  std::vector<int> id_of_root(static_cast<std::size_t>(nv), -1);
-  out.face_component.resize(static_cast<std::size_t>(nf));
-  for (long long f = 0; f < nf; ++f) {
-    const std::uint32_t root = vertex_sets.find(static_cast<std::uint32_t>(mesh.F(f, 0)));
-    if (id_of_root[root] < 0) {
-      id_of_root[root] = static_cast<int>(faces_of.size());
-      faces_of.emplace_back();
-    }
-    out.face_component[static_cast<std::size_t>(f)] = id_of_root[root];
-    faces_of[static_cast<std::size_t>(id_of_root[root])].push_back(static_cast<int>(f));
-  }
-  out.components = static_cast<int>(faces_of.size());
-  return faces_of;
+// Connected pieces (faces sharing a vertex, geometry/mesh_shells.h), numbered in order of their
+// first face, with their signed volumes measured from the centre of the faces' box (compensated
+// sums; used only when the mesh is closed and its coordinates finite): sets out.face_component
+// and out.components; `faces_of` gets the faces of each, ascending.
+MeshShells find_components(const Mesh& mesh, MeshValidation& out, std::vector<std::vector<int>>& faces_of) {
+  Aabb all;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) all.extend(row(mesh, mesh.F(f, k)));
+  MeshShellsOptions options;
+  options.compensated = true;
+  MeshShells shells = mesh_shells(mesh, all.center(), options);
+  out.face_component = shells.shell_of_face;
+  out.components = shells.count;
+  faces_of.assign(static_cast<std::size_t>(shells.count), {});
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    faces_of[static_cast<std::size_t>(shells.shell_of_face[static_cast<std::size_t>(f)])].push_back(static_cast<int>(f));
+  return shells;
 }
 
 enum class RayHit { miss, hit, ambiguous };
@@ -416,12 +386,13 @@ std::vector<Eigen::Vector3d> shell_points(const Mesh& mesh, const std::vector<st
   return points;
 }
 
-// Signed volumes per shell and in all (out.component_volume, out.volume), each shell's nesting
-// depth (out.component_depth, when at most kMaxShellsForNesting shells and
+// Signed volumes per shell and in all (out.component_volume, out.volume, from `found`), each
+// shell's nesting depth (out.component_depth, when at most kMaxShellsForNesting shells and
 // kMaxNestingTriangleTests ray-triangle tests; else all 0), then the zero-volume and inside-out
 // shells, and shells that cross each other (the oriented total is not positive). Appends the
 // defects found to out.defects in DefectKind order.
-void check_shells(const Mesh& mesh, const std::vector<std::vector<int>>& faces_of, MeshValidation& out) {
+void check_shells(const Mesh& mesh, const std::vector<std::vector<int>>& faces_of, const MeshShells& found,
+                  MeshValidation& out) {
   const long long nf = mesh.F.rows();
   const int shells = out.components;
   std::vector<Aabb> boxes(static_cast<std::size_t>(shells));
@@ -432,20 +403,8 @@ void check_shells(const Mesh& mesh, const std::vector<std::vector<int>>& faces_o
       boxes[static_cast<std::size_t>(out.face_component[static_cast<std::size_t>(f)])].extend(p);
       all.extend(p);
     }
-  const Eigen::Vector3d centre = all.center();
-  out.component_volume.assign(static_cast<std::size_t>(shells), 0.0);
-  NeumaierSum total;
-  for (int s = 0; s < shells; ++s) {
-    NeumaierSum sum;
-    for (const int f : faces_of[static_cast<std::size_t>(s)]) {
-      const Eigen::Vector3d a = row(mesh, mesh.F(f, 0)) - centre, b = row(mesh, mesh.F(f, 1)) - centre,
-                            c = row(mesh, mesh.F(f, 2)) - centre;
-      sum.add(a.dot(b.cross(c)));  // six times the tetrahedron's volume; divided once below
-    }
-    out.component_volume[static_cast<std::size_t>(s)] = sum.value() / 6.0;
-    total.add(sum.value());
-  }
-  out.volume = total.value() / 6.0;
+  out.component_volume = found.volume;
+  out.volume = found.total_volume;
   out.volume_computed = true;
   out.component_depth.assign(static_cast<std::size_t>(shells), 0);
   bool nesting_checked = shells == 1;
@@ -558,11 +517,12 @@ MeshValidation validate_mesh(const Mesh& mesh) {
   add(check_manifold_vertices(mesh, edges.fans));
   edges.fans = DisjointSets(0);
   add(edges.inconsistent);
-  const std::vector<std::vector<int>> faces_of = find_components(mesh, out);
+  std::vector<std::vector<int>> faces_of;
+  const MeshShells shells = find_components(mesh, out, faces_of);
   const bool closed_manifold = edges.boundary.count == 0 && edges.non_manifold.count == 0;
   note_topology(edges.edges, closed_manifold && !out.find(DefectKind::non_manifold_vertex), out);
   const bool coordinates_ok = coordinates.non_finite.count == 0 && coordinates.too_large.count == 0;
-  if (closed_manifold && edges.inconsistent.count == 0 && coordinates_ok) check_shells(mesh, faces_of, out);
+  if (closed_manifold && edges.inconsistent.count == 0 && coordinates_ok) check_shells(mesh, faces_of, shells, out);
   if (out.components > 1) {
     Defect several{DefectKind::several_components};
     several.count = out.components;

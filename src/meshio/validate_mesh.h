@@ -34,7 +34,7 @@
 // composes them.
 // Limits of the readers (meshio/read_raw_mesh.h): files up to 2 GiB, regular files only; at most
 // 2^25 (33,554,432) vertices and 2^25 triangles; OBJ polygons of any corner count (ear clipping
-// with a work cap, meshio/triangulate_polygon.h).
+// with a work cap, meshio/triangulate_obj_face.h).
 //
 // Input policy (the README copies this table).
 //   defect                        check        load_mesh (inspect, basis, skeleton, optimize)

@@ -159,20 +159,16 @@ const char* to_string(AlStatus status) {
   return "unknown";
 }
 
-AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
-                                       const Eigen::VectorXd& x0, const AlOptions& params) {
-  AlResult res;
-  res.x = x0;
+namespace {
+
+// What is wrong with the problem, the start point or the options; empty when usable.
+std::string problem_error(const ConstrainedProblem& problem, const Eigen::VectorXd& x0, const AlOptions& params) {
   const int n = problem.num_variables;
   const int ne = problem.num_equality;
   const int ni = problem.num_inequality;
-  const int nn = ne + ni;
   const Eigen::MatrixXd* a = problem.linear_matrix;
   const Eigen::Index m = a ? a->rows() : 0;
-
-  // ---- Validation (once) ----
-  std::string& msg = res.message;
-  msg = params.check();
+  std::string msg = params.check();
   if (msg.empty() && n < 1) msg = "num_variables must be >= 1";
   if (msg.empty() && x0.size() != n) msg = "start point has the wrong length";
   if (msg.empty() && !x0.allFinite()) msg = "start point not finite";
@@ -187,13 +183,11 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
   if (msg.empty() && (problem.linear_lower.size() != m || problem.linear_upper.size() != m))
     msg = "linear bounds must have one entry per row of linear_matrix";
   if (msg.empty() && a && !a->allFinite()) msg = "linear_matrix not finite";
-  const Eigen::VectorXd lower =
-      problem.lower.size() ? problem.lower : Eigen::VectorXd::Constant(n, -kInf);
-  const Eigen::VectorXd upper =
-      problem.upper.size() ? problem.upper : Eigen::VectorXd::Constant(n, kInf);
+  if (!msg.empty()) return msg;
+  const Eigen::VectorXd lower = problem.lower.size() ? problem.lower : Eigen::VectorXd::Constant(n, -kInf);
+  const Eigen::VectorXd upper = problem.upper.size() ? problem.upper : Eigen::VectorXd::Constant(n, kInf);
   for (int i = 0; msg.empty() && i < n; ++i) {
-    if (std::isnan(lower(i)) || std::isnan(upper(i)) || lower(i) > upper(i) ||
-        lower(i) == kInf || upper(i) == -kInf)
+    if (std::isnan(lower(i)) || std::isnan(upper(i)) || lower(i) > upper(i) || lower(i) == kInf || upper(i) == -kInf)
       msg = "bounds of variable " + std::to_string(i) + " are empty or NaN";
   }
   for (Eigen::Index j = 0; msg.empty() && j < m; ++j) {
@@ -211,271 +205,377 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
           " entries for " + std::to_string(ni) + " inequality constraints";
   if (msg.empty() && !(params.initial_equality_multipliers.allFinite() && params.initial_inequality_multipliers.allFinite()))
     msg = "initial multipliers must be finite";
-  if (!msg.empty()) {
-    res.status = AlStatus::invalid_input;
-    res.x = x0;  // the caller's point, unchanged
-    return res;
+  return msg;
+}
+
+// One run of the method on a problem problem_error accepts: the scaled rows, the multipliers and
+// the penalty as state; each step of the outer loop a method (the shape of LBFGS++'s solvers).
+class AugmentedLagrangian {
+ public:
+  AugmentedLagrangian(const ConstrainedProblem& problem, const Eigen::VectorXd& x0, const AlOptions& params)
+      : problem_(problem),
+        params_(params),
+        n_(problem.num_variables),
+        ne_(problem.num_equality),
+        ni_(problem.num_inequality),
+        nn_(ne_ + ni_),
+        a_(problem.linear_matrix),
+        m_(a_ ? a_->rows() : 0),
+        lower_(problem.lower.size() ? problem.lower : Eigen::VectorXd::Constant(n_, -kInf)),
+        upper_(problem.upper.size() ? problem.upper : Eigen::VectorXd::Constant(n_, kInf)),
+        ev_(problem, n_, static_cast<int>(m_)) {
+    res_.x = x0;
+    x_ = x0;
   }
 
-  Rows rows;
-  rows.lo.resize(nn);
-  rows.hi.resize(nn);
-  for (int i = 0; i < nn; ++i) {
-    rows.lo(i) = i < ne ? 0.0 : -kInf;
-    rows.hi(i) = 0.0;
+  AlResult minimize();
+
+ private:
+  bool start();
+  void choose_initial_penalty();
+  Measures measures() const;
+  AlResult fill_result(AlStatus status, const Measures& meas);
+  double subproblem(const Eigen::VectorXd& xs, Eigen::VectorXd& grad);
+  double violation(const Eigen::VectorXd& xs, Eigen::VectorXd& grad);
+  bool evaluate_all(const Eigen::VectorXd& xs);
+  void report_iteration(int outer, const LbfgsbResult& sub, const Measures& meas) const;
+  bool reach_least_violation(double feas, const Measures& meas, double stationarity);
+
+  const ConstrainedProblem& problem_;
+  const AlOptions& params_;
+  const int n_, ne_, ni_, nn_;
+  const Eigen::MatrixXd* a_;
+  const Eigen::Index m_;
+  const Eigen::VectorXd lower_, upper_;
+  Evaluator ev_;
+  AlResult res_;
+  Eigen::VectorXd x_;
+  Rows rows_;
+  double sf_ = 1.0;         // objective scale
+  Eigen::VectorXd nu_bar_;  // multipliers (scaled), nonlinear rows then linear rows
+  Eigen::VectorXd nu_;
+  Eigen::VectorXd shift_;   // nu_bar / rho
+  Eigen::VectorXd w_nl_;
+  double rho_ = 1.0;        // penalty
+};
+
+// Clamps the start into the box, evaluates it and scales the rows from it; false when anything
+// is not finite there.
+bool AugmentedLagrangian::start() {
+  rows_.lo.resize(nn_);
+  rows_.hi.resize(nn_);
+  for (int i = 0; i < nn_; ++i) {
+    rows_.lo(i) = i < ne_ ? 0.0 : -kInf;
+    rows_.hi(i) = 0.0;
+  }
+  for (int i = 0; i < n_; ++i) x_(i) = clamp_to(x_(i), lower_(i), upper_(i));
+  bool start_finite = ev_.at(x_);
+  if (m_ > 0) {
+    ev_.ax.noalias() = (*a_) * x_;
+    ev_.linear_done = true;
+    start_finite = start_finite && ev_.ax.allFinite();
   }
 
-  Eigen::VectorXd x = x0;
-  for (int i = 0; i < n; ++i) x(i) = clamp_to(x(i), lower(i), upper(i));
-  Evaluator ev(problem, n, static_cast<int>(m));
-  bool start_finite = ev.at(x);
-  if (m > 0) {
-    ev.ax.noalias() = (*a) * x;
-    ev.linear_done = true;
-    start_finite = start_finite && ev.ax.allFinite();
-  }
-
-  // ---- Scaling from the start point ----
+  // Scaling from the start point.
   auto scale_of = [&](double gradient_norm) {
-    if (params.scale_floor == 0.0) return 1.0;
-    return 1.0 / std::max(params.scale_floor, gradient_norm);
+    if (params_.scale_floor == 0.0) return 1.0;
+    return 1.0 / std::max(params_.scale_floor, gradient_norm);
   };
-  const double sf = start_finite ? scale_of(ev.grad.lpNorm<Eigen::Infinity>()) : 1.0;
-  rows.scale.resize(nn);
-  for (int i = 0; i < nn; ++i)
-    rows.scale(i) = start_finite ? scale_of(ev.jac.row(i).lpNorm<Eigen::Infinity>()) : 1.0;
-  rows.lin_scale.resize(m);
-  for (Eigen::Index j = 0; j < m; ++j) rows.lin_scale(j) = scale_of(a->row(j).lpNorm<Eigen::Infinity>());
+  sf_ = start_finite ? scale_of(ev_.grad.lpNorm<Eigen::Infinity>()) : 1.0;
+  rows_.scale.resize(nn_);
+  for (int i = 0; i < nn_; ++i) rows_.scale(i) = start_finite ? scale_of(ev_.jac.row(i).lpNorm<Eigen::Infinity>()) : 1.0;
+  rows_.lin_scale.resize(m_);
+  for (Eigen::Index j = 0; j < m_; ++j) rows_.lin_scale(j) = scale_of(a_->row(j).lpNorm<Eigen::Infinity>());
 
-  const Eigen::VectorXd& lin_lo = problem.linear_lower;
-  const Eigen::VectorXd& lin_hi = problem.linear_upper;
-
-  // Multipliers (scaled), nonlinear rows then linear rows; penalty.
-  Eigen::VectorXd nu_bar = Eigen::VectorXd::Zero(nn + m);
-  Eigen::VectorXd nu = nu_bar;
+  nu_bar_ = Eigen::VectorXd::Zero(nn_ + m_);
+  nu_ = nu_bar_;
   // A warm start converts the unscaled multipliers (see fill_result); inequality ones are >= 0.
-  for (int i = 0; i < nn; ++i) {
-    const bool eq = i < ne;
-    const Eigen::VectorXd& given = eq ? params.initial_equality_multipliers : params.initial_inequality_multipliers;
+  for (int i = 0; i < nn_; ++i) {
+    const bool eq = i < ne_;
+    const Eigen::VectorXd& given = eq ? params_.initial_equality_multipliers : params_.initial_inequality_multipliers;
     if (given.size() == 0) continue;
-    const double unscaled = given(eq ? i : i - ne);
-    nu(i) = (eq ? unscaled : std::max(0.0, unscaled)) * sf / rows.scale(i);
+    const double unscaled = given(eq ? i : i - ne_);
+    nu_(i) = (eq ? unscaled : std::max(0.0, unscaled)) * sf_ / rows_.scale(i);
   }
-  Eigen::VectorXd shift = Eigen::VectorXd::Zero(nn + m);  // nu_bar / rho
-  Eigen::VectorXd w_nl(nn);
-  double rho = 1.0;
+  shift_ = Eigen::VectorXd::Zero(nn_ + m_);
+  w_nl_.resize(nn_);
+  return start_finite;
+}
 
-  auto measures = [&]() {
-    Measures out;
-    out.nu.resize(nn + m);
-    auto row = [&](Eigen::Index k, double value, double lo, double hi, double s) {
-      const double viol = value < lo ? lo - value : (value > hi ? value - hi : 0.0);
-      out.violation = std::max(out.violation, viol);
-      out.scaled_violation = std::max(out.scaled_violation, s * viol);
-      const double sc = s * value, slo = s * lo, shi = s * hi;
-      const double t = sc + shift(k);
-      const double pt = clamp_to(t, slo, shi);
-      out.v = std::max(out.v, std::fabs(sc - pt));
-      const double nu_k = rho * (t - pt);
-      out.nu(k) = nu_k;
-      double gap = 0.0;
-      if (nu_k > 0.0) gap = std::fabs(shi - sc);
-      if (nu_k < 0.0) gap = std::fabs(sc - slo);
-      out.complementarity = std::max(out.complementarity, std::min(std::fabs(nu_k), gap));
-    };
-    for (int i = 0; i < nn; ++i) row(i, ev.c(i), rows.lo(i), rows.hi(i), rows.scale(i));
-    for (Eigen::Index j = 0; j < m; ++j)
-      row(nn + j, ev.ax(j), lin_lo(j), lin_hi(j), rows.lin_scale(j));
-    return out;
-  };
-
-  auto fill_result = [&](AlStatus status, const Measures& meas) {
-    res.status = status;
-    res.x = ev.x;
-    res.f = ev.f;
-    res.max_violation = meas.violation;
-    res.scaled_violation = meas.scaled_violation;
-    res.complementarity = meas.complementarity;
-    res.penalty = rho;
-    res.evaluations = ev.count;
-    res.equality_multipliers.resize(ne);
-    res.inequality_multipliers.resize(ni);
-    res.linear_multipliers.resize(m);
-    for (int i = 0; i < nn; ++i) {
-      const double unscaled = nu(i) * rows.scale(i) / sf;
-      if (i < ne) {
-        res.equality_multipliers(i) = unscaled;
-      } else {
-        res.inequality_multipliers(i - ne) = unscaled;
-      }
-    }
-    for (Eigen::Index j = 0; j < m; ++j) res.linear_multipliers(j) = nu(nn + j) * rows.lin_scale(j) / sf;
-    res.equality_values = ev.c.head(ne);
-    res.inequality_values = ev.c.tail(ni);
-    return res;
-  };
-
-  if (!start_finite) {
-    shift.setZero();
-    const Measures meas = measures();
-    return fill_result(AlStatus::numerical_issue, meas);
-  }
-
-  if (params.initial_penalty > 0.0) {
-    rho = params.initial_penalty;
+void AugmentedLagrangian::choose_initial_penalty() {
+  const Eigen::VectorXd& lin_lo = problem_.linear_lower;
+  const Eigen::VectorXd& lin_hi = problem_.linear_upper;
+  if (params_.initial_penalty > 0.0) {
+    rho_ = params_.initial_penalty;
   } else {
     double half_sq = 0.0;
     auto add_sq = [&](double value, double lo, double hi, double s) {
       const double viol = value < lo ? lo - value : (value > hi ? value - hi : 0.0);
       half_sq += 0.5 * (s * viol) * (s * viol);
     };
-    for (int i = 0; i < nn; ++i) add_sq(ev.c(i), rows.lo(i), rows.hi(i), rows.scale(i));
-    for (Eigen::Index j = 0; j < m; ++j) add_sq(ev.ax(j), lin_lo(j), lin_hi(j), rows.lin_scale(j));
-    rho = clamp_to(10.0 * std::max(1.0, std::fabs(sf * ev.f)) / std::max(1.0, half_sq), 1e-8, 1e8);
+    for (int i = 0; i < nn_; ++i) add_sq(ev_.c(i), rows_.lo(i), rows_.hi(i), rows_.scale(i));
+    for (Eigen::Index j = 0; j < m_; ++j) add_sq(ev_.ax(j), lin_lo(j), lin_hi(j), rows_.lin_scale(j));
+    rho_ = clamp_to(10.0 * std::max(1.0, std::fabs(sf_ * ev_.f)) / std::max(1.0, half_sq), 1e-8, 1e8);
   }
-  rho = std::min(rho, params.max_penalty);
+  rho_ = std::min(rho_, params_.max_penalty);
+}
 
-  // The subproblem: scaled augmented Lagrangian over the box.
-  ObjectiveFunction subproblem = [&](const Eigen::VectorXd& xs, Eigen::VectorXd& grad) -> double {
-    if (!ev.at(xs)) {
-      grad.setConstant(kNaN);
-      return kNaN;
-    }
-    grad = sf * ev.grad;
-    NeumaierSum sum;  // the linear block adds up to 10⁶ penalty terms per evaluation
-    sum.add(sf * ev.f);
-    for (int i = 0; i < nn; ++i) {
-      const double s = rows.scale(i);
-      const double t = s * ev.c(i) + shift(i);
-      const double dv = t - clamp_to(t, s * rows.lo(i), s * rows.hi(i));
-      sum.add(0.5 * rho * dv * dv);
-      w_nl(i) = rho * dv * s;
-    }
-    if (nn > 0) grad.noalias() += ev.jac.transpose() * w_nl;
-    if (m > 0) {
-      linear_pass(*a, xs, ev.ax, grad, [&](Eigen::Index j, double value) {
-        const double s = rows.lin_scale(j);
-        const double t = s * value + shift(nn + j);
-        const double dv = t - clamp_to(t, s * lin_lo(j), s * lin_hi(j));
-        if (dv == 0.0) return 0.0;
-        sum.add(0.5 * rho * dv * dv);
-        return rho * dv * s;
-      });
-      ev.linear_done = true;
-      if (!ev.ax.allFinite()) {
-        grad.setConstant(kNaN);
-        return kNaN;
-      }
-    }
-    return sum.value();
+Measures AugmentedLagrangian::measures() const {
+  Measures out;
+  out.nu.resize(nn_ + m_);
+  auto row = [&](Eigen::Index k, double value, double lo, double hi, double s) {
+    const double viol = value < lo ? lo - value : (value > hi ? value - hi : 0.0);
+    out.violation = std::max(out.violation, viol);
+    out.scaled_violation = std::max(out.scaled_violation, s * viol);
+    const double sc = s * value, slo = s * lo, shi = s * hi;
+    const double t = sc + shift_(k);
+    const double pt = clamp_to(t, slo, shi);
+    out.v = std::max(out.v, std::fabs(sc - pt));
+    const double nu_k = rho_ * (t - pt);
+    out.nu(k) = nu_k;
+    double gap = 0.0;
+    if (nu_k > 0.0) gap = std::fabs(shi - sc);
+    if (nu_k < 0.0) gap = std::fabs(sc - slo);
+    out.complementarity = std::max(out.complementarity, std::min(std::fabs(nu_k), gap));
   };
+  for (int i = 0; i < nn_; ++i) row(i, ev_.c(i), rows_.lo(i), rows_.hi(i), rows_.scale(i));
+  for (Eigen::Index j = 0; j < m_; ++j)
+    row(nn_ + j, ev_.ax(j), problem_.linear_lower(j), problem_.linear_upper(j), rows_.lin_scale(j));
+  return out;
+}
 
-  // ½ Σ (s_i dist(c_i, [lo_i, hi_i]))²: minimised over the box to find a least-violation point.
-  ObjectiveFunction violation = [&](const Eigen::VectorXd& xs, Eigen::VectorXd& grad) -> double {
-    if (!ev.at(xs)) {
+AlResult AugmentedLagrangian::fill_result(AlStatus status, const Measures& meas) {
+  res_.status = status;
+  res_.x = ev_.x;
+  res_.f = ev_.f;
+  res_.max_violation = meas.violation;
+  res_.scaled_violation = meas.scaled_violation;
+  res_.complementarity = meas.complementarity;
+  res_.penalty = rho_;
+  res_.evaluations = ev_.count;
+  res_.equality_multipliers.resize(ne_);
+  res_.inequality_multipliers.resize(ni_);
+  res_.linear_multipliers.resize(m_);
+  for (int i = 0; i < nn_; ++i) {
+    const double unscaled = nu_(i) * rows_.scale(i) / sf_;
+    if (i < ne_) {
+      res_.equality_multipliers(i) = unscaled;
+    } else {
+      res_.inequality_multipliers(i - ne_) = unscaled;
+    }
+  }
+  for (Eigen::Index j = 0; j < m_; ++j) res_.linear_multipliers(j) = nu_(nn_ + j) * rows_.lin_scale(j) / sf_;
+  res_.equality_values = ev_.c.head(ne_);
+  res_.inequality_values = ev_.c.tail(ni_);
+  return res_;
+}
+
+// The subproblem: the scaled augmented Lagrangian, minimised over the box.
+double AugmentedLagrangian::subproblem(const Eigen::VectorXd& xs, Eigen::VectorXd& grad) {
+  if (!ev_.at(xs)) {
+    grad.setConstant(kNaN);
+    return kNaN;
+  }
+  const Eigen::VectorXd& lin_lo = problem_.linear_lower;
+  const Eigen::VectorXd& lin_hi = problem_.linear_upper;
+  grad = sf_ * ev_.grad;
+  NeumaierSum sum;  // the linear block adds up to 10⁶ penalty terms per evaluation
+  sum.add(sf_ * ev_.f);
+  for (int i = 0; i < nn_; ++i) {
+    const double s = rows_.scale(i);
+    const double t = s * ev_.c(i) + shift_(i);
+    const double dv = t - clamp_to(t, s * rows_.lo(i), s * rows_.hi(i));
+    sum.add(0.5 * rho_ * dv * dv);
+    w_nl_(i) = rho_ * dv * s;
+  }
+  if (nn_ > 0) grad.noalias() += ev_.jac.transpose() * w_nl_;
+  if (m_ > 0) {
+    linear_pass(*a_, xs, ev_.ax, grad, [&](Eigen::Index j, double value) {
+      const double s = rows_.lin_scale(j);
+      const double t = s * value + shift_(nn_ + j);
+      const double dv = t - clamp_to(t, s * lin_lo(j), s * lin_hi(j));
+      if (dv == 0.0) return 0.0;
+      sum.add(0.5 * rho_ * dv * dv);
+      return rho_ * dv * s;
+    });
+    ev_.linear_done = true;
+    if (!ev_.ax.allFinite()) {
       grad.setConstant(kNaN);
       return kNaN;
     }
-    grad.setZero();
-    NeumaierSum sum;  // the linear block adds up to 10⁶ penalty terms per evaluation
-    for (int i = 0; i < nn; ++i) {
-      const double s = rows.scale(i);
-      const double dv = s * (ev.c(i) - clamp_to(ev.c(i), rows.lo(i), rows.hi(i)));
+  }
+  return sum.value();
+}
+
+// ½ Σ (s_i dist(c_i, [lo_i, hi_i]))²: minimised over the box to find a least-violation point.
+double AugmentedLagrangian::violation(const Eigen::VectorXd& xs, Eigen::VectorXd& grad) {
+  if (!ev_.at(xs)) {
+    grad.setConstant(kNaN);
+    return kNaN;
+  }
+  const Eigen::VectorXd& lin_lo = problem_.linear_lower;
+  const Eigen::VectorXd& lin_hi = problem_.linear_upper;
+  grad.setZero();
+  NeumaierSum sum;  // the linear block adds up to 10⁶ penalty terms per evaluation
+  for (int i = 0; i < nn_; ++i) {
+    const double s = rows_.scale(i);
+    const double dv = s * (ev_.c(i) - clamp_to(ev_.c(i), rows_.lo(i), rows_.hi(i)));
+    sum.add(0.5 * dv * dv);
+    w_nl_(i) = dv * s;
+  }
+  if (nn_ > 0) grad.noalias() += ev_.jac.transpose() * w_nl_;
+  if (m_ > 0) {
+    linear_pass(*a_, xs, ev_.ax, grad, [&](Eigen::Index j, double value) {
+      const double s = rows_.lin_scale(j);
+      const double dv = s * (value - clamp_to(value, lin_lo(j), lin_hi(j)));
+      if (dv == 0.0) return 0.0;
       sum.add(0.5 * dv * dv);
-      w_nl(i) = dv * s;
+      return dv * s;
+    });
+    ev_.linear_done = true;
+    if (!ev_.ax.allFinite()) {
+      grad.setConstant(kNaN);
+      return kNaN;
     }
-    if (nn > 0) grad.noalias() += ev.jac.transpose() * w_nl;
-    if (m > 0) {
-      linear_pass(*a, xs, ev.ax, grad, [&](Eigen::Index j, double value) {
-        const double s = rows.lin_scale(j);
-        const double dv = s * (value - clamp_to(value, lin_lo(j), lin_hi(j)));
-        if (dv == 0.0) return 0.0;
-        sum.add(0.5 * dv * dv);
-        return dv * s;
-      });
-      ev.linear_done = true;
-      if (!ev.ax.allFinite()) {
-        grad.setConstant(kNaN);
-        return kNaN;
-      }
+  }
+  return sum.value();
+}
+
+// Everything at point xs, including A x (when the last evaluation there did not compute it).
+bool AugmentedLagrangian::evaluate_all(const Eigen::VectorXd& xs) {
+  const bool ok = ev_.at(xs);
+  if (m_ > 0 && !ev_.linear_done) {
+    ev_.ax.noalias() = (*a_) * xs;
+    ev_.linear_done = true;
+  }
+  return ok && ev_.ax.allFinite();
+}
+
+void AugmentedLagrangian::report_iteration(int outer, const LbfgsbResult& sub, const Measures& meas) const {
+  if (!params_.on_outer_iteration) return;
+  AlIterationInfo info;
+  info.outer_iteration = outer;
+  info.f = ev_.f;
+  info.max_violation = meas.violation;
+  info.stationarity = sub.projected_gradient_norm;
+  info.complementarity = meas.complementarity;
+  info.penalty = rho_;
+  info.inner_status = sub.status;
+  info.inner_iterations = sub.iterations;
+  info.evaluations = ev_.count;
+  params_.on_outer_iteration(info);
+}
+
+// From x_, whose violation `feas` stagnates, minimises the violation alone. True when that
+// reaches a feasible point (x_ moves there); false when the problem reads as infeasible, with the
+// result filled (at the least violation found, the last subproblem's multipliers).
+bool AugmentedLagrangian::reach_least_violation(double feas, const Measures& meas, double stationarity) {
+  // Relative to the violation: at a least-violation point J^T c vanishes while c does not, so
+  // a tiny violation with a clear descent direction (|J^T c| ≫ tol |c|) is not stationary.
+  // The tolerance is fixed for one L-BFGS-B run, so the run starts again from where it
+  // stopped, relative to the violation there, as long as the violation keeps halving: a
+  // problem whose violation fell tenfold in the first run is not shown infeasible by it (the
+  // per-vertex top: 6.4e-4 to 6.6e-5 in 3 iterations, then feasible).
+  const ObjectiveFunction violation_only = [this](const Eigen::VectorXd& xs, Eigen::VectorXd& grad) {
+    return violation(xs, grad);
+  };
+  const double feas_tol = params_.feasibility_tolerance;
+  Eigen::VectorXd least_x = x_;
+  double least_feas = feas;
+  Measures at_least = meas;
+  double least_stationarity = stationarity;
+  for (int restart = 0; restart < kMaxLeastViolationRestarts; ++restart) {
+    LbfgsbOptions lv = params_.inner;
+    lv.gradient_tolerance = params_.stationarity_tolerance * least_feas;
+    lv.relative_gradient_tolerance = 0.0;
+    lv.max_evaluations = std::max(1, std::min(lv.max_evaluations, params_.max_evaluations - ev_.count));
+    const LbfgsbResult least = lbfgsb_minimize(violation_only, least_x, lower_, upper_, lv);
+    evaluate_all(least.x);
+    const Measures now = measures();
+    const double now_feas = std::max(now.violation, now.scaled_violation);
+    const bool halved = now_feas <= 0.5 * least_feas;
+    if (now_feas <= least_feas) {
+      least_x = least.x;
+      at_least = now;
+      least_stationarity = least.projected_gradient_norm;
     }
-    return sum.value();
+    least_feas = std::min(least_feas, now_feas);
+    if (least_feas <= feas_tol || !halved || ev_.count >= params_.max_evaluations) break;
+  }
+  evaluate_all(least_x);
+  if (least_feas > feas_tol) {
+    // The multipliers stay those of the last subproblem; the violation is this point's.
+    res_.stationarity = least_stationarity;
+    fill_result(AlStatus::infeasible, at_least);
+    return false;
+  }
+  x_ = least_x;
+  return true;
+}
+
+AlResult AugmentedLagrangian::minimize() {
+  if (!start()) {
+    shift_.setZero();
+    const Measures meas = measures();
+    return fill_result(AlStatus::numerical_issue, meas);
+  }
+  choose_initial_penalty();
+  const ObjectiveFunction subproblem_function = [this](const Eigen::VectorXd& xs, Eigen::VectorXd& grad) {
+    return subproblem(xs, grad);
   };
 
-  // Everything at point xs, including A x (when the last evaluation there did not compute it).
-  auto evaluate_all = [&](const Eigen::VectorXd& xs) {
-    const bool ok = ev.at(xs);
-    if (m > 0 && !ev.linear_done) {
-      ev.ax.noalias() = (*a) * xs;
-      ev.linear_done = true;
-    }
-    return ok && ev.ax.allFinite();
-  };
-
-  const double feas_tol = params.feasibility_tolerance;
-  double inner_tol = std::max(params.initial_inner_tolerance, params.stationarity_tolerance);
+  const double feas_tol = params_.feasibility_tolerance;
+  double inner_tol = std::max(params_.initial_inner_tolerance, params_.stationarity_tolerance);
   double v_prev = kInf;
   double feas_prev = kInf;
   int stagnant = 0;
   int stalled = 0;
   Measures meas;
-  LbfgsbOptions inner = params.inner;
+  LbfgsbOptions inner = params_.inner;
 
-  for (int outer = 1; outer <= params.max_outer_iterations; ++outer) {
-    res.outer_iterations = outer;
-    for (Eigen::Index k = 0; k < nn + m; ++k) {
-      nu_bar(k) = clamp_to(nu(k), -params.max_multiplier, params.max_multiplier);
-      shift(k) = nu_bar(k) / rho;
+  for (int outer = 1; outer <= params_.max_outer_iterations; ++outer) {
+    res_.outer_iterations = outer;
+    for (Eigen::Index k = 0; k < nn_ + m_; ++k) {
+      nu_bar_(k) = clamp_to(nu_(k), -params_.max_multiplier, params_.max_multiplier);
+      shift_(k) = nu_bar_(k) / rho_;
     }
-    const int budget = params.max_evaluations - ev.count;
+    const int budget = params_.max_evaluations - ev_.count;
     if (budget <= 0) return fill_result(AlStatus::max_evaluations, meas);
     inner.gradient_tolerance = inner_tol;
     inner.relative_gradient_tolerance = 0.0;
     inner.max_evaluations = std::min(inner.max_evaluations, budget);
-    const LbfgsbResult sub = lbfgsb_minimize(subproblem, x, lower, upper, inner);
-    inner.max_evaluations = params.inner.max_evaluations;
-    res.inner_iterations += sub.iterations;
-    x = sub.x;
-    evaluate_all(x);
+    const LbfgsbResult sub = lbfgsb_minimize(subproblem_function, x_, lower_, upper_, inner);
+    inner.max_evaluations = params_.inner.max_evaluations;
+    res_.inner_iterations += sub.iterations;
+    x_ = sub.x;
+    evaluate_all(x_);
     meas = measures();
-    nu = meas.nu;
-    res.stationarity = sub.projected_gradient_norm;
-    if (params.on_outer_iteration) {
-      AlIterationInfo info;
-      info.outer_iteration = outer;
-      info.f = ev.f;
-      info.max_violation = meas.violation;
-      info.stationarity = sub.projected_gradient_norm;
-      info.complementarity = meas.complementarity;
-      info.penalty = rho;
-      info.inner_status = sub.status;
-      info.inner_iterations = sub.iterations;
-      info.evaluations = ev.count;
-      params.on_outer_iteration(info);
-    }
+    nu_ = meas.nu;
+    res_.stationarity = sub.projected_gradient_norm;
+    report_iteration(outer, sub, meas);
     const double feas = std::max(meas.violation, meas.scaled_violation);
-    if (feas <= feas_tol && sub.projected_gradient_norm <= params.stationarity_tolerance &&
-        meas.complementarity <= params.complementarity_tolerance)
+    if (feas <= feas_tol && sub.projected_gradient_norm <= params_.stationarity_tolerance &&
+        meas.complementarity <= params_.complementarity_tolerance)
       return fill_result(AlStatus::converged, meas);
-    if (ev.count >= params.max_evaluations) return fill_result(AlStatus::max_evaluations, meas);
+    if (ev_.count >= params_.max_evaluations) return fill_result(AlStatus::max_evaluations, meas);
     // The subproblem stopped at the budget this loop left it, not at its own cap. Its count
     // includes its start point, which the evaluator had cached and does not count again, so the
     // total can end just below the cap: every later subproblem would then stop at its start
     // point while the penalty kept growing, and the stagnation would read as infeasibility.
-    if (sub.status == LbfgsbStatus::max_evaluations && budget <= params.inner.max_evaluations)
+    if (sub.status == LbfgsbStatus::max_evaluations && budget <= params_.inner.max_evaluations)
       return fill_result(AlStatus::max_evaluations, meas);
     const bool inner_stuck = sub.status == LbfgsbStatus::small_reduction ||
                              sub.status == LbfgsbStatus::line_search_failed;
-    if (feas <= feas_tol && meas.complementarity <= params.complementarity_tolerance && inner_stuck) {
-      if (++stalled >= params.stall_patience) return fill_result(AlStatus::stalled, meas);
+    if (feas <= feas_tol && meas.complementarity <= params_.complementarity_tolerance && inner_stuck) {
+      if (++stalled >= params_.stall_patience) return fill_result(AlStatus::stalled, meas);
     } else {
       stalled = 0;
     }
 
     // Penalty update (ALGENCAN): keep ρ while V halves, else increase it.
     // Once V is within the feasibility tolerance a larger ρ only worsens the conditioning.
-    if (meas.v > feas_tol && meas.v > params.required_decrease * v_prev)
-      rho = std::min(rho * params.penalty_increase, params.max_penalty);
+    if (meas.v > feas_tol && meas.v > params_.required_decrease * v_prev)
+      rho_ = std::min(rho_ * params_.penalty_increase, params_.max_penalty);
     v_prev = meas.v;
 
     // Infeasibility: the violation stagnates although ρ keeps growing.
@@ -487,58 +587,37 @@ AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem,
       stagnant = 0;
     }
     feas_prev = feas;
-    const bool clearly_infeasible = params.clear_violation_factor > 0.0 && stagnant >= 1 &&
-                                    feas > params.clear_violation_factor * feas_tol;
-    if (feas > feas_tol && (stagnant >= params.infeasibility_patience || clearly_infeasible || rho >= params.max_penalty)) {
-      // Relative to the violation: at a least-violation point J^T c vanishes while c does not, so
-      // a tiny violation with a clear descent direction (|J^T c| ≫ tol |c|) is not stationary.
-      // The tolerance is fixed for one L-BFGS-B run, so the run starts again from where it
-      // stopped, relative to the violation there, as long as the violation keeps halving: a
-      // problem whose violation fell tenfold in the first run is not shown infeasible by it (the
-      // per-vertex top: 6.4e-4 to 6.6e-5 in 3 iterations, then feasible).
-      Eigen::VectorXd least_x = x;
-      double least_feas = feas;
-      Measures at_least = meas;
-      double least_stationarity = sub.projected_gradient_norm;
-      for (int restart = 0; restart < kMaxLeastViolationRestarts; ++restart) {
-        LbfgsbOptions lv = params.inner;
-        lv.gradient_tolerance = params.stationarity_tolerance * least_feas;
-        lv.relative_gradient_tolerance = 0.0;
-        lv.max_evaluations = std::max(1, std::min(lv.max_evaluations, params.max_evaluations - ev.count));
-        const LbfgsbResult least = lbfgsb_minimize(violation, least_x, lower, upper, lv);
-        evaluate_all(least.x);
-        const Measures now = measures();
-        const double now_feas = std::max(now.violation, now.scaled_violation);
-        const bool halved = now_feas <= 0.5 * least_feas;
-        if (now_feas <= least_feas) {
-          least_x = least.x;
-          at_least = now;
-          least_stationarity = least.projected_gradient_norm;
-        }
-        least_feas = std::min(least_feas, now_feas);
-        if (least_feas <= feas_tol || !halved || ev.count >= params.max_evaluations) break;
-      }
-      evaluate_all(least_x);
-      if (least_feas > feas_tol) {
-        // The multipliers stay those of the last subproblem; the violation is this point's.
-        res.stationarity = least_stationarity;
-        return fill_result(AlStatus::infeasible, at_least);
-      }
+    const bool clearly_infeasible = params_.clear_violation_factor > 0.0 && stagnant >= 1 &&
+                                    feas > params_.clear_violation_factor * feas_tol;
+    if (feas > feas_tol && (stagnant >= params_.infeasibility_patience || clearly_infeasible || rho_ >= params_.max_penalty)) {
+      if (!reach_least_violation(feas, meas, sub.projected_gradient_norm)) return res_;
       // A feasible point exists: continue from it.
-      x = least_x;
       stagnant = 0;
       feas_prev = kInf;
     }
     if (feas <= feas_tol) {
-      inner_tol = params.stationarity_tolerance;
+      inner_tol = params_.stationarity_tolerance;
     } else {
-      inner_tol = std::max(params.stationarity_tolerance,
-                           std::min(params.initial_inner_tolerance, params.inner_tolerance_decrease * meas.v));
+      inner_tol = std::max(params_.stationarity_tolerance,
+                           std::min(params_.initial_inner_tolerance, params_.inner_tolerance_decrease * meas.v));
     }
   }
-  evaluate_all(x);
+  evaluate_all(x_);
   meas = measures();
   return fill_result(AlStatus::max_outer_iterations, meas);
+}
+
+}  // namespace
+
+AlResult augmented_lagrangian_minimize(const ConstrainedProblem& problem, const Eigen::VectorXd& x0, const AlOptions& params) {
+  AlResult res;
+  res.x = x0;  // the caller's point, unchanged, when the input is refused
+  res.message = problem_error(problem, x0, params);
+  if (!res.message.empty()) {
+    res.status = AlStatus::invalid_input;
+    return res;
+  }
+  return AugmentedLagrangian(problem, x0, params).minimize();
 }
 
 }  // namespace offsetopt

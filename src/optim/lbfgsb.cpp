@@ -49,6 +49,119 @@ double max_feasible_step(const Eigen::VectorXd& x, const Eigen::VectorXd& d,
   return std::max(step, 1.0);
 }
 
+// What is wrong with the problem or the options; empty when usable.
+std::string input_error(const ObjectiveFunction& f, const Eigen::VectorXd& x0, const Eigen::VectorXd& lower_in,
+                        const Eigen::VectorXd& upper_in, const LbfgsbOptions& params) {
+  const Eigen::Index n = x0.size();
+  std::string message = params.check();
+  if (message.empty() && n == 0) message = "no variables";
+  if (message.empty() && !f) message = "no objective function";
+  if (message.empty() && ((lower_in.size() != 0 && lower_in.size() != n) || (upper_in.size() != 0 && upper_in.size() != n)))
+    message = "bounds must be empty or of the length of x";
+  if (message.empty() && !x0.allFinite()) message = "start point not finite";
+  if (!message.empty()) return message;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double lo = lower_in.size() ? lower_in(i) : -kInf, hi = upper_in.size() ? upper_in(i) : kInf;
+    if (std::isnan(lo) || std::isnan(hi) || lo > hi || lo == kInf || hi == -kInf)
+      return "bounds of variable " + std::to_string(i) + " are empty or NaN";
+  }
+  return message;
+}
+
+// Where the subspace minimisation starts: the generalized Cauchy point, or, without any bound
+// once the memory holds a pair (Fortran), x itself with every variable free (the step is then
+// plain L-BFGS).
+CauchyPoint cauchy_start(const Eigen::VectorXd& x, const Eigen::VectorXd& g, const Eigen::VectorXd& lower,
+                         const Eigen::VectorXd& upper, const LbfgsMemory& memory, bool has_bounds) {
+  if (has_bounds || memory.size() == 0) return generalized_cauchy_point(x, g, lower, upper, memory);
+  CauchyPoint cauchy;
+  cauchy.x = x;
+  cauchy.c = Eigen::VectorXd::Zero(2 * memory.size());
+  cauchy.free.resize(static_cast<size_t>(x.size()));
+  for (Eigen::Index i = 0; i < x.size(); ++i) cauchy.free[static_cast<size_t>(i)] = static_cast<int>(i);
+  return cauchy;
+}
+
+// Trial points of one line search and the lowest one with sufficient decrease (kept between
+// searches so the vectors are allocated once).
+struct LineSearchPoints {
+  Eigen::VectorXd xt, gt, best_x, best_g;
+};
+
+struct LineSearchOutcome {
+  bool accepted = false;          // points.xt, points.gt hold the accepted point
+  bool evaluation_limit = false;  // stopped at params.max_evaluations
+  double f = 0.0;                 // at the accepted point
+};
+
+// The Moré-Thuente search from x (value fx, slope gd < 0 along d) towards x_bar = x + d, first
+// trial step `stp`, steps at most ls.stpmax; each trial point is clamped into the box.
+// Accepts a strong Wolfe point, or an approximate Wolfe point where f is flat to rounding, or
+// else the lowest trial point with sufficient decrease.
+LineSearchOutcome search_line(const ObjectiveFunction& f, const Eigen::VectorXd& x, double fx, double gd,
+                              const Eigen::VectorXd& d, const Eigen::VectorXd& x_bar, const Eigen::VectorXd& lower,
+                              const Eigen::VectorXd& upper, double stp, MoreThuenteOptions ls,
+                              const LbfgsbOptions& params, int& evaluations, LineSearchPoints& points) {
+  Eigen::VectorXd& xt = points.xt;
+  Eigen::VectorXd& gt = points.gt;
+  LineSearchOutcome out;
+  MoreThuenteSearch search;
+  MoreThuenteStatus state = search.start(fx, gd, stp, ls);
+  bool have_best = false;
+  double best_f = 0.0;
+  int ls_evaluations = 0;
+  while (state == MoreThuenteStatus::evaluate) {
+    if (ls_evaluations >= params.max_line_search_evaluations) break;
+    if (evaluations >= params.max_evaluations) {
+      out.evaluation_limit = true;
+      break;
+    }
+    stp = search.step();
+    if (stp == 1.0) {
+      xt = x_bar;  // exactly the subspace point: no rounding off a bound
+    } else {
+      xt = x + stp * d;
+      clamp_into(lower, upper, xt);
+    }
+    const double ft = f(xt, gt);
+    ++evaluations;
+    ++ls_evaluations;
+    if (!finite_value_and_gradient(ft, gt)) {
+      // Undefined there: restart the search on the half step and never go beyond it again.
+      ls.stpmax = 0.5 * stp;
+      state = search.start(fx, gd, ls.stpmax, ls);
+      continue;
+    }
+    const bool sufficient = ft <= fx + params.wolfe_decrease * stp * gd;
+    if (sufficient && (!have_best || ft < best_f)) {
+      have_best = true;
+      best_f = ft;
+      points.best_x = xt;
+      points.best_g = gt;
+    }
+    const double gdt = gt.dot(d);
+    state = search.advance(ft, gdt);
+    if (state == MoreThuenteStatus::converged) {
+      out.accepted = true;
+      out.f = ft;
+    } else if (!sufficient && ft <= fx + params.function_noise * std::fabs(fx) &&
+               (2.0 * params.wolfe_decrease - 1.0) * gd >= gdt && gdt >= params.wolfe_curvature * gd) {
+      out.accepted = true;  // approximate Wolfe: f is flat to rounding, the slope has turned
+      out.f = ft;
+      break;
+    }
+  }
+  if (!out.accepted && have_best) {
+    // Warnings, the per-search cap or the evaluation cap: fall back on the lowest point with
+    // sufficient decrease, so every accepted step still decreases f.
+    out.accepted = true;
+    xt = points.best_x;
+    gt = points.best_g;
+    out.f = best_f;
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string LbfgsbOptions::check() const {
@@ -109,28 +222,13 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
   LbfgsbResult res;
   res.x = x0;
   const Eigen::Index n = x0.size();
-  res.message = params.check();
-  if (res.message.empty() && n == 0) res.message = "no variables";
-  if (res.message.empty() && !f) res.message = "no objective function";
-  if (res.message.empty() && ((lower_in.size() != 0 && lower_in.size() != n) ||
-                              (upper_in.size() != 0 && upper_in.size() != n)))
-    res.message = "bounds must be empty or of the length of x";
-  if (res.message.empty() && !x0.allFinite()) res.message = "start point not finite";
-  const Eigen::VectorXd lower = lower_in.size() ? lower_in : Eigen::VectorXd::Constant(n, -kInf);
-  const Eigen::VectorXd upper = upper_in.size() ? upper_in : Eigen::VectorXd::Constant(n, kInf);
-  if (res.message.empty()) {
-    for (Eigen::Index i = 0; i < n; ++i) {
-      if (std::isnan(lower(i)) || std::isnan(upper(i)) || lower(i) > upper(i) ||
-          lower(i) == kInf || upper(i) == -kInf) {
-        res.message = "bounds of variable " + std::to_string(i) + " are empty or NaN";
-        break;
-      }
-    }
-  }
+  res.message = input_error(f, x0, lower_in, upper_in, params);
   if (!res.message.empty()) {
     res.status = LbfgsbStatus::invalid_input;
     return res;
   }
+  const Eigen::VectorXd lower = lower_in.size() ? lower_in : Eigen::VectorXd::Constant(n, -kInf);
+  const Eigen::VectorXd upper = upper_in.size() ? upper_in : Eigen::VectorXd::Constant(n, kInf);
 
   bool has_bounds = false;
   bool boxed = true;
@@ -183,7 +281,8 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
   ls.xtol = params.line_search_xtol;
   ls.stpmin = 0.0;
 
-  Eigen::VectorXd xt(n), gt(n), best_x(n), best_g(n), d(n);
+  LineSearchPoints points{Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n)};
+  Eigen::VectorXd d(n);
   int noise_steps = 0;
   double smallest_pg = pg;
 
@@ -191,17 +290,8 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
     if (iterations >= params.max_iterations) return finish(LbfgsbStatus::max_iterations);
     if (evaluations >= params.max_evaluations) return finish(LbfgsbStatus::max_evaluations);
 
-    // Search direction: Cauchy point, then subspace minimisation. Without any bound the Cauchy
-    // point is skipped once the memory holds a pair (Fortran): the step is then plain L-BFGS.
-    CauchyPoint cauchy;
-    if (!has_bounds && memory.size() > 0) {
-      cauchy.x = x;
-      cauchy.c = Eigen::VectorXd::Zero(2 * memory.size());
-      cauchy.free.resize(static_cast<size_t>(n));
-      for (Eigen::Index i = 0; i < n; ++i) cauchy.free[static_cast<size_t>(i)] = static_cast<int>(i);
-    } else {
-      cauchy = generalized_cauchy_point(x, g, lower, upper, memory);
-    }
+    // Search direction: Cauchy point, then subspace minimisation.
+    const CauchyPoint cauchy = cauchy_start(x, g, lower, upper, memory, has_bounds);
     const SubspaceStep sub = subspace_minimization(x, g, lower, upper, memory, cauchy);
     if (!sub.ok) {
       memory.reset();
@@ -225,65 +315,9 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
     double stp = 1.0;
     if (iterations == 0 && !boxed) stp = std::min(1.0 / d.norm(), stpmax);
     ls.stpmax = stpmax;
-    MoreThuenteSearch search;
-    MoreThuenteStatus state = search.start(fx, gd, stp, ls);
-    bool have_best = false;
-    double best_f = 0.0;
-    bool accepted = false;
-    bool evaluation_limit = false;
-    double f_new = 0.0;
-    int ls_evaluations = 0;
-    while (state == MoreThuenteStatus::evaluate) {
-      if (ls_evaluations >= params.max_line_search_evaluations) break;
-      if (evaluations >= params.max_evaluations) {
-        evaluation_limit = true;
-        break;
-      }
-      stp = search.step();
-      if (stp == 1.0) {
-        xt = sub.x_bar;  // exactly the subspace point: no rounding off a bound
-      } else {
-        xt = x + stp * d;
-        clamp_into(lower, upper, xt);
-      }
-      const double ft = f(xt, gt);
-      ++evaluations;
-      ++ls_evaluations;
-      if (!finite_value_and_gradient(ft, gt)) {
-        // Undefined there: restart the search on the half step and never go beyond it again.
-        ls.stpmax = 0.5 * stp;
-        state = search.start(fx, gd, ls.stpmax, ls);
-        continue;
-      }
-      const bool sufficient = ft <= fx + params.wolfe_decrease * stp * gd;
-      if (sufficient && (!have_best || ft < best_f)) {
-        have_best = true;
-        best_f = ft;
-        best_x = xt;
-        best_g = gt;
-      }
-      const double gdt = gt.dot(d);
-      state = search.advance(ft, gdt);
-      if (state == MoreThuenteStatus::converged) {
-        accepted = true;
-        f_new = ft;
-      } else if (!sufficient && ft <= fx + params.function_noise * std::fabs(fx) &&
-                 (2.0 * params.wolfe_decrease - 1.0) * gd >= gdt &&
-                 gdt >= params.wolfe_curvature * gd) {
-        accepted = true;  // approximate Wolfe: f is flat to rounding, the slope has turned
-        f_new = ft;
-        break;
-      }
-    }
-    if (!accepted && have_best) {
-      // Warnings, the per-search cap or the evaluation cap: fall back on the lowest point with
-      // sufficient decrease, so every accepted step still decreases f.
-      accepted = true;
-      xt = best_x;
-      gt = best_g;
-      f_new = best_f;
-    }
-    if (!accepted) {
+    const LineSearchOutcome step = search_line(f, x, fx, gd, d, sub.x_bar, lower, upper, stp, ls, params, evaluations, points);
+    const bool evaluation_limit = step.evaluation_limit;
+    if (!step.accepted) {
       if (evaluation_limit) return finish(LbfgsbStatus::max_evaluations);
       if (memory.size() > 0) {
         memory.reset();
@@ -293,13 +327,13 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
       return finish(LbfgsbStatus::line_search_failed);
     }
 
-    const Eigen::VectorXd s = xt - x;
-    const Eigen::VectorXd y = gt - g;
+    const Eigen::VectorXd s = points.xt - x;
+    const Eigen::VectorXd y = points.gt - g;
     const double slope = -g.dot(s);
     const double f_old = fx;
-    x = xt;
-    g = gt;
-    fx = f_new;
+    x = points.xt;
+    g = points.gt;
+    fx = step.f;
     ++iterations;
     pg = projected_gradient_norm(x, g, lower, upper);
     const bool new_low_pg = pg < smallest_pg;

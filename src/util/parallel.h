@@ -3,7 +3,7 @@
 // shortest round-trip number text, the project's RNG, and this file's thread pool and
 // serial-or-parallel policy. It includes only the standard library, Eigen and itself.
 //
-// Threads with a fixed partition and a fixed reduction order (DESIGN.md): work is always split
+// Threads with a fixed partition and a fixed reduction order (docs/design.md): work is always split
 // into the same parts, each part writes outputs no other part touches, and every sum stays inside
 // one part in the order the single-threaded code uses, so results are bit for bit the same for
 // any number of threads. Used by the eigensolver, the sparse factorisations, the offset field,

@@ -22,7 +22,7 @@ RunResult run_in(const std::string& folder, const std::string& arguments) {
                               arguments + " >" + shell_quote(out_path) + " 2>" + shell_quote(err_path);
   const int status = std::system(command.c_str());
   RunResult r;
-  if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  r.exit_code = offsetopt::test::exit_code_of(status);
   r.out = read_file(out_path);
   r.err = read_file(err_path);
   return r;

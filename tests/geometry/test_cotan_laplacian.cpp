@@ -1,4 +1,4 @@
-// Cotan Laplacian and lumped mass: the structural properties DESIGN.md relies on (symmetry,
+// Cotan Laplacian and lumped mass: the structural properties docs/design.md relies on (symmetry,
 // constants in the null space, positive semi-definite), closed-form values on a regular
 // tetrahedron, invariance under scaling, and the degenerate-triangle guard.
 #include <doctest/doctest.h>

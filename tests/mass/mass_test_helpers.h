@@ -1,13 +1,12 @@
 // Small, independent helpers shared by the tests of src/mass: rotations from det_math, mesh
-// transforms, the closed-and-oriented check, and central finite differences.
+// transforms, the closed-and-oriented check (tests/mesh_checks.h), and central finite differences.
 #pragma once
 #include <cmath>
-#include <map>
-#include <utility>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "../mesh_checks.h"
 #include "mesh/mesh.h"
 #include "util/det_math.h"
 #include "util/rng.h"
@@ -38,19 +37,6 @@ inline Mesh transformed(const Mesh& mesh, const Eigen::Matrix3d& R, const Eigen:
 }
 
 inline double bbox_diagonal(const Mesh& mesh) { return (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm(); }
-
-// Every directed edge appears exactly once and its reverse exactly once.
-inline bool closed_and_oriented(const Mesh& m) {
-  std::map<std::pair<int, int>, int> directed;
-  for (Eigen::Index f = 0; f < m.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) directed[{m.F(f, c), m.F(f, (c + 1) % 3)}]++;
-  for (const auto& [edge, count] : directed) {
-    if (count != 1) return false;
-    const auto it = directed.find({edge.second, edge.first});
-    if (it == directed.end() || it->second != 1) return false;
-  }
-  return true;
-}
 
 // Each vertex moved by a uniform random vector of at most `amount` per coordinate.
 inline Mesh perturbed(const Mesh& mesh, double amount, Rng& rng) {

@@ -3,14 +3,15 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <map>
 
 #include <Eigen/Geometry>
 
+#include "../mesh_checks.h"
 #include "mesh/primitives.h"
 #include "util/det_math.h"
 
 using namespace offsetopt;
+using offsetopt::test::closed_and_oriented;
 
 namespace {
 
@@ -21,19 +22,6 @@ double signed_volume(const Mesh& m) {
     v += a.dot(b.cross(c)) / 6.0;
   }
   return v;
-}
-
-// Every directed edge appears once and its reverse once: closed and consistently oriented.
-bool closed_and_oriented(const Mesh& m) {
-  std::map<std::pair<int, int>, int> directed;
-  for (Eigen::Index f = 0; f < m.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) directed[{m.F(f, c), m.F(f, (c + 1) % 3)}]++;
-  for (const auto& [edge, count] : directed) {
-    if (count != 1) return false;
-    auto it = directed.find({edge.second, edge.first});
-    if (it == directed.end() || it->second != 1) return false;
-  }
-  return true;
 }
 
 }  // namespace

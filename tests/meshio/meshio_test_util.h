@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "../support.h"
 #include "../temp_dir.h"
 
 #include "mesh/mesh.h"
@@ -156,28 +157,10 @@ inline EdgeCensus edge_census(const Mesh& m) {
   return out;
 }
 
-inline void write_file(const std::string& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
-
-inline std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-inline std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (const char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-struct RunResult {
-  int exit_code = -1;  // 124 timeout; >= 128 killed by a signal
-  std::string out, err;
-};
+using offsetopt::test::read_file;
+using offsetopt::test::RunResult;
+using offsetopt::test::shell_quote;
+using offsetopt::test::write_file;
 
 // Runs the real offsetopt binary under `timeout 10`, stdout and stderr captured via files.
 inline RunResult run_offsetopt(const std::string& arguments, const TempDir& dir) {
@@ -186,8 +169,7 @@ inline RunResult run_offsetopt(const std::string& arguments, const TempDir& dir)
                               shell_quote(out_path) + " 2>" + shell_quote(err_path);
   const int status = std::system(command.c_str());
   RunResult r;
-  if (status != -1 && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  else if (status != -1 && WIFSIGNALED(status)) r.exit_code = 128 + WTERMSIG(status);
+  r.exit_code = offsetopt::test::exit_code_of(status);
   r.out = read_file(out_path);
   r.err = read_file(err_path);
   return r;

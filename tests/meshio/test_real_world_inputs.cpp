@@ -18,7 +18,7 @@
 #include "mesh/primitives.h"
 #include "meshio/load_mesh.h"
 #include "meshio/read_obj.h"
-#include "meshio/triangulate_polygon.h"
+#include "meshio/triangulate_obj_face.h"
 #include "meshio/validate_mesh.h"
 #include "meshio_test_util.h"
 #include "sliver_box.h"
@@ -105,7 +105,7 @@ bool inside_polygon(const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d
 void check_triangulation(const std::vector<Eigen::Vector3d>& polygon, double analytic_area) {
   std::vector<int> triangles;
   long long budget = 1000000;
-  const PolygonTriangulationStatus how = triangulate_polygon(polygon, triangles, budget);
+  const PolygonTriangulationStatus how = triangulate_obj_face(polygon, triangles, budget);
   CHECK(how == PolygonTriangulationStatus::ear_clipping);
   REQUIRE(triangles.size() == 3 * (polygon.size() - 2));
   double sum = 0;
@@ -251,7 +251,7 @@ TEST_CASE("ear clipping: clockwise outlines keep their orientation, convex ones 
   std::vector<Eigen::Vector3d> ell = {{0, 3, 0}, {1, 3, 0}, {1, 1, 0}, {3, 1, 0}, {3, 0, 0}, {0, 0, 0}};
   std::vector<int> triangles;
   long long budget = 1000000;
-  REQUIRE(triangulate_polygon(ell, triangles, budget) == PolygonTriangulationStatus::ear_clipping);
+  REQUIRE(triangulate_obj_face(ell, triangles, budget) == PolygonTriangulationStatus::ear_clipping);
   double area = 0;
   for (std::size_t t = 0; t < triangles.size(); t += 3) {
     const double z = (ell[static_cast<std::size_t>(triangles[t + 1])] - ell[static_cast<std::size_t>(triangles[t])])
@@ -263,7 +263,7 @@ TEST_CASE("ear clipping: clockwise outlines keep their orientation, convex ones 
   CHECK(area == doctest::Approx(5.0).epsilon(1e-15));
   // A convex hexagon: the fan from corner 0, as the other readers triangulate.
   const std::vector<Eigen::Vector3d> hexagon = {{2, 0, 1}, {1, 2, 1}, {-1, 2, 1}, {-2, 0, 1}, {-1, -2, 1}, {1, -2, 1}};
-  REQUIRE(triangulate_polygon(hexagon, triangles, budget) == PolygonTriangulationStatus::fan);
+  REQUIRE(triangulate_obj_face(hexagon, triangles, budget) == PolygonTriangulationStatus::fan);
   CHECK(triangles == std::vector<int>{0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 5});
   // A comb of 400 teeth with a budget of 1000 point tests runs out and returns no triangles.
   std::vector<Eigen::Vector3d> comb = {{0, -1, 0}};
@@ -274,10 +274,10 @@ TEST_CASE("ear clipping: clockwise outlines keep their orientation, convex ones 
   }
   comb.emplace_back(801, -1, 0);
   budget = 1000;
-  CHECK(triangulate_polygon(comb, triangles, budget) == PolygonTriangulationStatus::budget_exhausted);
+  CHECK(triangulate_obj_face(comb, triangles, budget) == PolygonTriangulationStatus::budget_exhausted);
   CHECK(triangles.empty());
   budget = 100000000;
-  REQUIRE(triangulate_polygon(comb, triangles, budget) == PolygonTriangulationStatus::ear_clipping);
+  REQUIRE(triangulate_obj_face(comb, triangles, budget) == PolygonTriangulationStatus::ear_clipping);
   CHECK(triangles.size() == 3 * (comb.size() - 2));
 }
 

@@ -237,16 +237,16 @@ TEST_CASE("binary STL is recognised by size, not by the word solid") {
 }
 
 TEST_CASE("real meshes in the shared folder load with the vertex and face counts their README states") {
-  const std::string folder = OFFSETOPT_SHARED_MESHES;
+  const std::string folder = (offsetopt::test::shared_dir() / "meshes").string();
   if (!std::filesystem::exists(folder + "/README.md")) {
-    MESSAGE("shared meshes not present; skipped");
+    offsetopt::test::skip_test(folder + "/README.md is absent");
     return;
   }
   struct Expected {
     const char* file;
     long long vertices, faces;
   };
-  // From ../shared/meshes/README.md.
+  // From the shared folder's meshes/README.md.
   const Expected expected[] = {{"kitten_lowres.obj", 750, 1500},  {"rocker_arm.off", 800, 1600},
                                {"elephant.off", 2775, 5558},      {"fertility.off", 4494, 9000},
                                {"camel.off", 9770, 19536},        {"armadillo.off", 26002, 52000},

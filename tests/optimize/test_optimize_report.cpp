@@ -11,23 +11,18 @@
 
 #include <Eigen/Core>
 
+#include "../support.h"
 #include "cli/cli_support.h"
 #include "cli/optimize_report.h"
 #include "io/json.h"
 #include "optimize/offset_optimization.h"
 
 using namespace offsetopt;
+using offsetopt::test::read_file;
 
 namespace {
 
 const std::string kSource = OFFSETOPT_SOURCE_DIR;
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // What `offsetopt --version` prints (cli/main.cpp), compared with the golden files' BUILD.txt.
 bool same_build_as_golden() {

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "../support.h"
 #include "../temp_dir.h"
 #include "geometry/pose.h"
 #include "io/json.h"
@@ -21,6 +22,7 @@
 #include "util/det_math.h"
 
 using namespace offsetopt;
+using offsetopt::test::read_file;
 
 namespace {
 
@@ -34,14 +36,7 @@ const TempDir& temp() {
 int run(const std::string& command) {
   const int status = std::system(("timeout 300 " + command + " 2>>" + temp().file("stderr.txt")).c_str());
   REQUIRE(status != -1);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return offsetopt::test::exit_code_of(status);
 }
 
 // The report without the keys that name files or the pose (those differ between the runs).

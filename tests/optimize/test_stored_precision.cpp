@@ -16,6 +16,7 @@
 
 #include "../mass/geometry_checks.h"
 #include "../mesh_checks.h"
+#include "../support.h"
 #include "../temp_dir.h"
 #include "io/json.h"
 #include "meshio/read_raw_mesh.h"
@@ -23,6 +24,7 @@
 #include "util/det_math.h"
 
 using namespace offsetopt;
+using offsetopt::test::read_file;
 
 namespace {
 
@@ -82,13 +84,6 @@ Mesh plate_with_boss(int n, double turn) {
     m.V(i, 1) = s * x + co * y;
   }
   return m;
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 Mesh read_back(const std::string& path) {

@@ -12,19 +12,17 @@
 #include <sstream>
 #include <string>
 
+#include "../mass/geometry_checks.h"
 #include "../mesh_checks.h"
+#include "../solid_checks.h"
+#include "../support.h"
 #include "../temp_dir.h"
-#include "geometry/bvh.h"
-#include "geometry/closest_point.h"
-#include "geometry/intersecting_faces.h"
 #include "io/json.h"
-#include "mass/mass_properties.h"
-#include "mass/stability.h"
-#include "mass/volume_integrals.h"
 #include "meshio/read_raw_mesh.h"
 
 using namespace offsetopt;
 using offsetopt::test::closed_and_oriented;
+using offsetopt::test::read_file;
 
 namespace {
 
@@ -34,13 +32,6 @@ const std::string kMeshes = std::string(OFFSETOPT_SOURCE_DIR) + "/meshes/";
 const std::string& temp_dir() {
   static const TempDir dir("offsetopt-cavity");
   return dir.path();
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 Mesh read_mesh(const std::string& path) {
@@ -61,32 +52,37 @@ Written optimize(const std::string& name, const std::string& mesh, const std::st
                                   base + "_outer.ply --report " + base + ".json 2>/dev/null")
                                      .c_str());
   Written w;
-  w.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  w.exit_code = offsetopt::test::exit_code_of(status);
   w.report = Json::parse(read_file(base + ".json"));
   w.outer = read_mesh(base + "_outer.ply");
   w.cavity = read_mesh(base + "_cavity.ply");
   return w;
 }
 
-// Everything that makes the written cavity printable, measured on the files.
+// Everything that makes the written cavity printable, measured on the files
+// (tests/mass/geometry_checks.h: edge-through-triangle crossings, brute-force closest points).
 void check_printable(const Written& w) {
   REQUIRE(w.cavity.F.rows() > 0);
   CHECK(closed_and_oriented(w.cavity));
-  const TriangleBvh cavity_bvh(w.cavity.V, w.cavity.F), outer_bvh(w.outer.V, w.outer.F);
-  CHECK(self_intersections(cavity_bvh, 10).pairs.empty());
-  CHECK(intersecting_faces(cavity_bvh, outer_bvh, 10).pairs.empty());
+  CHECK(test::self_intersections(w.cavity) == 0);
+  CHECK(test::crossings_between(w.cavity, w.outer) == 0);
   const double wall = w.report.at("after").at("requested_wall").as_number();
-  double thinnest = std::numeric_limits<double>::infinity();
-  for (Eigen::Index v = 0; v < w.cavity.V.rows(); ++v)
-    thinnest = std::min(thinnest, closest_point(outer_bvh, w.cavity.V.row(v).transpose()).distance);
+  const double thinnest = test::min_vertex_distance(w.cavity, w.outer);
   CHECK(thinnest >= wall);
-  CHECK(thinnest == doctest::Approx(w.report.at("after").at("min_wall_measured").as_number()).epsilon(1e-12));
+  CHECK(thinnest == doctest::Approx(w.report.at("after").at("min_wall_measured").as_number()).epsilon(1e-9));
 }
 
-// Mass properties of the written solid: the outer surface less the cavity.
-Vector10d written_properties(const Written& w) {
+Eigen::Vector3d mean_vertex(const Mesh& mesh) { return mesh.V.colwise().mean().transpose(); }
+
+// Mass properties of the written solid: the outer surface less the cavity (tests/solid_checks.h).
+test::MassFigures written_properties(const Written& w) {
   const Eigen::Vector3d origin = mean_vertex(w.outer);
-  return mass_properties(subtract(volume_integrals(w.outer, origin), volume_integrals(w.cavity, origin)));
+  return test::mass_figures(test::minus(test::integrals_of(w.outer, origin), test::integrals_of(w.cavity, origin)), origin);
+}
+
+test::MassFigures properties_of(const Mesh& mesh) {
+  const Eigen::Vector3d origin = mean_vertex(mesh);
+  return test::mass_figures(test::integrals_of(mesh, origin), origin);
 }
 
 }  // namespace
@@ -96,11 +92,9 @@ TEST_CASE("bottle stand: the contoured cavity is printable and the written solid
   CHECK(w.exit_code == 0);
   CHECK(w.report.at("cavity").at("written").as_string() == "contour");
   check_printable(w);
-  const Vector10d P = written_properties(w);
-  StabilityOptions options;
-  options.ground_tol = w.report.at("parameters").at("ground_tol").as_number();
-  const Stability s = compute_stability(w.outer, Eigen::Vector3d(P(kCx), P(kCy), P(kCz)), options);
-  CHECK(s.com_margin >= w.report.at("parameters").at("margin").as_number());
+  const test::MassFigures P = written_properties(w);
+  const double ground_tol = w.report.at("parameters").at("ground_tol").as_number();
+  CHECK(test::support_margin(w.outer, ground_tol, P.com.head<2>()) >= w.report.at("parameters").at("margin").as_number());
 }
 
 TEST_CASE("top spin: corrected until the written solid's centre of mass is on the axis and the products vanish") {
@@ -114,23 +108,23 @@ TEST_CASE("top spin: corrected until the written solid's centre of mass is on th
   for (std::size_t r = 0; r + 1 < rounds.size(); ++r) CHECK_FALSE(rounds.at(r).at("goal_met").as_bool());
   CHECK(rounds.at(rounds.size() - 1).at("goal_met").as_bool());
   check_printable(w);
-  const Vector10d P = written_properties(w);
+  const test::MassFigures P = written_properties(w);
   const Json& tip = w.report.at("goal").at("tip");
   const double diagonal = w.report.at("frame").at("diagonal").as_number();
-  CHECK(std::hypot(P(kCx) - tip.at(0).as_number(), P(kCy) - tip.at(1).as_number()) <= 1e-4 * diagonal);
-  CHECK(std::fabs(P(kIzx)) <= 1e-4 * P(kIzz));
-  CHECK(std::fabs(P(kIyz)) <= 1e-4 * P(kIzz));
+  CHECK(std::hypot(P.com.x() - tip.at(0).as_number(), P.com.y() - tip.at(1).as_number()) <= 1e-4 * diagonal);
+  CHECK(std::fabs(P.inertia(2, 0)) <= 1e-4 * P.inertia(2, 2));
+  CHECK(std::fabs(P.inertia(1, 2)) <= 1e-4 * P.inertia(2, 2));
 }
 
 TEST_CASE("roly-poly: corrected until the written solid's centre of mass is under the sphere centre") {
   const Written w = optimize("rolypoly", "rolypoly.obj", "--goal roly-poly");
   CHECK(w.exit_code == 0);
   check_printable(w);
-  const Vector10d P = written_properties(w);
+  const test::MassFigures P = written_properties(w);
   const Json& centre = w.report.at("goal").at("sphere_center");
   const double diagonal = w.report.at("frame").at("diagonal").as_number();
-  CHECK(std::hypot(P(kCx) - centre.at(0).as_number(), P(kCy) - centre.at(1).as_number()) <= 1e-4 * diagonal);
-  CHECK(P(kCz) < centre.at(2).as_number() - w.report.at("parameters").at("margin").as_number() * (1 - 1e-9));
+  CHECK(std::hypot(P.com.x() - centre.at(0).as_number(), P.com.y() - centre.at(1).as_number()) <= 1e-4 * diagonal);
+  CHECK(P.com.z() < centre.at(2).as_number() - w.report.at("parameters").at("margin").as_number() * (1 - 1e-9));
 }
 
 TEST_CASE("bottle stand with a one-function basis: the offset void misses, the quadric void is written and stands") {
@@ -142,17 +136,15 @@ TEST_CASE("bottle stand with a one-function basis: the offset void misses, the q
   CHECK_FALSE(cavity.at("offset_goal_met").as_bool());
   CHECK(cavity.at("written").as_string() == "quadric");
   check_printable(w);
-  const Vector10d P = written_properties(w);
-  StabilityOptions options;
-  options.ground_tol = w.report.at("parameters").at("ground_tol").as_number();
-  const Stability s = compute_stability(w.outer, Eigen::Vector3d(P(kCx), P(kCy), P(kCz)), options);
-  CHECK(s.com_margin >= w.report.at("parameters").at("margin").as_number());
+  const test::MassFigures P = written_properties(w);
+  const double ground_tol = w.report.at("parameters").at("ground_tol").as_number();
+  CHECK(test::support_margin(w.outer, ground_tol, P.com.head<2>()) >= w.report.at("parameters").at("margin").as_number());
   // The lowering achieved, from the written solid's and the input's own mass properties, against
   // the lowest centre of mass the programme finds any void reaching: at least 95% of it, and not
   // more than the programme's cell-scale estimate allows (2%).
   const Mesh input = read_mesh(kMeshes + "bottle.obj");
   const double zmin = input.V.col(2).minCoeff();
-  const double before = mass_properties(input)(kCz) - zmin, written = P(kCz) - zmin;
+  const double before = properties_of(input).com.z() - zmin, written = P.com.z() - zmin;
   const double best = w.report.at("optimality").at("best").as_number();
   REQUIRE(before > best);
   const double fraction = (before - written) / (before - best);
@@ -169,12 +161,12 @@ TEST_CASE("buoy float: the quadric void, corrected by Newton steps, floats level
   check_printable(w);
   // Fully submerged balance from the written files alone: the buoyancy of the outer volume equals
   // the weight, the centre of mass is on the vertical through the centre of buoyancy and below it.
-  const Vector10d P = written_properties(w);
-  const Vector10d outer = mass_properties(w.outer);
+  const test::MassFigures P = written_properties(w);
+  const test::MassFigures outer = properties_of(w.outer);
   const double diagonal = w.report.at("frame").at("diagonal").as_number();
-  CHECK(std::fabs(0.806 * outer(kMass) - P(kMass)) <= 1e-3 * P(kMass));
-  CHECK(std::hypot(P(kCx) - outer(kCx), P(kCy) - outer(kCy)) <= 1e-4 * diagonal);
-  const double depth = outer(kCz) - P(kCz);
+  CHECK(std::fabs(0.806 * outer.mass - P.mass) <= 1e-3 * P.mass);
+  CHECK(std::hypot(P.com.x() - outer.com.x(), P.com.y() - outer.com.y()) <= 1e-4 * diagonal);
+  const double depth = outer.com.z() - P.com.z();
   CHECK(depth >= w.report.at("parameters").at("margin").as_number());
   // Chosen because it floats deeper than the offset void did, by more than 1%.
   REQUIRE_FALSE(cavity.at("offset_objective").is_null());

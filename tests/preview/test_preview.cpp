@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "../support.h"
 #include "../temp_dir.h"
 #include "cli/write_preview.h"
 #include "geometry/plane_section.h"
@@ -31,6 +32,8 @@
 
 using namespace offsetopt;
 using offsetopt::cli::preview_input_from_report;
+using offsetopt::test::read_file;
+using offsetopt::test::RunResult;
 
 namespace {
 
@@ -39,22 +42,10 @@ const TempDir& scratch() {
   return dir;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 int shell(const std::string& command) {
   const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return offsetopt::test::exit_code_of(status);
 }
-
-struct RunResult {
-  int exit_code = -1;
-  std::string err;
-};
 
 RunResult run(const std::string& arguments) {
   static int counter = 0;
@@ -297,10 +288,8 @@ TEST_CASE("preview_svg: the goals' figures agree with closed forms (tipping angl
 }
 
 TEST_CASE("preview renders: markers where the coordinates map, the cavity's shaded area is pi r^2") {
-  if (!have_renderer()) {
-    MESSAGE("skipped: rsvg-convert (Debian librsvg2-bin) or python3 is not installed");
-    return;
-  }
+  INFO("scripts/deps.sh installs rsvg-convert (Debian librsvg2-bin) and python3");
+  REQUIRE(have_renderer());
   const double R = 30.0, r = 18.0;
   const Eigen::Vector3d centre(0, 0, 30), cavity(6, 0, 32);
   const Mesh m = sphere_in_sphere(R, centre, r, cavity, 5);
@@ -439,7 +428,7 @@ TEST_CASE("the quick-start picture meshes/bottle-stand-preview.svg is what optim
   const std::string svg = scratch().file("bottle.svg"), version = scratch().file("version.txt");
   REQUIRE(shell(std::string("'") + OFFSETOPT_BINARY + "' --version > '" + version + "'") == 0);
   if (read_file(version) != read_file(source + "/tests/golden/BUILD.txt")) {
-    MESSAGE("another build than the golden files: the picture is not compared byte for byte");
+    offsetopt::test::skip_test("another build than tests/golden/BUILD.txt: the picture is compared only on that build");
     return;
   }
   const RunResult r = run("optimize " + quote(source + "/meshes/bottle.obj") + " --goal stand --no-timings -o " +

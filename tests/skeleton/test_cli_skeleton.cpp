@@ -1,7 +1,8 @@
 // `offsetopt skeleton` end to end through the built binary: the contracted mesh keeps the input's
 // connectivity and matches the library, the JSON report carries the statistics, two runs are
 // byte-identical (mesh and report minus the *seconds fields), bad usage exits 2 with one line.
-// Real meshes from ../shared/meshes are contracted when present (skipped otherwise).
+// Real meshes from ../shared/meshes ($OFFSETOPT_SHARED_DIR/meshes) are contracted when present
+// (CTest reports the case skipped otherwise).
 #include <doctest/doctest.h>
 
 #include <sys/wait.h>
@@ -13,25 +14,16 @@
 #include <sstream>
 #include <string>
 
+#include "../support.h"
 #include "io/json.h"
 #include "meshio/load_mesh.h"
 #include "skeleton/laplacian_contraction.h"
 
 using namespace offsetopt;
+using offsetopt::test::read_file;
+using offsetopt::test::RunResult;
 
 namespace {
-
-std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
 
 const std::filesystem::path& scratch_dir() {
   struct Scratch {
@@ -57,7 +49,7 @@ RunResult run(const std::string& arguments) {
   const std::string command = std::string("timeout 120 '") + OFFSETOPT_BINARY + "' " + arguments + " >'" + out + "' 2>'" + err + "'";
   const int status = std::system(command.c_str());
   RunResult result;
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.exit_code = offsetopt::test::exit_code_of(status);
   result.out = read_file(out);
   result.err = read_file(err);
   return result;
@@ -156,9 +148,9 @@ TEST_CASE("skeleton usage errors exit 2 with one Error line") {
 }
 
 TEST_CASE("real meshes from the shared folder contract and report (skipped when absent)") {
-  const std::filesystem::path folder = OFFSETOPT_SHARED_MESHES;
+  const std::filesystem::path folder = offsetopt::test::shared_dir() / "meshes";
   if (!std::filesystem::exists(folder / "kitten_lowres.obj")) {
-    MESSAGE("shared meshes not found; skipped");
+    offsetopt::test::skip_test((folder / "kitten_lowres.obj").string() + " is absent");
     return;
   }
   for (const char* name : {"kitten_lowres.obj", "rocker_arm.off", "elephant.off"}) {

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "../support.h"
 #include "../test_meshes.h"
 #include "io/json.h"
 #include "meshio/load_mesh.h"
@@ -19,6 +20,8 @@
 
 using namespace offsetopt;
 namespace fs = std::filesystem;
+
+using offsetopt::test::read_file;
 
 namespace {
 
@@ -34,13 +37,6 @@ struct TempDir {
   }
   std::string operator/(const std::string& name) const { return (path / name).string(); }
 };
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
 
 void write_obj(const std::string& path, const Mesh& mesh) {
   std::string text;
@@ -62,7 +58,7 @@ void write_obj(const std::string& path, const Mesh& mesh) {
 int run(const std::string& arguments, const std::string& out, const std::string& err) {
   const std::string command = std::string("'") + OFFSETOPT_BINARY + "' basis " + arguments + " >'" + out + "' 2>'" + err + "'";
   const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return offsetopt::test::exit_code_of(status);
 }
 
 Json without_timings(const Json& report) {

@@ -1,4 +1,4 @@
-#include "meshio/triangulate_polygon.h"
+#include "meshio/triangulate_obj_face.h"
 
 #include <cmath>
 
@@ -24,8 +24,8 @@ void fan(int n, std::vector<int>& triangles) {
 
 }  // namespace
 
-PolygonTriangulationStatus triangulate_polygon(const std::vector<Eigen::Vector3d>& points, std::vector<int>& triangles,
-                                         long long& budget) {
+PolygonTriangulationStatus triangulate_obj_face(const std::vector<Eigen::Vector3d>& points, std::vector<int>& triangles,
+                                                long long& budget) {
   const int n = static_cast<int>(points.size());
   triangles.clear();
   if (n <= 3) {

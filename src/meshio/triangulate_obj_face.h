@@ -1,4 +1,5 @@
-// Triangulation of one planar (or nearly planar) polygon by ear clipping in its best-fit plane
+// Triangulation of one OBJ face, a planar (or nearly planar) polygon in 3-D, by ear clipping in
+// its best-fit plane
 // (Meisters 1975, "Polygons have ears"; the plane's normal is Newell's, Sutherland et al. 1974,
 // which is robust for non-convex and slightly non-planar polygons). Used by the OBJ reader, whose
 // polygons may have any number of corners and be non-convex (CAD caps, text, L shapes).
@@ -15,6 +16,10 @@
 // outline) the first convex-or-flat corner is clipped anyway: n - 2 triangles always come out.
 // Cost: O(n^2) point tests for ordinary polygons, O(n^3) at worst; `budget` is decreased by
 // the tests made, and the status is budget_exhausted (no triangles) when it runs out.
+// Not geometry/triangulate_polygons.h, the other ear clipper (flat base caps): that one takes
+// exact 2-D loops with holes, refuses a loop without an ear and flips edges against slivers;
+// a file's face may be slightly non-planar or self-intersecting and must still give n - 2
+// triangles in the reader's fixed order (the meshes read, and so every output, depend on it).
 #pragma once
 #include <Eigen/Core>
 #include <vector>
@@ -25,7 +30,7 @@ enum class PolygonTriangulationStatus { fan, ear_clipping, budget_exhausted };
 
 // `points` are the polygon's corners in order (n >= 3). On return `triangles` holds 3 (n - 2)
 // corner numbers into `points`.
-PolygonTriangulationStatus triangulate_polygon(const std::vector<Eigen::Vector3d>& points, std::vector<int>& triangles,
-                                         long long& budget);
+PolygonTriangulationStatus triangulate_obj_face(const std::vector<Eigen::Vector3d>& points, std::vector<int>& triangles,
+                                                long long& budget);
 
 }  // namespace offsetopt
