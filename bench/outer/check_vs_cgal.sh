@@ -36,7 +36,8 @@ print(first(r'(\d+) self-intersecting face pair'), first(r'(\d+) zero-area faces
       first(r'(\d+) pinch'))
 EOF
 )
-  cgal=$("$validity" "$mesh" 2>/dev/null | python3 -c "
+  # validity exits 1 for a mesh that is not valid: its count is still the answer (pipefail).
+  cgal=$({ "$validity" "$mesh" 2>/dev/null || true; } | python3 -c "
 import json, sys
 d = json.loads(sys.stdin.read())
 print(d['self_intersecting_pairs'] if d.get('manifold') else 'not_a_mesh')" 2>/dev/null || echo '?')
