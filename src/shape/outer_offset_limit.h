@@ -12,10 +12,12 @@
 //             This is the direction field's own crossing distance (directions converging in a
 //             crease, or jumping between neighbours);
 //   nearest   the point p = x_i + reach * limit_i * w_i must lie in x_i's part of the outside:
-//             its distance to the surface at least nearest_fraction * its height above x_i's
-//             tangent plane, (p - x_i) . n_i (a point beyond the outer medial axis is nearer to
-//             some other part of the surface). Otherwise the limit is halved, at most
-//             max_halvings times, then 0;
+//             its distance to the surface at least nearest_fraction * its distance to x_i's own
+//             faces (a point beyond the outer medial axis is nearer to some other part of the
+//             surface; on a flat or convex neighbourhood the own faces are at p's height above
+//             the tangent plane, across a concave crease they are nearer, and the crease is not a
+//             fold). Otherwise the limit is halved, at most max_halvings times, then 0. A
+//             direction w_i below the tangent plane (w_i . n_i <= 0) gets 0;
 // then limit = lipschitz_envelope(limit, slope) (shape/lipschitz_envelope.h): neighbouring
 // limits differ by at most slope * edge length, so a clamp against them cannot step.
 // A vertex with r_i = 0, a zero direction or a zero normal gets 0.

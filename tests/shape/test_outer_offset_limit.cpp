@@ -5,7 +5,11 @@
 // verifier's BVH search. shrink_outer_limit (shape/shrink_outer_limit.h) on a sphere.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "../mass/geometry_checks.h"
+#include "../mesh_checks.h"
 #include "geometry/bvh.h"
 #include "geometry/vertex_normals.h"
 #include "mesh/primitives.h"
@@ -48,7 +52,93 @@ OuterOffsetLimit limits_along_normals(const Mesh& mesh, double requested, Vertic
   return outer_offset_limit(mesh, bvh, normals, normals, Eigen::VectorXd::Constant(mesh.V.rows(), requested), options);
 }
 
+// The boundary of a set of unit cubes (cells of an nx x ny x nz grid, `solid(i, j, k)`), each
+// boundary square split into two triangles, normals out: a CAD-like part with flat faces and sharp
+// convex and concave creases. No two solid cells may touch along an edge only.
+template <class Solid>
+Mesh voxel_surface(int nx, int ny, int nz, Solid solid) {
+  const auto inside = [&](int i, int j, int k) {
+    return i >= 0 && j >= 0 && k >= 0 && i < nx && j < ny && k < nz && solid(i, j, k);
+  };
+  const auto node = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
+  Mesh mesh;
+  mesh.V.resize((nx + 1) * (ny + 1) * (nz + 1), 3);
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) mesh.V.row(node(i, j, k)) << i, j, k;
+  std::vector<int> faces;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        if (!inside(i, j, k)) continue;
+        for (int axis = 0; axis < 3; ++axis)
+          for (int side : {0, 1}) {
+            int d[3] = {0, 0, 0};
+            d[axis] = side ? 1 : -1;
+            if (inside(i + d[0], j + d[1], k + d[2])) continue;
+            // The square's corners in the plane across `axis`, counter-clockwise seen from outside.
+            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            int q[4];
+            for (int c = 0; c < 4; ++c) {
+              int at[3] = {i, j, k};
+              at[axis] += side;
+              const int cu = (c == 1 || c == 2) ? 1 : 0, cv = (c >= 2) ? 1 : 0;
+              at[u] += side ? cu : cv;
+              at[v] += side ? cv : cu;
+              q[c] = node(at[0], at[1], at[2]);
+            }
+            faces.insert(faces.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+          }
+      }
+  mesh.F.resize(static_cast<Eigen::Index>(faces.size() / 3), 3);
+  for (std::size_t f = 0; f < faces.size() / 3; ++f) mesh.F.row(static_cast<Eigen::Index>(f)) << faces[3 * f], faces[3 * f + 1], faces[3 * f + 2];
+  // Drop the grid nodes no face uses.
+  std::vector<int> index(static_cast<std::size_t>(mesh.V.rows()), -1);
+  int used = 0;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (index[static_cast<std::size_t>(mesh.F(f, c))] < 0) index[static_cast<std::size_t>(mesh.F(f, c))] = used++;
+  Vertices kept(used, 3);
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i)
+    if (index[static_cast<std::size_t>(i)] >= 0) kept.row(index[static_cast<std::size_t>(i)]) = mesh.V.row(i);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) mesh.F(f, c) = index[static_cast<std::size_t>(mesh.F(f, c))];
+  mesh.V = kept;
+  return mesh;
+}
+
 }  // namespace
+
+TEST_CASE("an engraved slot's floor keeps its thickening at the concave creases, and the slot does not close") {
+  // A 6 x 6 x 3 block with a slot 2 wide, 4 long and 1 deep in its top, like an engraved letter
+  // of a CAD part. The slot's floor meets its walls at right-angled concave creases, where the
+  // faces across the crease are nearer to the thickened point than its height above the tangent
+  // plane at every scale (0.71 of it on a crease, 0.58 in a corner): a rule comparing with that
+  // height halved the creases' limits to 0 and, through the slope bound, the rim's to half a cell.
+  const Mesh block = voxel_surface(6, 6, 3, [](int i, int j, int k) { return !(k == 2 && i >= 2 && i <= 3 && j >= 1 && j <= 4); });
+  REQUIRE(test::closed_and_oriented(block));
+  REQUIRE(test::self_intersections(block) == 0);
+  Vertices normals;
+  for (double requested : {0.4, 1.5}) {
+    CAPTURE(requested);
+    const OuterOffsetLimit limit = limits_along_normals(block, requested, normals);
+    // Every vertex of the slot's floor (z = 2), creases and corners included, keeps the small
+    // request whole, and a quarter of a cell of the wide one (whose free share across the 2-wide
+    // slot is 1, and which, taken whole, would lift the floor over the rim).
+    const double floor_least = requested < 1.0 ? requested : 0.25;
+    int floor_vertices = 0;
+    for (Eigen::Index i = 0; i < block.V.rows(); ++i)
+      if (block.V(i, 2) == 2.0 && block.V(i, 0) >= 2.0 && block.V(i, 0) <= 4.0 && block.V(i, 1) >= 1.0 && block.V(i, 1) <= 5.0) {
+        ++floor_vertices;
+        CHECK(limit.limit(i) >= floor_least);
+      }
+    CHECK(floor_vertices == 15);
+    // The thickened block does not intersect itself (the test's own crossing count).
+    CHECK(test::self_intersections(thickened(block, normals, limit.limit)) == 0);
+  }
+  // The wide request, taken uniformly, closes the slot: its walls pass each other.
+  CHECK(test::self_intersections(thickened(block, normals, Eigen::VectorXd::Constant(block.V.rows(), 1.5))) > 0);
+}
 
 TEST_CASE("two spheres closer than twice the thickening: the limit keeps them apart and the far sides whole") {
   const Mesh mesh = two_spheres(0.2);
