@@ -271,8 +271,6 @@ OpenedCavity open_cavity(const Mesh& outer, const Mesh& cavity, const OpenCavity
     record.outer = prism.outer;
     record.radius = prism.radius;
     cuts.emplace_back(prism, record);
-    out.spill_axis = options.opening.axis;
-    out.spill_above = options.opening.above;
   }
   if (cuts.empty()) {
     out.message = "no opening was asked for";
@@ -286,8 +284,7 @@ OpenedCavity open_cavity(const Mesh& outer, const Mesh& cavity, const OpenCavity
     }
     if (record.kind == "channel") {
       // Where the channel's side meets the outer surface: new vertices on it (within rounding).
-      const int axis = out.spill_axis;
-      double spill = out.spill_above ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+      double spill = std::numeric_limits<double>::infinity();
       const double tol = 1e-9 * outer_bvh.diagonal();
       const Eigen::Vector3d along = (prism.outer - prism.inner).normalized();
       for (Eigen::Index v = 0; v < out.solid.V.rows(); ++v) {
@@ -296,7 +293,7 @@ OpenedCavity open_cavity(const Mesh& outer, const Mesh& cavity, const OpenCavity
         if (std::fabs(radial.norm() - prism.radius) > 1e-6 * prism.radius + tol) continue;  // not on the prism's side
         const ClosestPoint c = closest_point(outer_bvh, p, 1e3 * tol);
         if (!c.found || c.distance > 1e3 * tol) continue;
-        spill = out.spill_above ? std::min(spill, p(axis)) : std::max(spill, p(axis));
+        spill = std::min(spill, p.z());
       }
       if (std::isfinite(spill)) out.spill_height = spill;
     }

@@ -65,10 +65,9 @@ struct OpenedCavity {
   std::vector<CutOpening> openings;
   int cavity_shells = 0;
   int pieces_before = 0, pieces_after = 0;  // connected shells of the hollow solid and of the result
-  // Channel: the lowest point where it leaves the outer surface (liquid spills there).
+  // Channel: the height (z) of the lowest point where it leaves the outer surface: a liquid poured
+  // in spills there.
   std::optional<double> spill_height;
-  int spill_axis = 2;
-  bool spill_above = true;
 };
 
 // `outer` closed, outward; `cavity` the cavity's shells with normals out of the void (as
