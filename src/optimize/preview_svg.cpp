@@ -427,6 +427,12 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
       if (input.has_tip && input.goal == GoalKind::spin) svg.cross(at(input.tip), r + 1.5, kGoalMark);
       if (have_water) svg.dot(at(water.center_of_buoyancy), r, "#ffffff", kWater);
     }
+    for (const PreviewInput::Opening& o : input.openings) {
+      svg.line(at(o.inner), at(o.outer), kPreviewOpeningColour, 2.0);
+      const Eigen::Vector2d c = at(o.outer);
+      out += "<circle cx=\"" + px(c.x()) + "\" cy=\"" + px(c.y()) + "\" r=\"" + px(std::max(o.radius * s, 2.0)) +
+             "\" fill=\"none\" stroke=\"" + kPreviewOpeningColour + "\" stroke-width=\"2\"/>\n";
+    }
     if (have_filled) svg.dot(at(filled_com), r, kWater);
     if (input.has_before_com) svg.dot(at(input.before_com), r, kPreviewComBeforeColour);
     svg.dot(at(com), r, kPreviewComAfterColour);  // last: never covered
@@ -466,6 +472,7 @@ PreviewResult preview_svg(const Mesh& mesh, const PreviewInput& input, const Pre
                                {"fill", "#e4ebf4", "top view: section at the centre of mass's height"}};
   if (stand_goal) legend.push_back({"dash", kGoalMark, "to the tipping edge (direction it would tip)"});
   if (have_filled) legend.push_back({"dot", kWater, "centre of mass, filled"});
+  if (!input.openings.empty()) legend.push_back({"ring", kPreviewOpeningColour, "opening (drain hole, channel): axis and radius"});
   if (input.goal == GoalKind::roly_poly) legend.push_back({"cross", kGoalMark, "sphere centre (dashed: its section)"});
   if (input.goal == GoalKind::spin) legend.push_back({"dash", kGoalMark, "spin axis through the tip (cross)"});
   if (have_water) {
