@@ -205,7 +205,16 @@ OpenedCavity open_cavity(const Mesh& outer, const Mesh& cavity, const OpenCavity
     return out;
   }
   if (cavity.F.rows() == 0) {
-    out.message = "there is no cavity to open";
+    // Nothing to drain: automatic holes have no shell to go to; a hole or channel asked for
+    // explicitly has no void to reach.
+    if (!options.holes.empty() || options.opening.kind != FixRegion::Kind::none) {
+      out.message = "there is no cavity to open";
+      return out;
+    }
+    out.solid = outer;
+    out.source_face.resize(static_cast<std::size_t>(outer.F.rows()));
+    for (std::size_t f = 0; f < out.source_face.size(); ++f) out.source_face[f] = static_cast<int>(f);
+    out.ok = true;
     return out;
   }
   const Eigen::Vector3d origin = mean_vertex(outer);
