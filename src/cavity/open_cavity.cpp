@@ -30,13 +30,24 @@ struct Prism {
 };
 
 // Cuts `prism` from `solid`, turning it a little after a degenerate try; composes source_face.
-bool cut(Mesh& solid, std::vector<int>& source, const Prism& prism, int sides, CutOpening& record, std::string& why) {
+// `prism` and `record` are moved to where the prism was cut.
+bool cut(Mesh& solid, std::vector<int>& source, Prism& prism, int sides, CutOpening& record, std::string& why) {
   const Eigen::Vector3d axis = (prism.outer - prism.inner).normalized();
+  // Two directions across the axis: every try moves the prism sideways too (an automatic hole's
+  // axis starts at a mesh vertex, and a contoured cavity has edges on lines through it).
+  Eigen::Index least = 0;
+  axis.cwiseAbs().minCoeff(&least);
+  const Eigen::Vector3d across = (Eigen::Vector3d::Unit(least) - axis(least) * axis).normalized();
+  const Eigen::Vector3d sideways = 0.61 * across + 0.79 * axis.cross(across);
+  std::string last;
   for (int attempt = 0; attempt < kTries; ++attempt) {
-    const Eigen::Vector3d shift = (1e-7 * prism.radius * attempt) * axis;
+    const Eigen::Vector3d shift = (1e-7 * prism.radius * attempt) * axis + (1e-5 * prism.radius * (attempt + 1)) * sideways;
     const Mesh cutter = cylinder_prism(prism.inner + shift, prism.outer + shift, prism.radius, sides, 0.0137 * attempt);
     const SubtractResult r = subtract_convex(solid, cutter);
-    if (r.status == SubtractStatus::degenerate) continue;
+    if (r.status == SubtractStatus::degenerate) {
+      last = r.message;
+      continue;
+    }
     if (r.status != SubtractStatus::ok) {
       why = r.message;
       return false;
@@ -47,9 +58,13 @@ bool cut(Mesh& solid, std::vector<int>& source, const Prism& prism, int sides, C
     solid = r.mesh;
     source = std::move(composed);
     record.tries = attempt + 1;
+    prism.inner += shift;
+    prism.outer += shift;
+    record.inner = prism.inner;
+    record.outer = prism.outer;
     return true;
   }
-  why = "every try of the cut was degenerate";
+  why = "every try of the cut was degenerate (the last: " + last + ")";
   return false;
 }
 
@@ -299,7 +314,8 @@ OpenedCavity open_cavity(const Mesh& outer, const Mesh& cavity, const OpenCavity
       for (Eigen::Index v = 0; v < out.solid.V.rows(); ++v) {
         const Eigen::Vector3d p = out.solid.V.row(v).transpose();
         const Eigen::Vector3d radial = (p - prism.inner) - (p - prism.inner).dot(along) * along;
-        if (std::fabs(radial.norm() - prism.radius) > 1e-6 * prism.radius + tol) continue;  // not on the prism's side
+        const double inscribed = prism.radius * det_cos(3.141592653589793 / options.sides);
+        if (radial.norm() < inscribed * (1.0 - 1e-9) - tol || radial.norm() > prism.radius * (1.0 + 1e-9) + tol) continue;  // not on the prism's side
         const ClosestPoint c = closest_point(outer_bvh, p, 1e3 * tol);
         if (!c.found || c.distance > 1e3 * tol) continue;
         spill = std::min(spill, p.z());

@@ -15,8 +15,10 @@
 //     (capped by max_channel_radius when > 0), so the wall around it stays; it starts inside the
 //     void (below the first cavity hit of every prism corner's ray, above the void's other side) and
 //     leaves the bounding box by a wall.
-// A degenerate cut (a solid vertex on a prism plane, ...) turns the prism by 0.0137 rad and moves
-// its caps by 1e-7 of the radius, at most 8 tries.
+// Every cut moves the prism sideways by 1e-5 of its radius (an automatic hole's axis starts at a
+// cavity vertex, on lines of the contour's edges); a degenerate cut (a solid vertex on a prism
+// plane, ...) turns it by 0.0137 rad, moves it along its axis by 1e-7 and sideways by another 1e-5
+// of the radius, at most 8 tries.
 //
 // Lengths in the meshes' units. Every choice is deterministic.
 #pragma once

@@ -79,7 +79,7 @@ const CommandHelp kHelp = {
          "a drain hole of radius R from the point through the nearest outer surface (contoured cavity)", "10,0,5,1.5"},
         {"--drain-holes", "auto", "none", "auto",
          "one drain hole per cavity shell, at its lowest point as posed, through the nearest wall", "auto"},
-        {"--drain-hole-radius", "R", "2 (PrusaSlicer's 4 mm drain hole)", "[1e-300, 1e12]", "the drain holes' default radius",
+        {"--drain-hole-radius", "R", "2 (PrusaSlicer's 4 mm drain hole), at most 0.02 diag", "[1e-300, 1e12]", "the drain holes' default radius",
          "1"},
         {"--ground-tol", "T", "0.001 diag", "[0, 1e12]", "ground contact tolerance", "0.01"},
         {"--cavity", "MODE", "auto", "auto | offset | contour | quadric",

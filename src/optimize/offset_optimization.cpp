@@ -747,7 +747,9 @@ OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, con
   OpenCavityOptions open_options;
   open_options.holes = options.drain_holes;
   open_options.auto_holes = options.drain_holes_auto;
-  if (options.drain_hole_radius > 0.0) open_options.hole_radius = options.drain_hole_radius;
+  // PrusaSlicer's 2 mm (input units read as millimetres), but at most 2% of the diagonal: a model
+  // in metres or inches gets a hole in proportion to it.
+  open_options.hole_radius = options.drain_hole_radius > 0.0 ? options.drain_hole_radius : std::min(2.0, 0.02 * f.diag);
   if (wants_channel(options, b)) open_options.opening = options.fix;
   open_options.wall = f.wall;
   VerifyInput base;
