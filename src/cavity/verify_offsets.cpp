@@ -193,7 +193,7 @@ Verification verify_offsets(const VerifyInput& in) {
                         format_double(g.margin));
       if (g.kind == GoalKind::stand_filled) {
         VolumeIntegrals filled = shell;
-        filled.values += g.fill_density * inner_int.values;
+        filled.values += g.fill_density * (in.liquid ? volume_integrals(*in.liquid, origin).values : inner_int.values);
         const Vector10d Pf = mass_properties(filled);
         const Stability full = compute_stability(outer, Eigen::Vector3d(Pf(kCx), Pf(kCy), Pf(kCz)), stability_options);
         m.filled = stability_figures(full);

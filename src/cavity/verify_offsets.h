@@ -58,6 +58,9 @@ struct VerifyInput {
   // cavity/new_self_intersections.h's rule) fails the verification. Null: `outer` is the input
   // itself, whose own pairs are the input's (named where it is loaded).
   const std::vector<std::pair<int, int>>* outer_own_pairs = nullptr;
+  // stand-filled: the liquid, when an opening keeps it below the void's top (cavity/open_cavity.h);
+  // its integrals replace the void's in the filled figures. Null: the whole void is filled.
+  const Mesh* liquid = nullptr;
 };
 
 // Whether the solid stands on its support polygon (mass/stability.h), input units.

@@ -71,7 +71,16 @@ const CommandHelp kHelp = {
          "100"},
         {"--radius", "R", "sphere fitted to the bottom", "[1e-300, 1e12]", "roly-poly: hemisphere radius", "20"},
         {"--fix", "REGION", "none", "x>V, x<V, y>V, y<V, z>V, z<V or sphere:X,Y,Z,R",
-         "keep the surface (an opening) where REGION holds", "z>50"},
+         "keep the surface (an opening) where REGION holds; with a contoured cavity and x/y/z>V or <V, a channel is cut "
+         "from the cavity to the outside inside REGION (docs/printable-solid.md)",
+         "z>50"},
+        {"--opening", "REGION", "none", "x>V, x<V, y>V, y<V, z>V or z<V", "the same as --fix REGION", "z>230"},
+        {"--drain-hole", "X,Y,Z[,R]", "none", "a point of the cavity, R > 0 (repeatable)",
+         "a drain hole of radius R from the point through the nearest outer surface (contoured cavity)", "10,0,5,1.5"},
+        {"--drain-holes", "auto", "none", "auto",
+         "one drain hole per cavity shell, at its lowest point as posed, through the nearest wall", "auto"},
+        {"--drain-hole-radius", "R", "2 (PrusaSlicer's 4 mm drain hole), at most 0.02 diag", "[1e-300, 1e12]", "the drain holes' default radius",
+         "1"},
         {"--ground-tol", "T", "0.001 diag", "[0, 1e12]", "ground contact tolerance", "0.01"},
         {"--cavity", "MODE", "auto", "auto | offset | contour | quadric",
          "the cavity written: the inner offset surface (offset: the paper's, with repair rounds), the contoured implicit "
@@ -165,10 +174,35 @@ int run_optimize(const Args& args) {
       options.target_volume = parse_double(cursor.value_of(arg), arg, 1e-300, 1e36);
     } else if (arg == "--radius") {
       options.radius = parse_double(cursor.value_of(arg), arg, 1e-300, big);
-    } else if (arg == "--fix") {
+    } else if (arg == "--fix" || arg == "--opening") {
       const std::string& value = cursor.value_of(arg);
       if (const std::string problem = parse_fix_region(value, options.fix); !problem.empty())
-        throw UsageError("--fix: " + problem);
+        throw UsageError(arg + ": " + problem);
+    } else if (arg == "--drain-hole") {
+      const std::string& value = cursor.value_of(arg);
+      std::vector<double> numbers;
+      std::size_t begin = 0;
+      while (begin <= value.size()) {
+        const std::size_t comma = value.find(',', begin);
+        const std::size_t end = comma == std::string::npos ? value.size() : comma;
+        numbers.push_back(parse_double(value.substr(begin, end - begin), arg, -big, big));
+        if (comma == std::string::npos) break;
+        begin = comma + 1;
+      }
+      if (numbers.size() != 3 && numbers.size() != 4) throw UsageError("--drain-hole takes X,Y,Z or X,Y,Z,R, got '" + value + "'");
+      DrainHoleRequest hole;
+      hole.point = Eigen::Vector3d(numbers[0], numbers[1], numbers[2]);
+      if (numbers.size() == 4) {
+        if (!(numbers[3] > 0.0)) throw UsageError("--drain-hole: the radius must be > 0, got '" + value + "'");
+        hole.radius = numbers[3];
+      }
+      options.drain_holes.push_back(hole);
+    } else if (arg == "--drain-holes") {
+      const std::string& value = cursor.value_of(arg);
+      if (value != "auto") throw UsageError("--drain-holes takes 'auto', got '" + value + "'");
+      options.drain_holes_auto = true;
+    } else if (arg == "--drain-hole-radius") {
+      options.drain_hole_radius = parse_double(cursor.value_of(arg), arg, 1e-300, big);
     } else if (arg == "--cavity") {
       const std::string& value = cursor.value_of(arg);
       if (!parse_cavity_mode(value, options.cavity))

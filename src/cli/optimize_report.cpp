@@ -301,7 +301,7 @@ Json stage_timings_json(const StageTimings& timings) {
   const std::pair<const char*, std::optional<double>> stages[] = {
       {"frame", timings.frame},     {"skeleton", timings.skeleton}, {"basis", timings.basis},
       {"solve", timings.solve},     {"verify", timings.verify},     {"contour", timings.contour},
-      {"correct", timings.correct}, {"reach", timings.reach},     {"quadric", timings.quadric},
+      {"correct", timings.correct}, {"reach", timings.reach},     {"quadric", timings.quadric}, {"openings", timings.openings},
       {"total", timings.total}};
   Json j = Json::object();
   for (const auto& [key, seconds] : stages)
@@ -345,6 +345,33 @@ Json reachability_json(const ReachabilitySummary& r) {
   return j;
 }
 
+// The openings cut through the cavity (drain holes, the channel): where, how wide, the void and
+// liquid they leave.
+Json openings_json(const OpeningsSummary& o) {
+  Json j = Json::object();
+  Json list = Json::array();
+  for (const CutOpening& c : o.openings) {
+    Json e = Json::object();
+    e["kind"] = c.kind;
+    e["inner"] = vec3(c.inner);
+    e["outer"] = vec3(c.outer);
+    e["radius"] = c.radius;
+    if (c.shell >= 0) e["cavity_shell"] = c.shell;
+    e["tries"] = c.tries;
+    list.push_back(e);
+  }
+  j["cut"] = list;
+  j["cavity_shells"] = o.cavity_shells;
+  j["void_volume"] = o.void_volume;
+  if (o.spill_height) j["spill_height"] = *o.spill_height;
+  if (o.liquid_volume) j["liquid_volume"] = *o.liquid_volume;
+  j["closed"] = o.closed;
+  j["new_face_pairs"] = o.new_pairs;
+  j["rounds"] = o.rounds;
+  if (!o.message.empty()) j["problem"] = o.message;
+  return j;
+}
+
 Json optimize_report(const OptimizeOptions& options, const OptimizeResult& result) {
   Json report = Json::object();
   report["parameters"] = parameters_json(options, result.frame);
@@ -356,6 +383,7 @@ Json optimize_report(const OptimizeOptions& options, const OptimizeResult& resul
   report["before"] = before_json(result.before);
   report["cavity"] = cavity_json(result.cavity);
   report["after"] = verification_json(result.after);
+  if (result.openings) report["openings"] = openings_json(*result.openings);
   if (result.optimality) {
     Json o = Json::object();
     o["fraction"] = result.optimality->fraction;

@@ -73,6 +73,19 @@ std::string preview_input_from_report(const Json& report, PreviewInput& input) {
       input.has_tip = true;
     }
   }
+  if (report.contains("openings") && report.at("openings").type() == Json::Type::object &&
+      report.at("openings").contains("cut") && report.at("openings").at("cut").type() == Json::Type::array) {
+    const Json& cut = report.at("openings").at("cut");
+    for (std::size_t i = 0; i < cut.size(); ++i) {
+      const Json& e = cut.at(i);
+      PreviewInput::Opening o;
+      if (e.type() != Json::Type::object || !e.contains("inner") || !e.contains("outer") || !e.contains("radius") ||
+          !read_vec3(e.at("inner"), o.inner) || !read_vec3(e.at("outer"), o.outer) || !is_number(e.at("radius")))
+        return "'openings.cut' holds an entry without inner, outer and radius";
+      o.radius = e.at("radius").as_number();
+      input.openings.push_back(o);
+    }
+  }
   if (report.contains("after") && report.at("after").type() == Json::Type::object) {
     double v = -1.0;
     if (!optional_number(report.at("after"), "void_volume", v)) return "'after.void_volume' is not a finite number";

@@ -23,6 +23,7 @@
 #include "shape/shrink_outer_limit.h"
 #include "cavity/new_self_intersections.h"
 #include "cavity/printable_solid.h"
+#include "cavity/verify_opened_cavity.h"
 #include "cavity/round_for_output.h"
 #include "cavity/verify_offsets.h"
 #include "optimize/quadric_void.h"
@@ -133,6 +134,12 @@ std::string OptimizeOptions::check() const {
   if (s.outer && s.bounds == BoundsMode::hard && s.k == 0) return "--k all with --bounds hard and --outer is not supported";
   if (s.threads < 1 || s.threads > 64) return "--threads must be in [1, 64]";
   if (s.max_correction_rounds < 0 || s.max_correction_rounds > 20) return "correction rounds must be in [0, 20]";
+  if (s.wants_drain_holes() && s.cavity == CavityMode::offset)
+    return "drain holes are cut through a contoured cavity: use --cavity auto, contour or quadric, not offset";
+  if (!(s.drain_hole_radius < 0.0 || (std::isfinite(s.drain_hole_radius) && s.drain_hole_radius > 0.0)))
+    return "--drain-hole-radius must be > 0";
+  for (const DrainHoleRequest& h : s.drain_holes)
+    if (!h.point.allFinite() || !(h.radius < 0.0 || h.radius > 0.0)) return "--drain-hole needs a finite point and a radius > 0";
   ContourCavityOptions contour;
   contour.wall = 1.0;
   contour.cells_per_wall = s.cavity_cells_per_wall;
@@ -486,8 +493,15 @@ struct Cavity {
   CavitySummary summary;
 };
 
+// A channel through a contoured cavity (cavity/open_cavity.h) for a half-space --fix region.
+bool wants_channel(const OptimizeOptions& options, const Band& b) {
+  return b.fixed_count > 0 && options.fix.kind == FixRegion::Kind::half_space;
+}
+
+// `opening_void`: the integrals (frame) the openings cut beyond the cavity, added to every
+// correction's Δ (the openings stage solves again with them, optimize_offsets).
 Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
-                          StageTimings& timings, const Progress& say) {
+                          StageTimings& timings, const Progress& say, const Vector10d& opening_void = Vector10d::Zero()) {
   auto stage_start = Clock::now();
   Cavity c;
   VerifyInput verify_input;
@@ -525,9 +539,9 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
   c.written = offset_written.inner;
   const bool offset_verified = c.verification.goal_met && c.verification.valid;
   const bool want_contour = options.cavity == CavityMode::contour ||
-                            (options.cavity == CavityMode::automatic && !offset_verified);
+                            (options.cavity == CavityMode::automatic && (!offset_verified || options.wants_drain_holes()));
   std::string problem;
-  if (want_contour && b.fixed_count > 0) {
+  if (want_contour && b.fixed_count > 0 && !wants_channel(options, b)) {
     problem = options.cavity == CavityMode::contour
                   ? "a contoured cavity cannot have an opening (--fix) yet; the offset surfaces were written"
                   : "with an opening (--fix) only the offset surfaces can be written, and they do not verify";
@@ -585,7 +599,7 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
       // Stops at a verified contour, an invalid one (a correction cannot mend it), a goal whose
       // constraints the solver could not meet, or the last round.
       if (!will_correct) break;
-      solve.correct(delta, round + 1);
+      solve.correct(delta + opening_void, round + 1);
     }
     timings.contour = contour_seconds;
     timings.correct = seconds_since(stage_start) - contour_seconds;
@@ -751,6 +765,68 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
                                                      "% of the quadric void's objective";
   }
   return c;
+}
+
+// Stage "openings": drain holes and the channel cut through the written cavity and verified on the
+// cut solid as written (cavity/verify_opened_cavity.h). When the openings' material moves the goal
+// out of reach, the goal is solved again with their integrals added to the last contour's Δ and
+// the cavity contoured again (at most 3 times, offset contour path only).
+OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
+                             Cavity& cavity, std::optional<Mesh>& opened_solid, StageTimings& timings, const Progress& say) {
+  const auto start = Clock::now();
+  OpenCavityOptions open_options;
+  open_options.holes = options.drain_holes;
+  open_options.auto_holes = options.drain_holes_auto;
+  // PrusaSlicer's 2 mm (input units read as millimetres), but at most 2% of the diagonal: a model
+  // in metres or inches gets a hole in proportion to it.
+  open_options.hole_radius = options.drain_hole_radius > 0.0 ? options.drain_hole_radius : std::min(2.0, 0.02 * f.diag);
+  if (wants_channel(options, b)) open_options.opening = options.fix;
+  open_options.wall = f.wall;
+  VerifyInput base;
+  base.goal = f.goal_input;
+  base.diagonal = f.diag;
+  base.ground_tol = f.ground_tol;
+  base.wall = f.wall;
+  base.threads = options.threads;
+  base.precision = options.output_precision;
+  auto frame_integrals = [&](const Mesh& mesh) {
+    Mesh framed = mesh;
+    for (Eigen::Index i = 0; i < framed.V.rows(); ++i) framed.V.row(i) = f.to_frame(framed.V.row(i).transpose()).transpose();
+    return volume_integrals(framed, Eigen::Vector3d::Zero()).values;
+  };
+  OpeningsSummary summary;
+  for (int attempt = 0;; ++attempt) {
+    if (!cavity.verification.valid) {
+      summary.message = "the cavity was not valid before the openings";
+      break;
+    }
+    VerifiedOpenedCavity v =
+        verify_opened_cavity(cavity.outer, cavity.written, open_options, base, cavity.verification, options.output_precision);
+    ++summary.rounds;
+    summary.openings = v.opened.openings;
+    summary.cavity_shells = v.opened.cavity_shells;
+    summary.spill_height = v.opened.spill_height;
+    summary.void_volume = v.void_volume;
+    summary.liquid_volume = v.liquid ? std::optional<double>(v.liquid_volume) : std::nullopt;
+    summary.closed = v.closed;
+    summary.new_pairs = v.new_pairs;
+    summary.message = v.opened.ok ? "" : v.opened.message;
+    say("openings " + std::to_string(attempt) + ": " + std::to_string(v.opened.openings.size()) + " cut, goal " +
+        (v.verification.goal_met ? "met" : "not met") + ", " + (v.verification.valid ? "valid" : "not valid"));
+    const bool correctable = cavity.summary.written == WrittenCavity::contour && cavity.summary.rounds &&
+                             !cavity.summary.rounds->empty() && solve.constraints_met && v.opened.ok &&
+                             v.verification.valid && !v.verification.goal_met && attempt < 3;
+    if (!correctable) {
+      cavity.verification = v.verification;
+      if (v.opened.ok) opened_solid = std::move(v.solid);
+      break;
+    }
+    const Vector10d extra = frame_integrals(v.void_surfaces) - frame_integrals(cavity.written);
+    solve.correct(cavity.summary.rounds->back().delta_in_frame + extra, 100 + attempt);
+    cavity = make_offset_cavity(options, f, b, solve, timings, say, extra);
+  }
+  timings.openings = seconds_since(start);
+  return summary;
 }
 
 // Stage "report": the frame, the field, the solver and the input as it was, as values.
@@ -942,14 +1018,20 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   solve.run();
   timings.solve = seconds_since(stage_start);
 
-  const Cavity cavity = make_cavity(options, f, b, solve, reach, timings, say);
+  Cavity cavity = make_cavity(options, f, b, solve, reach, timings, say);
+  std::optional<OpeningsSummary> openings;
+  std::optional<Mesh> opened_solid;
+  if ((options.wants_drain_holes() || wants_channel(options, b)) && cavity.summary.contoured())
+    openings = cut_openings(options, f, b, solve, cavity, opened_solid, timings, say);
   timings.total = seconds_since(total_start);
 
   OptimizeResult result;
   result.outer = cavity.outer;
   result.inner = cavity.written;
-  result.printable = cavity.summary.contoured() ? hollow_solid(cavity.outer, cavity.written)
-                                                : printable_solid(cavity.outer, cavity.written, b.band.fixed);
+  result.printable = opened_solid                  ? *opened_solid
+                     : cavity.summary.contoured() ? hollow_solid(cavity.outer, cavity.written)
+                                                  : printable_solid(cavity.outer, cavity.written, b.band.fixed);
+  result.openings = std::move(openings);
   result.skeleton = Mesh{b.contraction.V, input.F};
   result.goal = f.setup;
   result.frame = {f.origin, f.scale, f.diag, f.wall, f.outer_max, f.margin, f.ground_tol};

@@ -21,6 +21,7 @@
 #include "shape/goal.h"
 #include "shape/reduced_problem.h"
 #include "cavity/contour_cavity.h"
+#include "cavity/open_cavity.h"
 #include "cavity/verify_offsets.h"
 #include "optimize/reachability_stage.h"
 #include "skeleton/laplacian_contraction.h"
@@ -56,6 +57,13 @@ struct OptimizeOptions {
   double fluid_density = -1.0;   // float: required, in (0, 1)
   double target_volume = -1.0;   // volume: required, input units cubed
   FixRegion fix;
+  // Drain holes through the contoured cavity (cavity/open_cavity.h): at given points of the void,
+  // and/or one per cavity shell at its lowest point (`--drain-holes auto`); radius in input units,
+  // < 0: PrusaSlicer's default drain hole, 2 (mm). Asking for one writes the contoured cavity.
+  std::vector<DrainHoleRequest> drain_holes;
+  bool drain_holes_auto = false;
+  double drain_hole_radius = -1.0;
+  bool wants_drain_holes() const { return drain_holes_auto || !drain_holes.empty(); }
   double gap = 0.05;             // s: inner offsets stop at (1 - s) of the skeleton distance
   double ramp = 2e-3;            // τ of the smooth clamp, fraction of the diagonal
   double start_fraction = 0.5;   // start inside the band (see ReducedOptions)
@@ -265,11 +273,25 @@ struct Optimality {
   double before = 0.0, written = 0.0, best = 0.0;  // input units: cz over the ground, or depth
 };
 
+// The openings cut through the written cavity (drain holes, the channel of --fix with a contoured
+// cavity): what was cut and the figures the verification read on the cut solid.
+struct OpeningsSummary {
+  std::vector<CutOpening> openings;
+  int cavity_shells = 0;
+  std::optional<double> spill_height;  // the channel's lowest exit: the liquid's level
+  double void_volume = 0.0;            // cavity and openings, input units
+  std::optional<double> liquid_volume; // stand-filled with a channel
+  bool closed = false;
+  long long new_pairs = 0;
+  int rounds = 0;                      // cuts made (a correction between two)
+  std::string message;                 // why the openings failed, if they did
+};
+
 // Seconds per stage: not reproducible, so kept apart from the rest. contour and correct are
 // present when a contour was attempted.
 struct StageTimings {
   double frame = 0.0, skeleton = 0.0, basis = 0.0, solve = 0.0, verify = 0.0;
-  std::optional<double> contour, correct, reach, quadric;
+  std::optional<double> contour, correct, reach, quadric, openings;
   double total = 0.0;
 };
 
@@ -292,6 +314,7 @@ struct OptimizeResult {
   // Whether any void reaches the goal (optimize/reachability_stage.h); absent when it was not
   // asked (bad input).
   std::optional<ReachabilitySummary> reachability;
+  std::optional<OpeningsSummary> openings;  // when drain holes or a channel were cut
 };
 
 OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& options,

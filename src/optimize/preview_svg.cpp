@@ -445,6 +445,12 @@ void draw_views(Svg& svg, const Layout& layout, const Scene& sc, const PreviewIn
     } else {
       draw_top_view(svg, v, sc, input, r);
     }
+    for (const PreviewInput::Opening& o : input.openings) {
+      svg.line(view_point(v, i, o.inner), view_point(v, i, o.outer), kPreviewOpeningColour, 2.0);
+      const Eigen::Vector2d c = view_point(v, i, o.outer);
+      out += "<circle cx=\"" + px(c.x()) + "\" cy=\"" + px(c.y()) + "\" r=\"" + px(std::max(o.radius * v.s, 2.0)) +
+             "\" fill=\"none\" stroke=\"" + kPreviewOpeningColour + "\" stroke-width=\"2\"/>\n";
+    }
     if (sc.have_filled) svg.dot(view_point(v, i, sc.filled_com), r, kWater);
     if (input.has_before_com) svg.dot(view_point(v, i, input.before_com), r, kPreviewComBeforeColour);
     svg.dot(view_point(v, i, sc.com), r, kPreviewComAfterColour);  // last: never covered
@@ -483,6 +489,7 @@ double draw_legend(Svg& svg, const Scene& sc, const PreviewInput& input, double 
                                {"fill", "#e4ebf4", "top view: section at the centre of mass's height"}};
   if (sc.stand_goal) legend.push_back({"dash", kGoalMark, "to the tipping edge (direction it would tip)"});
   if (sc.have_filled) legend.push_back({"dot", kWater, "centre of mass, filled"});
+  if (!input.openings.empty()) legend.push_back({"ring", kPreviewOpeningColour, "opening (drain hole, channel): axis and radius"});
   if (input.goal == GoalKind::roly_poly) legend.push_back({"cross", kGoalMark, "sphere centre (dashed: its section)"});
   if (input.goal == GoalKind::spin) legend.push_back({"dash", kGoalMark, "spin axis through the tip (cross)"});
   if (sc.have_water) {

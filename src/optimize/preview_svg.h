@@ -26,6 +26,7 @@ inline constexpr const char* kPreviewMaterialColour = "#9fb6d3";
 inline constexpr const char* kPreviewCavityColour = "#ffd34d";
 inline constexpr const char* kPreviewComAfterColour = "#ff00ff";
 inline constexpr const char* kPreviewComBeforeColour = "#00b050";
+inline constexpr const char* kPreviewOpeningColour = "#ff7f00";
 
 struct PreviewOptions {
   double view_height = 320.0;   // px: the tallest view
@@ -54,6 +55,13 @@ struct PreviewInput {
   bool has_tip = false;          // spin
   Eigen::Vector3d tip = Eigen::Vector3d::Zero();
   double void_volume = -1.0;     // the report's after.void_volume; negative: compute from the shells
+  // Drain holes and channels cut through the cavity (the report's openings.cut): each drawn in
+  // every view as its axis and a ring of its radius at the outer end.
+  struct Opening {
+    Eigen::Vector3d inner = Eigen::Vector3d::Zero(), outer = Eigen::Vector3d::Zero();
+    double radius = 0.0;
+  };
+  std::vector<Opening> openings;
 };
 
 enum class PreviewStatus { ok, bad_input };

@@ -115,23 +115,31 @@ TEST_CASE("buoy: --goal float --fluid-density 0.806 balances weight and buoyancy
   CHECK(after.at("com_below_buoyancy").as_number() > 0.0);
 }
 
-TEST_CASE("an opening with --fix welds inner and outer into one closed surface, whose folds check names") {
+TEST_CASE("an opening with --fix --cavity offset welds inner and outer into one closed surface") {
   // Next to the rim of the opening the offsets fall to 0, so the wall there is thinner than the
-  // request: the full-wall verification says so (exit 3), and a contoured cavity, which would
-  // keep the wall, has no opening yet. The welded solid is still written and closed.
-  const Outcome out = optimize("bottle_open", "bottle.obj", "--goal stand --fix 'z>240'");
+  // request: the full-wall verification says so (exit 3). The welded solid is still written and
+  // closed (the repair rounds of --cavity offset remove its folds).
+  const Outcome out = optimize("bottle_open", "bottle.obj", "--goal stand --fix 'z>240' --cavity offset");
   CHECK(out.exit_code == 3);
-  CHECK(out.report.at("why").as_string().find("opening (--fix)") != std::string::npos);
+  CHECK(out.report.at("why").as_string().find("wall") != std::string::npos);
   CHECK(out.report.at("cavity").at("written").as_string() == "offset");
   CHECK(out.report.at("offset_field").at("fixed").as_integer() > 0);
-  // `check` looks for crossing faces once the surface is closed and edge-manifold: the welded
-  // solid gets that far, and its folds (the report's inner self-intersections) are what it names.
+  // `check` reads one closed surface, no boundary, no crossing (the report's count agrees).
   const std::string err = temp_dir() + "/bottle_open_check.txt";
   const int status = std::system((kBinary + " check " + out.solid + " --quiet 2>" + err).c_str());
-  CHECK((WIFEXITED(status) && WEXITSTATUS(status) == 2));
-  CHECK(read_file(err).find("self-intersecting face pairs") != std::string::npos);
+  CHECK((WIFEXITED(status) && WEXITSTATUS(status) == 0));
   CHECK(read_file(err).find("boundary") == std::string::npos);
-  CHECK(out.report.at("after").at("inner_self_intersections").as_integer() > 0);
+  CHECK(out.report.at("after").at("inner_self_intersections").as_integer() == 0);
+}
+
+TEST_CASE("an opening with --fix through the contoured cavity is a channel, and check accepts the solid") {
+  const Outcome out = optimize("bottle_channel", "bottle.obj", "--goal stand --fix 'z>240'");
+  CHECK(out.exit_code == 0);
+  CHECK(out.report.at("cavity").at("written").as_string() == "contour");
+  REQUIRE(out.report.at("openings").at("cut").size() == 1);
+  CHECK(out.report.at("openings").at("cut").at(0).at("kind").as_string() == "channel");
+  const int status = std::system((kBinary + " check " + out.solid + " --quiet").c_str());
+  CHECK((WIFEXITED(status) && WEXITSTATUS(status) == 0));
 }
 
 TEST_CASE("unreachable cases exit 3 with a reason: hard bounds on parts left solid, a two-function basis") {

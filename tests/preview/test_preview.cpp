@@ -387,11 +387,12 @@ TEST_CASE("optimize --preview draws the same bytes as preview of the written sol
   CHECK(svg == read_file(b));
   CHECK(svg.find("void volume") != std::string::npos);
   // A welded solid with an opening, written as OBJ: the file read back drops the vertices no
-  // face uses, the picture leaves them out in memory too. (It exits 3: the wall next to the
-  // opening's rim is thinner than requested; outputs are written all the same.)
+  // face uses, the picture leaves them out in memory too. (`--cavity offset` writes the offset
+  // surfaces welded along the region; it exits 3: the wall next to the opening's rim is thinner
+  // than requested; outputs are written all the same.)
   const std::string open_solid = scratch().file("open.obj"), open_report = scratch().file("open.json"),
                     c = scratch().file("c.svg"), d = scratch().file("d.svg");
-  REQUIRE(run("optimize " + quote(source + "/meshes/bottle.obj") + " --goal stand --fix 'z>240' --quiet --no-timings -o " +
+  REQUIRE(run("optimize " + quote(source + "/meshes/bottle.obj") + " --goal stand --fix 'z>240' --cavity offset --quiet --no-timings -o " +
               quote(open_solid) + " --report " + quote(open_report) + " --preview " + quote(c))
               .exit_code == 3);
   REQUIRE(run("preview " + quote(open_solid) + " --report " + quote(open_report) + " -o " + quote(d)).exit_code == 0);

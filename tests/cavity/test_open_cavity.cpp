@@ -1,0 +1,170 @@
+// Openings through a cavity (cavity/open_cavity.h) against independent figures: a spherical
+// shell's drain hole removes the analytic volume of a cylinder through the shell (within the
+// prism's and the icosphere's facet error); a box with two spherical cavities gets one automatic
+// hole per cavity, at that cavity's lowest vertex (found here by a plain scan), and the result is
+// one closed, embedded piece; the void joined to the outside is checked by a flood fill on a grid;
+// a channel for `z>V` opens a closed box cavity; the cut below a plane keeps the analytic volume.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <deque>
+#include <vector>
+
+#include "cavity/open_cavity.h"
+#include "cavity/printable_solid.h"
+#include "geometry/bvh.h"
+#include "geometry/intersecting_faces.h"
+#include "geometry/mesh_shells.h"
+#include "geometry/point_in_solid.h"
+#include "mass/volume_integrals.h"
+#include "mesh/primitives.h"
+#include "../mesh_checks.h"
+
+using namespace offsetopt;
+
+namespace {
+
+Mesh translated(Mesh m, const Eigen::Vector3d& by) {
+  m.V.rowwise() += by.transpose();
+  return m;
+}
+
+Mesh join(const Mesh& a, const Mesh& b) {
+  Mesh m;
+  m.V.resize(a.V.rows() + b.V.rows(), 3);
+  m.V << a.V, b.V;
+  m.F.resize(a.F.rows() + b.F.rows(), 3);
+  m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
+  return m;
+}
+
+double volume(const Mesh& m) { return volume_integrals(m).values(0); }
+
+long long self_pairs(const Mesh& m) {
+  const TriangleBvh bvh(m.V, m.F);
+  return static_cast<long long>(self_intersections(bvh, 1000).pairs.size());
+}
+
+// Grid cells outside the material connected to the grid's border (the outside) by a 6-connected
+// flood fill, and whether a given point's cell is among them.
+bool void_reaches_outside(const Mesh& solid, const Eigen::Vector3d& probe, double h) {
+  const TriangleBvh bvh(solid.V, solid.F);
+  const Eigen::Vector3d lo = solid.V.colwise().minCoeff().transpose() - Eigen::Vector3d::Constant(2 * h);
+  const Eigen::Vector3d hi = solid.V.colwise().maxCoeff().transpose() + Eigen::Vector3d::Constant(2 * h);
+  const Eigen::Vector3i n = ((hi - lo) / h).array().ceil().cast<int>();
+  auto at = [&](int i, int j, int k) -> Eigen::Vector3d { return lo + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5); };
+  std::vector<char> material(static_cast<std::size_t>(n.prod()), 0), seen(material.size(), 0);
+  auto index = [&](int i, int j, int k) { return (static_cast<std::size_t>(k) * n.y() + j) * n.x() + i; };
+  for (int k = 0; k < n.z(); ++k)
+    for (int j = 0; j < n.y(); ++j)
+      for (int i = 0; i < n.x(); ++i) material[index(i, j, k)] = point_in_solid(bvh, at(i, j, k)) ? 1 : 0;
+  std::deque<Eigen::Vector3i> queue{Eigen::Vector3i(0, 0, 0)};
+  seen[index(0, 0, 0)] = 1;
+  while (!queue.empty()) {
+    const Eigen::Vector3i c = queue.front();
+    queue.pop_front();
+    for (int d = 0; d < 6; ++d) {
+      Eigen::Vector3i m = c;
+      m(d / 2) += d % 2 ? 1 : -1;
+      if ((m.array() < 0).any() || (m.array() >= n.array()).any()) continue;
+      const std::size_t id = index(m.x(), m.y(), m.z());
+      if (seen[id] || material[id]) continue;
+      seen[id] = 1;
+      queue.push_back(m);
+    }
+  }
+  const Eigen::Vector3i p = ((probe - lo) / h).array().floor().cast<int>();
+  return seen[index(p.x(), p.y(), p.z())] != 0;
+}
+
+}  // namespace
+
+TEST_CASE("open_cavity: a drain hole through a spherical shell removes a cylinder's slab of it") {
+  const double R = 1.0, r = 0.8, a = 0.1;
+  const Mesh outer = make_icosphere(R, 5), cavity = make_icosphere(r, 5);
+  OpenCavityOptions options;
+  options.wall = 0.2;
+  options.holes.push_back({Eigen::Vector3d(0.3, 0.2, -0.5), a});
+  const OpenedCavity opened = open_cavity(outer, cavity, options);
+  REQUIRE(opened.ok);
+  CHECK(test::closed_and_oriented(opened.solid));
+  CHECK(self_pairs(opened.solid) == 0);
+  CHECK(opened.pieces_before == 2);
+  CHECK(opened.pieces_after == 1);
+  // The removed part: the prism (its polygon's area) from the inner to the outer sphere along a
+  // radial axis, ∫ (√(R²−ρ²) − √(r²−ρ²)) dA over the disc of radius a, scaled by the polygon's
+  // share of the disc.
+  const double removed = volume(hollow_solid(outer, cavity)) - volume(opened.solid);
+  const double cylinder = 2.0 * M_PI / 3.0 * ((R * R * R - std::pow(R * R - a * a, 1.5)) - (r * r * r - std::pow(r * r - a * a, 1.5)));
+  const double polygon_share = 32 * std::sin(2 * M_PI / 32) / (2 * M_PI);
+  // The icosphere's facets (level 5: ~0.06% of the radius deep) and a cap slightly inside the
+  // inner sphere's facets bound the difference.
+  CHECK(removed == doctest::Approx(cylinder * polygon_share).epsilon(0.02));
+  CHECK(void_reaches_outside(opened.solid, Eigen::Vector3d(0.0, 0.0, 0.0), 0.05));
+  CHECK_FALSE(void_reaches_outside(hollow_solid(outer, cavity), Eigen::Vector3d(0.0, 0.0, 0.0), 0.05));
+}
+
+TEST_CASE("open_cavity: automatic drain holes, one per cavity shell, at its lowest vertex") {
+  const Mesh outer = make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(6, 3, 3));
+  const Mesh first = translated(make_icosphere(1.0, 3), Eigen::Vector3d(1.5, 1.5, 1.4));
+  const Mesh second = translated(make_icosphere(0.8, 3), Eigen::Vector3d(4.3, 1.4, 1.7));
+  const Mesh cavity = join(first, second);
+  OpenCavityOptions options;
+  options.wall = 0.3;
+  options.auto_holes = true;
+  options.hole_radius = 0.15;
+  const OpenedCavity opened = open_cavity(outer, cavity, options);
+  REQUIRE(opened.ok);
+  CHECK(opened.cavity_shells == 2);
+  REQUIRE(opened.openings.size() == 2);
+  CHECK(test::closed_and_oriented(opened.solid));
+  CHECK(self_pairs(opened.solid) == 0);
+  CHECK(mesh_shells(opened.solid, Eigen::Vector3d(3, 1.5, 1.5)).count == 1);
+  for (const Mesh* shell : {&first, &second}) {
+    Eigen::Index low = 0;
+    shell->V.col(2).minCoeff(&low);
+    const Eigen::Vector3d lowest = shell->V.row(low).transpose();
+    bool found = false;
+    for (const CutOpening& o : opened.openings) {
+      // The hole's axis passes through the lowest vertex (up to the 1e-5 radius the prism is moved
+      // sideways, cavity/open_cavity.h) and leaves through the floor (z = 0).
+      const Eigen::Vector3d axis = (o.outer - o.inner).normalized();
+      const Eigen::Vector3d off = (lowest - o.inner) - (lowest - o.inner).dot(axis) * axis;
+      if (off.norm() < 2e-5 * o.radius) found = found || (axis.z() < -0.99 && o.outer.z() < 0.0);
+    }
+    CHECK(found);
+    CHECK(void_reaches_outside(opened.solid, lowest + Eigen::Vector3d(0, 0, 0.3), 0.1));
+  }
+}
+
+TEST_CASE("open_cavity: a channel for z>V opens a box's cavity, keeping the wall around it") {
+  const Mesh outer = make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2, 2, 4));
+  const Mesh cavity = translated(make_icosphere(0.7, 3), Eigen::Vector3d(1.03, 0.98, 2.0));
+  OpenCavityOptions options;
+  options.wall = 0.25;
+  REQUIRE(parse_fix_region("z>3.5", options.opening).empty());
+  const OpenedCavity opened = open_cavity(outer, cavity, options);
+  REQUIRE(opened.ok);
+  REQUIRE(opened.openings.size() == 1);
+  // The box's section is the 2 × 2 square centred at (1, 1): room 1, radius at most 1 − wall,
+  // shrunk by 0.8 steps until the channel's end fits in the spherical cavity (radius 0.7).
+  CHECK(opened.openings[0].radius == doctest::Approx(0.6));
+  CHECK(opened.openings[0].inner.z() < 2.7);
+  CHECK(test::closed_and_oriented(opened.solid));
+  CHECK(self_pairs(opened.solid) == 0);
+  REQUIRE(opened.spill_height);
+  CHECK(*opened.spill_height == doctest::Approx(4.0));
+  CHECK(void_reaches_outside(opened.solid, Eigen::Vector3d(1.03, 0.98, 2.0), 0.1));
+}
+
+TEST_CASE("cut_by_plane: a box below a plane keeps the analytic volume") {
+  const Mesh box = make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 3));
+  Mesh below;
+  REQUIRE(cut_by_plane(box, 2, 1.25, false, below));
+  CHECK(test::closed_and_oriented(below));
+  CHECK(volume(below) == doctest::Approx(2.5).epsilon(1e-8));
+  Mesh above;
+  REQUIRE(cut_by_plane(make_icosphere(1.0, 3), 2, 0.3, true, above));
+  CHECK(test::closed_and_oriented(above));
+  CHECK(volume(above) > 0.0);
+}

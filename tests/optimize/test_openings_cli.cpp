@@ -1,0 +1,150 @@
+// Openings through the written cavity (issue 20), end to end on the demo bottle, checked on the
+// files as they read back with code independent of the verifier (tests/mesh_checks.h,
+// tests/mass/geometry_checks.h): the solid is one closed, oriented piece, no two faces cross, the
+// void is one region joined to the outside (a 6-connected flood fill from the grid's border over
+// cells whose centres are outside the material), every vertex off the outer surface and off the
+// opening's own surface keeps the requested wall, and the report's figures meet the goal.
+#include <doctest/doctest.h>
+
+#include <cstdlib>
+#include <deque>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../mass/geometry_checks.h"
+#include "../mesh_checks.h"
+#include "../temp_dir.h"
+#include "geometry/bvh.h"
+#include "geometry/mesh_shells.h"
+#include "geometry/point_in_solid.h"
+#include "io/json.h"
+#include "meshio/read_raw_mesh.h"
+
+using namespace offsetopt;
+
+namespace {
+
+const std::string kMeshes = std::string(OFFSETOPT_SOURCE_DIR) + "/meshes/";
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Mesh read_back(const std::string& path) {
+  const RawMesh raw = read_raw_mesh(path);
+  return Mesh{raw.V, raw.F};
+}
+
+int run(const std::string& arguments) {
+  const int status = std::system(("timeout 900 " + std::string(OFFSETOPT_BINARY) + " optimize " + arguments + " --quiet --no-timings 2>/dev/null").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Cells of spacing h outside `solid` that the flood fill from the border does not reach.
+long long enclosed_void_cells(const Mesh& solid, double h) {
+  const TriangleBvh bvh(solid.V, solid.F);
+  const Eigen::Vector3d lo = solid.V.colwise().minCoeff().transpose() - Eigen::Vector3d::Constant(2 * h);
+  const Eigen::Vector3d hi = solid.V.colwise().maxCoeff().transpose() + Eigen::Vector3d::Constant(2 * h);
+  const Eigen::Vector3i n = ((hi - lo) / h).array().ceil().cast<int>();
+  auto index = [&](int i, int j, int k) { return (static_cast<std::size_t>(k) * n.y() + j) * n.x() + i; };
+  std::vector<char> material(static_cast<std::size_t>(n.prod())), seen(material.size(), 0);
+  for (int k = 0; k < n.z(); ++k)
+    for (int j = 0; j < n.y(); ++j)
+      for (int i = 0; i < n.x(); ++i)
+        material[index(i, j, k)] = point_in_solid(bvh, Eigen::Vector3d(lo + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5))) ? 1 : 0;
+  std::deque<Eigen::Vector3i> queue{Eigen::Vector3i(0, 0, 0)};
+  seen[0] = 1;
+  while (!queue.empty()) {
+    const Eigen::Vector3i c = queue.front();
+    queue.pop_front();
+    for (int d = 0; d < 6; ++d) {
+      Eigen::Vector3i m = c;
+      m(d / 2) += d % 2 ? 1 : -1;
+      if ((m.array() < 0).any() || (m.array() >= n.array()).any()) continue;
+      const std::size_t id = index(m.x(), m.y(), m.z());
+      if (seen[id] || material[id]) continue;
+      seen[id] = 1;
+      queue.push_back(m);
+    }
+  }
+  long long enclosed = 0;
+  for (std::size_t i = 0; i < material.size(); ++i) enclosed += !material[i] && !seen[i] ? 1 : 0;
+  return enclosed;
+}
+
+// The smallest distance to `outer` over the vertices of `solid` that are not on it (farther than
+// `on`) and not on an opening's side (radius r around its axis, between its caps).
+double wall_off_openings(const Mesh& solid, const Mesh& outer, const Json& cut, double on) {
+  Mesh kept{Vertices(0, 3), Faces(0, 3)};
+  std::vector<Eigen::Vector3d> points;
+  for (Eigen::Index v = 0; v < solid.V.rows(); ++v) {
+    const Eigen::Vector3d p = solid.V.row(v).transpose();
+    bool exempt = false;
+    for (std::size_t i = 0; i < cut.size(); ++i) {
+      const Json& c = cut.at(i);
+      const Eigen::Vector3d a(c.at("inner").at(0).as_number(), c.at("inner").at(1).as_number(), c.at("inner").at(2).as_number());
+      const Eigen::Vector3d b(c.at("outer").at(0).as_number(), c.at("outer").at(1).as_number(), c.at("outer").at(2).as_number());
+      const double r = c.at("radius").as_number();
+      const Eigen::Vector3d axis = (b - a).normalized();
+      const double along = (p - a).dot(axis);
+      const double radial = ((p - a) - along * axis).norm();
+      exempt = exempt || (along >= -1e-6 * r && along <= (b - a).norm() + 1e-6 * r && radial >= 0.99 * r && radial <= 1.000001 * r);
+    }
+    if (!exempt) points.push_back(p);
+  }
+  kept.V.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) kept.V.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  double best = std::numeric_limits<double>::infinity();
+  for (Eigen::Index v = 0; v < kept.V.rows(); ++v) {
+    Mesh one{kept.V.row(v), Faces(0, 3)};
+    const double d = test::min_vertex_distance(one, outer);
+    if (d > on) best = std::min(best, d);
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("drain holes auto on the bottle: one piece, the void open to the outside, the wall kept") {
+  const TempDir dir("offsetopt-drain-holes");
+  const std::string base = dir.path() + "/bottle";
+  REQUIRE(run(kMeshes + "bottle.obj --goal stand --drain-holes auto --drain-hole-radius 5 -o " + base + ".stl --outer-mesh " + base +
+              "_outer.stl --report " + base + ".json") == 0);
+  const Json report = Json::parse(read_file(base + ".json"));
+  const Json& cut = report.at("openings").at("cut");
+  REQUIRE(cut.size() == report.at("openings").at("cavity_shells").as_number());
+  const Mesh solid = read_back(base + ".stl"), outer = read_back(base + "_outer.stl");
+  CHECK(test::closed_and_oriented(solid));
+  CHECK(mesh_shells(solid, Eigen::Vector3d(40, 0, 100)).count == 1);
+  CHECK(test::self_intersections(solid) == 0);
+  CHECK(enclosed_void_cells(solid, 2.0) == 0);
+  const double wall = report.at("after").at("requested_wall").as_number();
+  CHECK(wall_off_openings(solid, outer, cut, 1e-6 * wall) >= wall * (1.0 - 1e-6));
+}
+
+TEST_CASE("the demo bottle as a container: stand-filled --outer with an opening in the neck") {
+  const TempDir dir("offsetopt-container");
+  const std::string base = dir.path() + "/bottle";
+  REQUIRE(run(kMeshes + "bottle.obj --goal stand-filled --fill-density 0.8 --outer --fix 'z>238' -o " + base + ".stl --outer-mesh " +
+              base + "_outer.stl --report " + base + ".json") == 0);
+  const Json report = Json::parse(read_file(base + ".json"));
+  const Json& openings = report.at("openings");
+  REQUIRE(openings.at("cut").size() == 1);
+  CHECK(openings.at("cut").at(0).at("kind").as_string() == "channel");
+  CHECK(openings.contains("liquid_volume"));
+  const double margin = report.at("parameters").at("margin").as_number();
+  CHECK(report.at("after").at("empty").at("com_margin").as_number() >= margin);
+  CHECK(report.at("after").at("filled").at("com_margin").as_number() >= margin);
+  const Mesh solid = read_back(base + ".stl"), outer = read_back(base + "_outer.stl");
+  CHECK(test::closed_and_oriented(solid));
+  CHECK(mesh_shells(solid, Eigen::Vector3d(40, 0, 100)).count == 1);
+  CHECK(test::self_intersections(solid) == 0);
+  CHECK(enclosed_void_cells(solid, 2.0) == 0);
+  const double wall = report.at("after").at("requested_wall").as_number();
+  CHECK(wall_off_openings(solid, outer, openings.at("cut"), 1e-6 * wall) >= wall * (1.0 - 1e-6));
+}
