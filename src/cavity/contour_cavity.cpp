@@ -391,7 +391,7 @@ std::int64_t keep_nodes_at_level(const TriangleBvh& outer_bvh, const NodeGrid& g
                   continue;
                 }
                 ++per_node[part];
-                if (closest_point(outer_bvh, node, level).found) s = 0;
+                if (face_within(outer_bvh, node, level)) s = 0;
               }
         }
   });

@@ -33,8 +33,11 @@ struct SurfaceDefects {
 };
 // `threads` (>= 1) splits the tree builds and the intersection searches; the result is the same
 // for any count.
+// `inner_self`, when given, is inner's own self-intersection search (self_intersections with a cap
+// of at least 100000, not truncated): it is used instead of searching again when nothing is fixed.
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
-                                    const std::vector<char>& left_solid, double thin_below, int threads = 2);
+                                    const std::vector<char>& left_solid, double thin_below, int threads = 2,
+                                    const IntersectingFaces* inner_self = nullptr);
 
 struct VerifyInput {
   const Mesh* outer = nullptr;  // outer surface (the input itself without outer offsets)

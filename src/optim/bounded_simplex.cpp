@@ -173,8 +173,19 @@ class Simplex {
       const std::size_t keep = std::min<std::size_t>(candidates.size(), kCandidatesPerPass);
       std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(keep), candidates.end(), first);
       candidates.resize(keep);
-      bool pivoted = false;
-      for (const auto& [signed_d, var] : candidates) {
+      // After a pivot the duals change, but only the remaining candidates are priced again (m
+      // each, not a pass over every column): a pass then serves many pivots, which matters when
+      // most steps are pivots (a few rows, many columns entering and leaving between 0 and 1).
+      Eigen::VectorXd y_now = y;
+      bool duals_moved = false;
+      for (auto& [signed_d, var] : candidates) {
+        if (duals_moved) {
+          if (position_[static_cast<std::size_t>(var)] >= 0) continue;
+          const double d = cost_[var] - column_dot(var, y_now);
+          const bool up = d > tol && value_[var] < hi_[var], down = d < -tol && value_[var] > lo_[var];
+          if (!up && !down) continue;
+          signed_d = std::fabs(d) * (up ? 1.0 : -1.0);
+        }
         if (r.iterations >= o_.max_iterations) return LpStatus::iteration_cap;
         ++r.iterations;
         const double dir = signed_d > 0.0 ? 1.0 : -1.0;
@@ -193,13 +204,13 @@ class Simplex {
         const double theta = theta_basis;
         const bool degenerate = theta * std::fabs(signed_d) <= 1e-14;
         degenerate_run = degenerate ? degenerate_run + 1 : 0;
+        const bool was_bland = bland;
         bland = degenerate_run >= o_.degenerate_before_bland;
         pivot(var, leave, alpha, dir, theta);
-        pivoted = true;
-        break;
-      }
-      if (pivoted && pivots_since_refactor_ >= o_.refactor_every) {
-        if (!refactor()) return LpStatus::numerical;
+        if (pivots_since_refactor_ >= o_.refactor_every && !refactor()) return LpStatus::numerical;
+        if (bland || was_bland) break;  // Bland's rule prices every column again
+        y_now = duals();
+        duals_moved = true;
       }
     }
   }
