@@ -447,6 +447,21 @@ NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, co
   v.inner.resize(count);
   v.phi.resize(count);
   const double h = grid.spacing, cap = 2.0 * h;
+  // The inner distance only sets where an edge from a void node crosses the inner boundary, which
+  // no edge does unless its far node is outside the inner void: a node whose 26 neighbours (every
+  // tetrahedron edge from it) share its side never needs it, only its sign (the capped value).
+  const std::int64_t nxy = grid.nx * grid.ny;
+  auto crosses_inner = [&](std::int64_t node) {
+    const std::int64_t i = node % grid.nx, j = (node / grid.nx) % grid.ny, k = node / nxy;
+    const std::int8_t side = inner_inside[static_cast<std::size_t>(node)];
+    for (std::int64_t dk = -1; dk <= 1; ++dk)
+      for (std::int64_t dj = -1; dj <= 1; ++dj)
+        for (std::int64_t di = -1; di <= 1; ++di) {
+          if (i + di < 0 || i + di >= grid.nx || j + dj < 0 || j + dj >= grid.ny || k + dk < 0 || k + dk >= grid.nz) continue;
+          if (inner_inside[static_cast<std::size_t>(node + di + dj * grid.nx + dk * nxy)] != side) return true;
+        }
+    return false;
+  };
   pool.run_parts(kParts, [&](int part) {
     for (long n = split_point(static_cast<long>(count), kParts, part); n < split_point(static_cast<long>(count), kParts, part + 1); ++n) {
       const std::size_t i = static_cast<std::size_t>(n);
@@ -459,7 +474,8 @@ NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, co
         const Eigen::Vector3d p = grid.position(node);
         const ClosestPoint to_outer = closest_point(outer_bvh, p, level + cap);
         v.outer_distance[i] = to_outer.found ? to_outer.distance : level + cap;
-        v.inner[i] = field.signed_distance(p, inner_inside[static_cast<std::size_t>(node)] != 0, cap);
+        const bool inside = inner_inside[static_cast<std::size_t>(node)] != 0;
+        v.inner[i] = crosses_inner(node) ? field.signed_distance(p, inside, cap) : inside ? cap : -cap;
       }
       const double d_out = v.outer_distance[i];
       const double signed_out = outer_winding[static_cast<std::size_t>(node)] >= 1 ? d_out : -d_out;

@@ -14,8 +14,10 @@
 //
 // Lengths in input units; the meshes keep their connectivity and vertex order.
 #pragma once
+#include <memory>
 #include <vector>
 
+#include "geometry/bvh.h"
 #include "geometry/intersecting_faces.h"
 #include "mesh/mesh.h"
 #include "meshio/write_mesh.h"
@@ -37,6 +39,7 @@ struct RoundedForOutput {
   // repair's last search was of this very mesh. Not searched with StoredPrecision::exact.
   bool inner_searched = false;
   IntersectingFaces inner_pairs;
+  std::shared_ptr<const TriangleBvh> inner_tree;  // the tree of that search (default options)
 };
 
 // `shared` (empty, or one flag per vertex when outer and inner share connectivity) marks inner
