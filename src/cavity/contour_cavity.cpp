@@ -285,12 +285,28 @@ std::vector<double> face_deficits(const TriangleBvh& outer_bvh, const Mesh& mesh
     for (int c = 0; c < 3; ++c) box.extend(corner(f, c));
     return box;
   };
+  // An outer face as the runs read it: its corners, its normal (not unit) and wall × |normal|,
+  // computed once per run rather than once per face of the run.
+  struct OuterFace {
+    Eigen::Vector3d g0, g1, g2, n;
+    double scale = 0.0;
+    const Aabb* box = nullptr;
+  };
   // The faces of one run against the outer faces gathered for the whole run.
-  auto measure_run = [&](const std::vector<long>& run, const Aabb& run_box, std::vector<int>& nearby) {
+  auto measure_run = [&](const std::vector<long>& run, const Aabb& run_box, std::vector<OuterFace>& nearby) {
     nearby.clear();
     outer_bvh.traverse([&](const Aabb& node) { return gap(node, run_box) < wall_squared; },
                        [&](int g) {
-                         if (gap(outer_bvh.face_box(g), run_box) < wall_squared) nearby.push_back(g);
+                         if (gap(outer_bvh.face_box(g), run_box) < wall_squared) {
+                           OuterFace o;
+                           o.g0 = outer_bvh.corner(g, 0);
+                           o.g1 = outer_bvh.corner(g, 1);
+                           o.g2 = outer_bvh.corner(g, 2);
+                           o.n = (o.g1 - o.g0).cross(o.g2 - o.g0);
+                           o.scale = wall * o.n.norm();
+                           o.box = &outer_bvh.face_box(g);
+                           nearby.push_back(o);
+                         }
                          return true;
                        });
     for (const long i : run) {
@@ -299,11 +315,10 @@ std::vector<double> face_deficits(const TriangleBvh& outer_bvh, const Mesh& mesh
       const Aabb box = face_box(f);
       const Eigen::Vector3d centroid = (a + b + c) / 3.0;
       double best = wall;
-      for (const int g : nearby) {
-        if (gap(outer_bvh.face_box(g), box) >= best * best) continue;
-        const Eigen::Vector3d g0 = outer_bvh.corner(g, 0), g1 = outer_bvh.corner(g, 1), g2 = outer_bvh.corner(g, 2);
-        const Eigen::Vector3d n = (g1 - g0).cross(g2 - g0);
-        const double scale = wall * n.norm();
+      for (const OuterFace& o : nearby) {
+        if (gap(*o.box, box) >= best * best) continue;
+        const Eigen::Vector3d &g0 = o.g0, &g1 = o.g1, &g2 = o.g2, &n = o.n;
+        const double scale = o.scale;
         const double sa = n.dot(a - g0), sb = n.dot(b - g0), sc = n.dot(c - g0);
         if ((sa >= scale && sb >= scale && sc >= scale) || (sa <= -scale && sb <= -scale && sc <= -scale)) continue;
         // The plane through g's point nearest the centroid, normal to the way there, has all of
@@ -320,7 +335,7 @@ std::vector<double> face_deficits(const TriangleBvh& outer_bvh, const Mesh& mesh
   };
   pool.run_parts(kParts, [&](int part) {
     std::vector<long> run;
-    std::vector<int> nearby;
+    std::vector<OuterFace> nearby;
     Aabb run_box;
     const long count = static_cast<long>(faces.size());
     for (long i = split_point(count, kParts, part); i < split_point(count, kParts, part + 1); ++i) {
@@ -447,21 +462,6 @@ NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, co
   v.inner.resize(count);
   v.phi.resize(count);
   const double h = grid.spacing, cap = 2.0 * h;
-  // The inner distance only sets where an edge from a void node crosses the inner boundary, which
-  // no edge does unless its far node is outside the inner void: a node whose 26 neighbours (every
-  // tetrahedron edge from it) share its side never needs it, only its sign (the capped value).
-  const std::int64_t nxy = grid.nx * grid.ny;
-  auto crosses_inner = [&](std::int64_t node) {
-    const std::int64_t i = node % grid.nx, j = (node / grid.nx) % grid.ny, k = node / nxy;
-    const std::int8_t side = inner_inside[static_cast<std::size_t>(node)];
-    for (std::int64_t dk = -1; dk <= 1; ++dk)
-      for (std::int64_t dj = -1; dj <= 1; ++dj)
-        for (std::int64_t di = -1; di <= 1; ++di) {
-          if (i + di < 0 || i + di >= grid.nx || j + dj < 0 || j + dj >= grid.ny || k + dk < 0 || k + dk >= grid.nz) continue;
-          if (inner_inside[static_cast<std::size_t>(node + di + dj * grid.nx + dk * nxy)] != side) return true;
-        }
-    return false;
-  };
   pool.run_parts(kParts, [&](int part) {
     for (long n = split_point(static_cast<long>(count), kParts, part); n < split_point(static_cast<long>(count), kParts, part + 1); ++n) {
       const std::size_t i = static_cast<std::size_t>(n);
@@ -474,8 +474,7 @@ NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, co
         const Eigen::Vector3d p = grid.position(node);
         const ClosestPoint to_outer = closest_point(outer_bvh, p, level + cap);
         v.outer_distance[i] = to_outer.found ? to_outer.distance : level + cap;
-        const bool inside = inner_inside[static_cast<std::size_t>(node)] != 0;
-        v.inner[i] = crosses_inner(node) ? field.signed_distance(p, inside, cap) : inside ? cap : -cap;
+        v.inner[i] = field.signed_distance(p, inner_inside[static_cast<std::size_t>(node)] != 0, cap);
       }
       const double d_out = v.outer_distance[i];
       const double signed_out = outer_winding[static_cast<std::size_t>(node)] >= 1 ? d_out : -d_out;
