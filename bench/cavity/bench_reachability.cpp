@@ -1,7 +1,8 @@
 // Reachability (cavity/reachability.h) on one mesh as posed, with the tool's default lengths
 // (wall 1%, margin 0.2%, ground tolerance 0.1% of the diagonal, outer_max 2%): seconds for the
 // cells and for the programmes, and the answers, one line of figures per run.
-// usage: bench_reachability MESH GOAL [--fluid-density R] [--fill-density R] [--outer] [--threads N]
+// usage: bench_reachability MESH GOAL [--fluid-density R] [--fill-density R] [--outer] [--threads N] [--mid]
+//        [--no-cells-alone] (skip the separate timing of the cells, e.g. under callgrind)
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -17,13 +18,14 @@ using namespace offsetopt;
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: bench_reachability MESH GOAL [--fluid-density R] [--fill-density R] [--outer] [--threads N]\n");
+    std::fprintf(stderr, "usage: bench_reachability MESH GOAL [--fluid-density R] [--fill-density R] [--outer] [--threads N] [--mid] [--no-cells-alone]\n");
     return 2;
   }
   GoalSpec goal;
   if (!parse_goal_kind(argv[2], goal.kind)) return 2;
   goal.fluid_density = 0.8;
   ReachabilityOptions o;
+  bool cells_alone = true;
   Eigen::Vector3d center(0, 0, -1e300);  // roly-poly: the report's goal.sphere_center
   for (int i = 3; i < argc; ++i) {
     const std::string a = argv[i];
@@ -34,6 +36,8 @@ int main(int argc, char** argv) {
     else if (a == "--cells-per-wall" && i + 1 < argc) o.cells_per_wall = std::atof(argv[++i]);
     else if (a == "--node-margin-walls" && i + 1 < argc) o.node_margin = std::atof(argv[++i]);  // × wall, below
     else if (a == "--block" && i + 1 < argc) o.block = std::atoi(argv[++i]);
+    else if (a == "--mid") o.mid_reading = true;  // as optimize reads it (reachability_stage)
+    else if (a == "--no-cells-alone") cells_alone = false;
     else if (a == "--center" && i + 1 < argc) std::sscanf(argv[++i], "%lf,%lf,%lf", &center.x(), &center.y(), &center.z());
   }
   const Mesh mesh = load_mesh(argv[1]).mesh;
@@ -58,7 +62,7 @@ int main(int argc, char** argv) {
   for (const auto& p : st.support_polygon) centroid += p;
   centroid /= static_cast<double>(std::max<std::size_t>(1, st.support_polygon.size()));
   const TriangleBvh bvh(mesh.V, mesh.F);
-  {
+  if (cells_alone) {
     const auto t0 = std::chrono::steady_clock::now();
     CarvableCellsOptions co;
     co.wall = o.wall;

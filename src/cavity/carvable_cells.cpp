@@ -65,9 +65,12 @@ std::vector<std::int8_t> distance_band(const NodeGrid& g, const std::vector<std:
                   band[v] = low;
                   continue;
                 }
+                // Only the thresholds in [low, high) are open: a decision each, lowest first
+                // (d >= t for a threshold implies it for the lower ones).
                 ++per_part[part];
-                const ClosestPoint e = closest_point(bvh, p, top + g.spacing);
-                band[v] = count_below(e.found ? e.distance : kInf);
+                std::int8_t reached = low;
+                while (reached < high && !face_within(bvh, p, thresholds[static_cast<std::size_t>(reached)], true)) ++reached;
+                band[v] = reached;
               }
         }
   });
@@ -137,11 +140,13 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
   centres.nz = grid.nz - 1;
 
   // Nodes: inside with distance >= wall + margin (the contour's cavity nodes).
-  const std::vector<std::int8_t> node_winding = grid_winding(outer, grid, options.threads);
-  std::vector<std::int8_t> node_inside(node_winding.size());
-  for (std::size_t v = 0; v < node_winding.size(); ++v) node_inside[v] = node_winding[v] >= 1;
-  const std::vector<std::int8_t> deep =
-      distance_band(grid, node_inside, outer_bvh, {wall + out.margin}, options.threads, out.distance_queries);
+  std::vector<std::int8_t> deep;
+  if (options.strict) {
+    const std::vector<std::int8_t> node_winding = grid_winding(outer, grid, options.threads);
+    std::vector<std::int8_t> node_inside(node_winding.size());
+    for (std::size_t v = 0; v < node_winding.size(); ++v) node_inside[v] = node_winding[v] >= 1;
+    deep = distance_band(grid, node_inside, outer_bvh, {wall + out.margin}, options.threads, out.distance_queries);
+  }
 
   // Centres: the thresholds every reading needs, each answered by one band count.
   const double r = 0.5 * std::sqrt(3.0) * h;
@@ -179,7 +184,7 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
         for (std::int64_t i = 0; i < centres.nx; ++i) {
           const std::int64_t cell = grid.index(i, j, k);
           const std::size_t c = static_cast<std::size_t>(centres.index(i, j, k));
-          bool whole = true;
+          bool whole = options.strict;
           for (int corner = 0; corner < 8 && whole; ++corner)
             whole = deep[static_cast<std::size_t>(cell + (corner & 1) + ((corner >> 1) & 1) * grid.nx + ((corner >> 2) & 1) * nxy)] > 0;
           const bool inside = centre_winding[c] >= 1;

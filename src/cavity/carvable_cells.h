@@ -51,6 +51,10 @@ struct CarvableCellsOptions {
   double ground_z = 0.0;             // band: the ground plane (lowest vertex)
   double ground_tol = 0.0;           // band: >= 0
   int threads = 2;                   // 1..64; the result is the same for any count
+  // The inner reading needs a pass over the nodes (their winding and distance); the mid and outer
+  // readings only the centres. Without it `inner` stays empty (and `outer` is the same: a cell
+  // whose 8 nodes are a wall + margin deep has its centre deeper than wall − r).
+  bool strict = true;
 
   std::string check() const;
 };

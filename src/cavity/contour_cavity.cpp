@@ -285,12 +285,28 @@ std::vector<double> face_deficits(const TriangleBvh& outer_bvh, const Mesh& mesh
     for (int c = 0; c < 3; ++c) box.extend(corner(f, c));
     return box;
   };
+  // An outer face as the runs read it: its corners, its normal (not unit) and wall × |normal|,
+  // computed once per run rather than once per face of the run.
+  struct OuterFace {
+    Eigen::Vector3d g0, g1, g2, n;
+    double scale = 0.0;
+    const Aabb* box = nullptr;
+  };
   // The faces of one run against the outer faces gathered for the whole run.
-  auto measure_run = [&](const std::vector<long>& run, const Aabb& run_box, std::vector<int>& nearby) {
+  auto measure_run = [&](const std::vector<long>& run, const Aabb& run_box, std::vector<OuterFace>& nearby) {
     nearby.clear();
     outer_bvh.traverse([&](const Aabb& node) { return gap(node, run_box) < wall_squared; },
                        [&](int g) {
-                         if (gap(outer_bvh.face_box(g), run_box) < wall_squared) nearby.push_back(g);
+                         if (gap(outer_bvh.face_box(g), run_box) < wall_squared) {
+                           OuterFace o;
+                           o.g0 = outer_bvh.corner(g, 0);
+                           o.g1 = outer_bvh.corner(g, 1);
+                           o.g2 = outer_bvh.corner(g, 2);
+                           o.n = (o.g1 - o.g0).cross(o.g2 - o.g0);
+                           o.scale = wall * o.n.norm();
+                           o.box = &outer_bvh.face_box(g);
+                           nearby.push_back(o);
+                         }
                          return true;
                        });
     for (const long i : run) {
@@ -299,11 +315,10 @@ std::vector<double> face_deficits(const TriangleBvh& outer_bvh, const Mesh& mesh
       const Aabb box = face_box(f);
       const Eigen::Vector3d centroid = (a + b + c) / 3.0;
       double best = wall;
-      for (const int g : nearby) {
-        if (gap(outer_bvh.face_box(g), box) >= best * best) continue;
-        const Eigen::Vector3d g0 = outer_bvh.corner(g, 0), g1 = outer_bvh.corner(g, 1), g2 = outer_bvh.corner(g, 2);
-        const Eigen::Vector3d n = (g1 - g0).cross(g2 - g0);
-        const double scale = wall * n.norm();
+      for (const OuterFace& o : nearby) {
+        if (gap(*o.box, box) >= best * best) continue;
+        const Eigen::Vector3d &g0 = o.g0, &g1 = o.g1, &g2 = o.g2, &n = o.n;
+        const double scale = o.scale;
         const double sa = n.dot(a - g0), sb = n.dot(b - g0), sc = n.dot(c - g0);
         if ((sa >= scale && sb >= scale && sc >= scale) || (sa <= -scale && sb <= -scale && sc <= -scale)) continue;
         // The plane through g's point nearest the centroid, normal to the way there, has all of
@@ -320,7 +335,7 @@ std::vector<double> face_deficits(const TriangleBvh& outer_bvh, const Mesh& mesh
   };
   pool.run_parts(kParts, [&](int part) {
     std::vector<long> run;
-    std::vector<int> nearby;
+    std::vector<OuterFace> nearby;
     Aabb run_box;
     const long count = static_cast<long>(faces.size());
     for (long i = split_point(count, kParts, part); i < split_point(count, kParts, part + 1); ++i) {
@@ -391,7 +406,7 @@ std::int64_t keep_nodes_at_level(const TriangleBvh& outer_bvh, const NodeGrid& g
                   continue;
                 }
                 ++per_node[part];
-                if (closest_point(outer_bvh, node, level).found) s = 0;
+                if (face_within(outer_bvh, node, level)) s = 0;
               }
         }
   });

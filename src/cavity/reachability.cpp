@@ -172,7 +172,16 @@ struct Partition {
   std::vector<int> order;          // cells, block by block
   std::vector<Group> groups;
   double h = 0.0;                  // cell side, normalised
-  Vector10d cell_integrals(int c) const { return cube_integrals(cells[static_cast<std::size_t>(c)].x, h, Eigen::Vector3d::Zero()); }
+  // cube_integrals(centre, h, 0), the same arithmetic inlined: the block splits evaluate it for
+  // every cell of every block they look at.
+  Vector10d cell_integrals(int c) const {
+    const Eigen::Vector3d& x = cells[static_cast<std::size_t>(c)].x;
+    const double v = h * h * h, s = h * h / 12.0;
+    Vector10d out;
+    out << v, v * x.x(), v * x.y(), v * x.z(), v * (x.x() * x.x() + s), v * (x.y() * x.y() + s), v * (x.z() * x.z() + s),
+        v * x.x() * x.y(), v * x.y() * x.z(), v * x.z() * x.x();
+    return out;
+  }
 };
 
 Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t>& voids, const std::vector<std::int64_t>& band,
@@ -226,13 +235,42 @@ double form_on(const Form& f, const Vector10d& I, int sign) {
   return sign == -1 ? f.void_coefficients().dot(I) : sign == 1 ? f.solid.dot(I) : -f.solid.dot(I);
 }
 
-double form_value(const Form& f, const Vector10d& P0, const Partition& p, const std::vector<double>& u) {
+// The integrals an occupancy moves: carved out (void cells), added (band), shaved (skin), each
+// summed once over the groups, so that every row is then a 10-term dot product (a row per group
+// and row cost 10³× more on a round base with hundreds of edges).
+struct Moved {
+  Vector10d carved = Vector10d::Zero(), added = Vector10d::Zero(), shaved = Vector10d::Zero();
+};
+
+Moved moved_integrals(const Partition& p, const std::vector<double>& u) {
+  NeumaierSum sums[3][10];
+  for (std::size_t g = 0; g < p.groups.size(); ++g) {
+    if (u[g] == 0.0) continue;
+    const Group& grp = p.groups[g];
+    NeumaierSum* to = sums[grp.sign == -1 ? 0 : grp.sign == 1 ? 1 : 2];
+    for (int k = 0; k < 10; ++k) to[k].add(u[g] * grp.integrals(k));
+  }
+  Moved m;
+  for (int k = 0; k < 10; ++k) {
+    m.carved(k) = sums[0][k].value();
+    m.added(k) = sums[1][k].value();
+    m.shaved(k) = sums[2][k].value();
+  }
+  return m;
+}
+
+double form_value(const Form& f, const Vector10d& P0, const Moved& m) {
   NeumaierSum sum;
   sum.add(f.constant);
   sum.add(f.solid.dot(P0));
-  for (std::size_t g = 0; g < p.groups.size(); ++g)
-    if (u[g] != 0.0) sum.add(u[g] * form_on(f, p.groups[g].integrals, p.groups[g].sign));
+  sum.add(f.void_coefficients().dot(m.carved));
+  sum.add(f.solid.dot(m.added));
+  sum.add(-f.solid.dot(m.shaved));
   return sum.value();
+}
+
+double form_value(const Form& f, const Vector10d& P0, const Partition& p, const std::vector<double>& u) {
+  return form_value(f, P0, moved_integrals(p, u));
 }
 
 struct LpRun {
@@ -263,7 +301,8 @@ class Solver {
     std::vector<char> active(static_cast<std::size_t>(m), 0);
     auto values_at = [&](const std::vector<double>& u) {
       std::vector<double> v(static_cast<std::size_t>(m));
-      for (int k = 0; k < m; ++k) v[static_cast<std::size_t>(k)] = form_value(rows[static_cast<std::size_t>(k)], f_.P0, p, u) / V0;
+      const Moved moved = moved_integrals(p, u);
+      for (int k = 0; k < m; ++k) v[static_cast<std::size_t>(k)] = form_value(rows[static_cast<std::size_t>(k)], f_.P0, moved) / V0;
       return v;
     };
     auto add_lowest = [&](const std::vector<double>& v, double z, int count, double below) {
@@ -453,12 +492,13 @@ MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, con
   // else from a margin of minus the diagonal.
   double t = -1.0;
   bool solid_ok = true;
-  for (const Form& f0 : rows.plain) solid_ok = solid_ok && form_value(f0, f.P0, p, warm) >= 0.0;
+  const Moved none = moved_integrals(p, warm);
+  for (const Form& f0 : rows.plain) solid_ok = solid_ok && form_value(f0, f.P0, none) >= 0.0;
   if (solid_ok && nr > 0) {
     t = kInf;
     for (int j = 0; j < nr; ++j)
-      t = std::min(t, form_value(rows.numerators[static_cast<std::size_t>(j)], f.P0, p, warm) /
-                          form_value(rows.denominators[static_cast<std::size_t>(j)], f.P0, p, warm));
+      t = std::min(t, form_value(rows.numerators[static_cast<std::size_t>(j)], f.P0, none) /
+                          form_value(rows.denominators[static_cast<std::size_t>(j)], f.P0, none));
     t = std::max(t, -1.0);
   }
   for (int it = 0; it < cap; ++it) {
@@ -471,9 +511,10 @@ MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, con
     s.feasible = true;
     double t_new = kInf;
     int arg = -1;
+    const Moved moved = moved_integrals(p, run.u);
     for (int j = 0; j < nr; ++j) {
-      const double ratio = form_value(rows.numerators[static_cast<std::size_t>(j)], f.P0, p, run.u) /
-                           form_value(rows.denominators[static_cast<std::size_t>(j)], f.P0, p, run.u);
+      const double ratio = form_value(rows.numerators[static_cast<std::size_t>(j)], f.P0, moved) /
+                           form_value(rows.denominators[static_cast<std::size_t>(j)], f.P0, moved);
       if (ratio < t_new) {
         t_new = ratio;
         arg = j;
@@ -574,7 +615,8 @@ std::optional<double> lowest_cz(Solver& solver, Partition& p, const GoalRows& ro
   for (int it = 0; it < cap; ++it) {
     Form obj;
     obj.solid = -(Z.solid - theta * M.solid);
-    const LpRun run = solver.solve(p, constraints, 0, false, &obj, warm);
+    // The ratio rows (at the margin) by row generation too: a round base has hundreds of edges.
+    const LpRun run = solver.solve(p, constraints, static_cast<int>(rows.numerators.size()), false, &obj, warm);
     if (run.status != LpStatus::optimal) break;
     const double next = form_value(Z, f.P0, p, run.u) / form_value(M, f.P0, p, run.u);
     if (!best || next < *best) {
@@ -679,6 +721,7 @@ Reachability reachability(const Mesh& input, const TriangleBvh& input_bvh, const
   co.ground_z = ground_z;
   co.ground_tol = options.ground_tol;
   co.threads = options.threads;
+  co.strict = !options.mid_reading;  // the mid reading replaces the inner one
   auto cells = std::make_shared<CarvableCells>(carvable_cells(input, input_bvh, co));
   if (!cells->ok) {
     Reachability r;

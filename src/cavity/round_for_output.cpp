@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include "geometry/bvh.h"
@@ -15,7 +16,7 @@ namespace offsetopt {
 namespace {
 
 using Pair = std::pair<int, int>;
-constexpr std::size_t kPairCap = 100000;
+constexpr std::size_t kPairCap = kRoundingPairCap;
 
 double nearest_float(double x) { return static_cast<double>(static_cast<float>(x)); }
 
@@ -66,9 +67,11 @@ class Repair {
     slack_ = 4.0 * (2 * kRoundingSearchUlps + 1) * float_ulp(largest_coordinate(original));
   }
 
-  // New defects (pairs and collinear faces) of the mesh as it is now.
-  long long new_defects(std::vector<int>* faces) const {
-    const IntersectingFaces found = self_intersections(TriangleBvh(mesh_.V, mesh_.F), kPairCap);
+  // New defects (pairs and collinear faces) of the mesh as it is now; `found` gets its pairs and
+  // `tree` the tree they were searched in.
+  long long new_defects(std::vector<int>* faces, IntersectingFaces& found, std::shared_ptr<const TriangleBvh>& tree) const {
+    tree = std::make_shared<const TriangleBvh>(mesh_.V, mesh_.F);
+    found = self_intersections(*tree, kPairCap);
     long long count = 0;
     for (const Pair& p : found.pairs)
       if (!std::binary_search(reference_.begin(), reference_.end(), p)) {
@@ -182,22 +185,25 @@ Mesh nearest_floats(const Mesh& mesh) {
   return out;
 }
 
-// Rounds `mesh` into `rounded` (already at nearest floats) and repairs; returns the defects left.
-long long repair(const Mesh& mesh, Mesh& rounded, const std::vector<char>& frozen, bool has_reference, int& rounds) {
+// Rounds `mesh` into `rounded` (already at nearest floats) and repairs; returns the defects left,
+// and in `found` the pairs of the last search, which was of `rounded` as it is returned (a pass
+// that moves nothing ends the repair before another search).
+long long repair(const Mesh& mesh, Mesh& rounded, const std::vector<char>& frozen, bool has_reference, int& rounds,
+                 IntersectingFaces& found, std::shared_ptr<const TriangleBvh>& tree) {
   std::vector<Pair> reference;
   Repair probe(mesh, rounded, frozen, {});
   std::vector<int> faces;
-  long long left = probe.new_defects(&faces);
+  long long left = probe.new_defects(&faces, found, tree);
   if (left == 0) return 0;
   if (has_reference) reference = self_intersections(TriangleBvh(mesh.V, mesh.F), kPairCap).pairs;
   Repair fix(mesh, rounded, frozen, reference);
   faces.clear();
-  left = fix.new_defects(&faces);
+  left = fix.new_defects(&faces, found, tree);
   for (int round = 0; round < kRoundingRepairRounds && left > 0; ++round) {
     ++rounds;
     if (!fix.pass(faces)) break;
     faces.clear();
-    left = fix.new_defects(&faces);
+    left = fix.new_defects(&faces, found, tree);
   }
   return left;
 }
@@ -213,7 +219,9 @@ RoundedForOutput round_for_output(const Mesh& outer, const Mesh& inner, const st
     return out;
   }
   out.outer = nearest_floats(outer);
-  out.outer_new_pairs = repair(outer, out.outer, {}, true, out.repair_rounds);
+  IntersectingFaces outer_found;
+  std::shared_ptr<const TriangleBvh> outer_tree;
+  out.outer_new_pairs = repair(outer, out.outer, {}, true, out.repair_rounds, outer_found, outer_tree);
   out.inner = nearest_floats(inner);
   std::vector<char> frozen;
   if (!shared.empty() && inner.V.rows() == outer.V.rows()) {
@@ -222,7 +230,8 @@ RoundedForOutput round_for_output(const Mesh& outer, const Mesh& inner, const st
       if (shared[static_cast<std::size_t>(i)]) out.inner.V.row(i) = out.outer.V.row(i);
   }
   // New pairs only: pairs the unrounded cavity has already are refused by the verification.
-  out.inner_new_pairs = repair(inner, out.inner, frozen, true, out.repair_rounds);
+  out.inner_new_pairs = repair(inner, out.inner, frozen, true, out.repair_rounds, out.inner_pairs, out.inner_tree);
+  out.inner_searched = true;
   for (const auto* pair : {&outer, &inner}) {
     const Mesh& rounded = pair == &outer ? out.outer : out.inner;
     for (Eigen::Index i = 0; i < pair->V.rows(); ++i)

@@ -14,8 +14,11 @@
 //
 // Lengths in input units; the meshes keep their connectivity and vertex order.
 #pragma once
+#include <memory>
 #include <vector>
 
+#include "geometry/bvh.h"
+#include "geometry/intersecting_faces.h"
 #include "mesh/mesh.h"
 #include "meshio/write_mesh.h"
 
@@ -23,6 +26,7 @@ namespace offsetopt {
 
 constexpr int kRoundingSearchUlps = 2;
 constexpr int kRoundingRepairRounds = 4;
+constexpr std::size_t kRoundingPairCap = 100000;
 
 struct RoundedForOutput {
   Mesh outer, inner;                  // as they read back
@@ -30,6 +34,12 @@ struct RoundedForOutput {
   long long inner_new_pairs = 0;      // new intersecting face pairs, new collinear faces
   int vertices_moved = 0;             // vertices not at their nearest float32 point
   int repair_rounds = 0;
+  // The self-intersecting face pairs of `inner` as it is now (geometry/intersecting_faces.h's
+  // search, capped at kRoundingPairCap), kept so the verification need not search it again: the
+  // repair's last search was of this very mesh. Not searched with StoredPrecision::exact.
+  bool inner_searched = false;
+  IntersectingFaces inner_pairs;
+  std::shared_ptr<const TriangleBvh> inner_tree;  // the tree of that search (default options)
 };
 
 // `shared` (empty, or one flag per vertex when outer and inner share connectivity) marks inner

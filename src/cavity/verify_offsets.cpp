@@ -85,7 +85,8 @@ long long unmatched_edges(const Mesh& mesh) {
 }  // namespace
 
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
-                                    const std::vector<char>& left_solid, double thin_below, int threads) {
+                                    const std::vector<char>& left_solid, double thin_below, int threads,
+                                    const IntersectingFaces* inner_self, const TriangleBvh* inner_tree) {
   // The two trees, then the two intersection searches, on two threads when there are: the same
   // result either way.
   WorkerPool pool(std::min(std::max(threads, 1), 2));
@@ -99,18 +100,25 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   }
   const Mesh& inner_free = any_fixed ? inner_kept : inner;
   const Mesh& outer_free = any_fixed ? outer_kept : outer;
-  TriangleBvh inner_bvh, outer_bvh;
+  TriangleBvh inner_built, outer_bvh;
+  const bool have_tree = inner_tree && !any_fixed;
   pool.run_parts(2, [&](int part) {
-    if (part == 0) inner_bvh = TriangleBvh(inner_free.V, inner_free.F);
-    else outer_bvh = TriangleBvh(outer_free.V, outer_free.F);
+    if (part == 0 && !have_tree) inner_built = TriangleBvh(inner_free.V, inner_free.F);
+    if (part == 1) outer_bvh = TriangleBvh(outer_free.V, outer_free.F);
   });
+  const TriangleBvh& inner_bvh = have_tree ? *inner_tree : inner_built;
   const std::size_t cap = 100000;
+  const bool known = inner_self && !any_fixed && !inner_self->truncated;
   IntersectingFaces self_part[2], crossing;
-  pool.run_parts(2, [&](int part) {
-    self_part[part] = self_intersections_part(inner_bvh, part, cap);
-    if (part == 1) crossing = intersecting_faces(inner_bvh, outer_bvh, cap);
-  });
-  const IntersectingFaces self = merge_intersections(self_part[0], self_part[1], cap);
+  if (known) {
+    crossing = intersecting_faces(inner_bvh, outer_bvh, cap);
+  } else {
+    pool.run_parts(2, [&](int part) {
+      self_part[part] = self_intersections_part(inner_bvh, part, cap);
+      if (part == 1) crossing = intersecting_faces(inner_bvh, outer_bvh, cap);
+    });
+  }
+  const IntersectingFaces self = known ? *inner_self : merge_intersections(self_part[0], self_part[1], cap);
   SurfaceDefects d;
   d.self_intersection_pairs = self.pairs.size();
   d.crossing_pairs = crossing.pairs.size();
@@ -268,7 +276,11 @@ Verification verify_offsets(const VerifyInput& in) {
   const std::size_t goal_failures = out.failures.size();
   // The wall is met up to rounding: 1e-9 of it.
   const double thin_below = in.wall * (1.0 - 1e-9);
-  const SurfaceDefects defects = find_surface_defects(outer, inner, in.fixed, {}, thin_below, in.threads);
+  // The rounding searched the cavity as written already (cavity/round_for_output.h).
+  const bool searched = in.rounding && in.rounding->inner_searched && in.inner == &in.rounding->inner;
+  const SurfaceDefects defects =
+      find_surface_defects(outer, inner, in.fixed, {}, thin_below, in.threads, searched ? &in.rounding->inner_pairs : nullptr,
+                           searched ? in.rounding->inner_tree.get() : nullptr);
   ValidityFigures& v = out.validity.emplace();
   v.inner_self_intersections = static_cast<long long>(defects.self_intersection_pairs);
   v.inner_outer_crossings = static_cast<long long>(defects.crossing_pairs);

@@ -33,8 +33,12 @@ struct SurfaceDefects {
 };
 // `threads` (>= 1) splits the tree builds and the intersection searches; the result is the same
 // for any count.
+// `inner_self` and `inner_tree`, when given, are inner's own self-intersection search
+// (self_intersections with a cap of 100000) and its tree (default options): when nothing is fixed
+// they are used instead of searching and building again (the search only when not truncated).
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
-                                    const std::vector<char>& left_solid, double thin_below, int threads = 2);
+                                    const std::vector<char>& left_solid, double thin_below, int threads = 2,
+                                    const IntersectingFaces* inner_self = nullptr, const TriangleBvh* inner_tree = nullptr);
 
 struct VerifyInput {
   const Mesh* outer = nullptr;  // outer surface (the input itself without outer offsets)

@@ -1,6 +1,7 @@
 #include "geometry/closest_point.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace offsetopt {
 
@@ -82,6 +83,41 @@ ClosestPoint closest_point(const TriangleBvh& bvh, const Eigen::Vector3d& p, dou
   }
   if (best.found) best.distance = (best.point - p).norm();
   return best;
+}
+
+bool face_within(const TriangleBvh& bvh, const Eigen::Vector3d& p, double radius, bool by_root) {
+  if (bvh.empty() || !(radius > 0.0)) return false;
+  const double limit = radius * radius;
+  // Boxes are pruned a hair more loosely than faces are judged, so a face the exact test would
+  // accept is never pruned away by rounding (|q − p| < r can hold with |q − p|² a little above r²).
+  const double prune = by_root ? limit * (1.0 + 1e-12) : limit;
+  auto near = [&](double squared) { return by_root ? std::sqrt(squared) < radius : squared < limit; };
+  const auto& nodes = bvh.nodes();
+  int stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const BvhNode& node = nodes[static_cast<std::size_t>(stack[--top])];
+    if (squared_box_distance(node.box, p) > prune) continue;
+    if (node.is_leaf()) {
+      for (int k = node.first; k < node.first + node.count; ++k) {
+        const int face = bvh.leaf_faces()[static_cast<std::size_t>(k)];
+        const Eigen::Vector3d q = closest_point_on_triangle(p, bvh.corner(face, 0), bvh.corner(face, 1), bvh.corner(face, 2));
+        if (near((q - p).squaredNorm())) return true;
+      }
+      continue;
+    }
+    const double dl = squared_box_distance(nodes[static_cast<std::size_t>(node.left)].box, p);
+    const double dr = squared_box_distance(nodes[static_cast<std::size_t>(node.right)].box, p);
+    if (dl <= dr) {
+      stack[top++] = node.right;
+      stack[top++] = node.left;
+    } else {
+      stack[top++] = node.left;
+      stack[top++] = node.right;
+    }
+  }
+  return false;
 }
 
 }  // namespace offsetopt

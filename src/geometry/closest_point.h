@@ -26,4 +26,10 @@ ClosestPoint closest_point(const TriangleBvh& bvh, const Eigen::Vector3d& p,
                            double max_distance = std::numeric_limits<double>::infinity(),
                            const std::vector<int>& ignored_faces = {});
 
+// Whether some face lies nearer than `radius` to p: closest_point(bvh, p, radius).found, and with
+// `by_root` whether closest_point(bvh, p).distance < radius, to the last bit either way; but it
+// stops at the first such face (a decision, not a search: the grid passes that only ask "at least
+// a wall deep?" take it).
+bool face_within(const TriangleBvh& bvh, const Eigen::Vector3d& p, double radius, bool by_root = false);
+
 }  // namespace offsetopt

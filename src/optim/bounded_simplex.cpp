@@ -13,6 +13,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr std::size_t kCandidatesPerPass = 64;
+constexpr int kPricingWindow = 1024;  // columns priced per window, at least (an eighth of them when more)
 
 // The simplex state over n structural columns, m slacks and m artificials (index n + i and
 // n + m + i for row i).
@@ -145,18 +146,32 @@ class Simplex {
     int degenerate_run = 0;
     bool bland = false;
     std::vector<std::pair<double, int>> candidates;
+    const int total = n_ + 2 * m_;
+    // Partial pricing: a pass prices windows of columns, from where the last one stopped, until
+    // one holds candidates; optimality needs a whole cycle without any. Bland's rule prices from
+    // the first column.
+    const int window = std::max(kPricingWindow, total / 8);
+    Eigen::VectorXd priced;
     for (;;) {
       const Eigen::VectorXd y = duals();
       ++r.pricing_passes;
       candidates.clear();
-      const Eigen::VectorXd priced = lp_.A.transpose() * y;  // one product for every structural column
-      for (int var = 0; var < n_ + 2 * m_; ++var) {
-        if (position_[static_cast<std::size_t>(var)] >= 0 || lo_[var] == hi_[var]) continue;
-        const double d = cost_[var] - (var < n_ ? priced(var) : column_dot(var, y));
-        const bool up = d > tol && value_[var] < hi_[var], down = d < -tol && value_[var] > lo_[var];
-        if (!up && !down) continue;
-        candidates.emplace_back(std::fabs(d) * (up ? 1.0 : -1.0), var);
-        if (bland) break;  // the lowest attractive index
+      if (bland) window_start_ = 0;
+      for (int scanned = 0; scanned < total && candidates.empty();) {
+        const int begin = window_start_, end = bland ? total : std::min(total, begin + window);
+        const int structural_end = std::min(end, n_);
+        if (structural_end > begin) priced.noalias() = lp_.A.middleCols(begin, structural_end - begin).transpose() * y;
+        for (int var = begin; var < end; ++var) {
+          if (position_[static_cast<std::size_t>(var)] >= 0 || lo_[var] == hi_[var]) continue;
+          const double d = cost_[var] - (var < n_ ? priced(var - begin) : column_dot(var, y));
+          const bool up = d > tol && value_[var] < hi_[var], down = d < -tol && value_[var] > lo_[var];
+          if (!up && !down) continue;
+          candidates.emplace_back(std::fabs(d) * (up ? 1.0 : -1.0), var);
+          if (bland) break;  // the lowest attractive index
+        }
+        scanned += end - begin;
+        window_start_ = end == total ? 0 : end;
+        if (bland) break;
       }
       if (candidates.empty()) {
         // Confirm on a fresh factorisation before claiming optimality.
@@ -173,8 +188,19 @@ class Simplex {
       const std::size_t keep = std::min<std::size_t>(candidates.size(), kCandidatesPerPass);
       std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(keep), candidates.end(), first);
       candidates.resize(keep);
-      bool pivoted = false;
-      for (const auto& [signed_d, var] : candidates) {
+      // After a pivot the duals change, but only the remaining candidates are priced again (m
+      // each, not a pass over every column): a pass then serves many pivots, which matters when
+      // most steps are pivots (a few rows, many columns entering and leaving between 0 and 1).
+      Eigen::VectorXd y_now = y;
+      bool duals_moved = false;
+      for (auto& [signed_d, var] : candidates) {
+        if (duals_moved) {
+          if (position_[static_cast<std::size_t>(var)] >= 0) continue;
+          const double d = cost_[var] - column_dot(var, y_now);
+          const bool up = d > tol && value_[var] < hi_[var], down = d < -tol && value_[var] > lo_[var];
+          if (!up && !down) continue;
+          signed_d = std::fabs(d) * (up ? 1.0 : -1.0);
+        }
         if (r.iterations >= o_.max_iterations) return LpStatus::iteration_cap;
         ++r.iterations;
         const double dir = signed_d > 0.0 ? 1.0 : -1.0;
@@ -193,13 +219,13 @@ class Simplex {
         const double theta = theta_basis;
         const bool degenerate = theta * std::fabs(signed_d) <= 1e-14;
         degenerate_run = degenerate ? degenerate_run + 1 : 0;
+        const bool was_bland = bland;
         bland = degenerate_run >= o_.degenerate_before_bland;
         pivot(var, leave, alpha, dir, theta);
-        pivoted = true;
-        break;
-      }
-      if (pivoted && pivots_since_refactor_ >= o_.refactor_every) {
-        if (!refactor()) return LpStatus::numerical;
+        if (pivots_since_refactor_ >= o_.refactor_every && !refactor()) return LpStatus::numerical;
+        if (bland || was_bland) break;  // Bland's rule prices every column again
+        y_now = duals();
+        duals_moved = true;
       }
     }
   }
@@ -271,6 +297,7 @@ class Simplex {
   std::vector<int> position_, basis_;
   Eigen::MatrixXd binv_;
   int pivots_since_refactor_ = 0, flips_since_refactor_ = 0;
+  int window_start_ = 0;
 };
 
 }  // namespace

@@ -73,6 +73,14 @@ TEST_CASE("carvable cells: a box's inner and outer sets match its distance field
   CHECK(static_cast<double>(inner) * cells.cell_volume() < shrunk);
   CHECK(static_cast<double>(outer) * cells.cell_volume() > shrunk);
   CHECK(cells.band_inner.empty());
+  // Without the node pass: no inner reading, the same outer and mid ones.
+  o.strict = false;
+  const CarvableCells centres_only = carvable_cells(box, bvh, o);
+  REQUIRE(centres_only.ok);
+  CHECK(centres_only.inner.empty());
+  CHECK(centres_only.outer == cells.outer);
+  CHECK(centres_only.mid == cells.mid);
+  CHECK(!cells.mid.empty());
 }
 
 TEST_CASE("carvable cells: the outer band of a box, above the kept base, with the same answer on one thread") {
@@ -108,6 +116,13 @@ TEST_CASE("carvable cells: the outer band of a box, above the kept base, with th
   CHECK(serial.outer == cells.outer);
   CHECK(serial.band_inner == cells.band_inner);
   CHECK(serial.band_outer == cells.band_outer);
+  o.strict = false;
+  const CarvableCells centres_only = carvable_cells(box, bvh, o);
+  CHECK(centres_only.outer == cells.outer);
+  CHECK(centres_only.mid == cells.mid);
+  CHECK(centres_only.band_inner == cells.band_inner);
+  CHECK(centres_only.band_outer == cells.band_outer);
+  CHECK(centres_only.skin_outer == cells.skin_outer);
 }
 
 TEST_CASE("carvable cells: cube integrals against the product of one-dimensional moments") {

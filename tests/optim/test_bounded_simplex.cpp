@@ -157,6 +157,42 @@ TEST_CASE("bounded simplex: many columns, few rows, warm start: the duality cond
   CHECK(warm.iterations < r.iterations);
 }
 
+TEST_CASE("bounded simplex: many pricing windows and near-equality row pairs: the duality conditions hold") {
+  // Past 8192 columns a pass prices an eighth of them at a time, and after a pivot only the pass's
+  // candidates are priced again: optimality must still hold over every column. Pairs of rows a
+  // hair apart (the reach programme's axis rows) make most steps pivots.
+  Rng rng(19);
+  int optimal = 0;
+  for (int trial = 0; trial < 4; ++trial) {
+    const int m = 3 + 2 * trial, n = 9000 + 2500 * trial;
+    LinearProgram lp = random_lp(rng, m, n, false);
+    VectorXd inside(n);
+    for (int j = 0; j < n; ++j) inside(j) = rng.uniform(lp.lower(j), lp.upper(j));
+    for (int pair = 0; pair < 2; ++pair) {
+      VectorXd a(n);
+      for (int j = 0; j < n; ++j) a(j) = rng.uniform(-1.0, 1.0);
+      const double centre = a.dot(inside);
+      lp.A.conservativeResize(lp.A.rows() + 2, Eigen::NoChange);
+      lp.A.row(lp.A.rows() - 2) = a.transpose();
+      lp.A.row(lp.A.rows() - 1) = a.transpose();
+      lp.b.conservativeResize(lp.b.size() + 2);
+      lp.b(lp.b.size() - 2) = centre + 1e-6;
+      lp.b(lp.b.size() - 1) = centre - 1e-6;
+      lp.sense.push_back(RowSense::less_equal);
+      lp.sense.push_back(RowSense::greater_equal);
+    }
+    const LpResult r = bounded_simplex(lp);
+    if (r.status == LpStatus::infeasible) {
+      CHECK(farkas_gap(lp, r.y) > 0.0);
+      continue;
+    }
+    REQUIRE(r.status == LpStatus::optimal);
+    check_optimality(lp, r, 1e-8);
+    ++optimal;
+  }
+  CHECK(optimal >= 3);
+}
+
 TEST_CASE("bounded simplex: a degenerate vertex (many rows through one point) and a free column") {
   // max x + y + z s.t. x + y <= 1, y + z <= 1, x + z <= 1, x + y + z <= 1.5, x - y <= 0, y - x <= 0,
   // 0 <= x, y, z <= 1: every row is active at (0.5, 0.5, 0.5); objective 1.5.
