@@ -6,7 +6,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "geometry/bvh.h"
+#include "geometry/closest_point.h"
 #include "geometry/cotan_laplacian.h"
+#include "skeleton/decimate_mesh.h"
+#include "util/parallel.h"
 #include "sparse/fill_reducing_ordering.h"
 #include "sparse/supernodal_cholesky.h"
 
@@ -35,6 +39,55 @@ Measures measure(const Vertices& X, const Faces& F) {
   return m;
 }
 
+// Contracts the decimated copy and carries its positions back to every input vertex.
+ContractionResult coarse_to_fine(const Vertices& V, const Faces& F, const ContractionOptions& options) {
+  const DecimatedMesh coarse = decimate_mesh(V, F, options.coarse_vertices);
+  ContractionOptions on_coarse = options;
+  on_coarse.coarse_above = 0;
+  ContractionResult result = laplacian_contraction(coarse.mesh.V, coarse.mesh.F, on_coarse);
+  const Vertices contracted = std::move(result.V);
+  result.V = V;
+  if (result.status == ContractionStatus::degenerate_input) return result;
+  const TriangleBvh bvh(coarse.mesh.V, coarse.mesh.F);
+  const Eigen::Index n = V.rows();
+  // Each vertex on its own: a fixed partition, the same numbers for any thread count.
+  const auto carry = [&](Eigen::Index begin, Eigen::Index end) {
+    for (Eigen::Index i = begin; i < end; ++i) {
+      const int kept = coarse.coarse_vertex[static_cast<std::size_t>(i)];
+      if (kept >= 0) {
+        result.V.row(i) = contracted.row(kept);
+        continue;
+      }
+      const Eigen::Vector3d p = V.row(i).transpose();
+      const ClosestPoint nearest = closest_point(bvh, p);
+      if (!nearest.found) continue;
+      const Eigen::Index face = nearest.face;
+      const Eigen::Vector3d a = coarse.mesh.V.row(coarse.mesh.F(face, 0)), b = coarse.mesh.V.row(coarse.mesh.F(face, 1)),
+                            c = coarse.mesh.V.row(coarse.mesh.F(face, 2));
+      // Barycentric coordinates of the closest point (on the triangle, so in [0, 1]).
+      const Eigen::Vector3d e0 = b - a, e1 = c - a, d = nearest.point - a;
+      const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1), d20 = d.dot(e0), d21 = d.dot(e1);
+      const double denominator = d00 * d11 - d01 * d01;
+      double wb = 0.0, wc = 0.0;
+      if (denominator > 0.0) {
+        wb = std::clamp((d11 * d20 - d01 * d21) / denominator, 0.0, 1.0);
+        wc = std::clamp((d00 * d21 - d01 * d20) / denominator, 0.0, 1.0 - wb);
+      }
+      const double wa = 1.0 - wb - wc;
+      result.V.row(i) = wa * contracted.row(coarse.mesh.F(face, 0)) + wb * contracted.row(coarse.mesh.F(face, 1)) +
+                        wc * contracted.row(coarse.mesh.F(face, 2));
+    }
+  };
+  constexpr Eigen::Index kVerticesPerThread = 4096;
+  const int threads =
+      execution_policy(options.threads, static_cast<double>(n), 2.0 * kVerticesPerThread) == ExecutionPolicy::parallel
+          ? static_cast<int>(std::min<Eigen::Index>(options.threads, n / kVerticesPerThread))
+          : 1;
+  WorkerPool pool(threads);
+  pool.run([&](int part) { carry(split_point(n, pool.size(), part), split_point(n, pool.size(), part + 1)); });
+  return result;
+}
+
 }  // namespace
 
 std::string ContractionOptions::check() const {
@@ -56,6 +109,9 @@ std::string ContractionOptions::check() const {
   if (!(area_ratio_floor > 0.0 && area_ratio_floor < 1.0))
     return "ContractionOptions::area_ratio_floor must be in (0, 1)";
   if (!(threads >= 1 && threads <= 256)) return "ContractionOptions::threads must be in [1, 256]";
+  if (!(coarse_above >= 0)) return "ContractionOptions::coarse_above must be >= 0";
+  if (coarse_above > 0 && !(coarse_vertices >= 100 && coarse_vertices <= coarse_above))
+    return "ContractionOptions::coarse_vertices must be in [100, coarse_above]";
   return std::string();
 }
 
@@ -79,6 +135,8 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k)
       if (F(f, k) < 0 || F(f, k) >= n) throw std::invalid_argument("laplacian_contraction: face index out of range");
+  if (options.coarse_above > 0 && n > options.coarse_above) return coarse_to_fine(V, F, options);
+  result.contracted_vertices = n;
 
   const Eigen::RowVector3d lo = V.colwise().minCoeff(), hi = V.colwise().maxCoeff();
   const double diagonal = (hi - lo).norm();
