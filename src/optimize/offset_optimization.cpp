@@ -261,14 +261,17 @@ struct Band {
 
 std::string make_band(const Mesh& input, const OptimizeOptions& options, const Frame& f, Band& b) {
   const Eigen::Index n = input.V.rows();
+  const auto& tick = options.on_stage_progress;
   ContractionOptions contraction_options;
   contraction_options.threads = options.threads;
+  if (tick) contraction_options.on_progress = [&tick](double fraction) { tick("skeleton", 0.7 * fraction); };
   b.contraction = laplacian_contraction(input.V, input.F, contraction_options);
   b.bvh = TriangleBvh(input.V, input.F);
   b.input_self = find_self_intersections(input, 100000);
   OffsetFieldOptions field_options;
   field_options.wall = f.wall;
   field_options.threads = options.threads;
+  if (tick) tick("skeleton", 0.75);
   b.field = offset_field(input, b.contraction.V, b.bvh, field_options);
   OffsetBand& band = b.band;
   band.inner_direction = b.field.inner;
@@ -412,8 +415,14 @@ class OffsetSolve {
       p.initial_inequality_multipliers = solved.inequality_multipliers;
       p.initial_penalty = std::min(solved.penalty, options_.warm_penalty_cap);
     }
+    if (options_.on_stage_progress && !options_.trace_solver)
+      p.on_outer_iteration = [tick = options_.on_stage_progress, cap = p.max_outer_iterations](const AlIterationInfo& info) {
+        tick("solve", std::min(0.99, static_cast<double>(info.outer_iteration) / cap));
+      };
     if (options_.trace_solver)
-      p.on_outer_iteration = [say = say_, round](const AlIterationInfo& info) {
+      p.on_outer_iteration = [say = say_, round, tick = options_.on_stage_progress,
+                              cap = p.max_outer_iterations](const AlIterationInfo& info) {
+        if (tick) tick("solve", std::min(0.99, static_cast<double>(info.outer_iteration) / cap));
         say("  round " + std::to_string(round) + " outer " + std::to_string(info.outer_iteration) + ": f " +
             format_double(info.f) + ", violation " + format_double(info.max_violation) + ", stationarity " +
             format_double(info.stationarity) + ", penalty " + format_double(info.penalty) + ", inner " +
@@ -500,6 +509,8 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
   verify_input.threads = options.threads;
   verify_input.precision = options.output_precision;
   if (options.outer) verify_input.outer_own_pairs = &b.input_pairs;
+  const auto& tick = options.on_stage_progress;
+  if (tick) tick("verify", -1.0);
   c.verification = verify_offsets(verify_input);
   // As written: rounded to the output's precision and verified again (only when it can pass:
   // on real meshes the offset surface rarely verifies even unrounded).
@@ -515,6 +526,7 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
     offset_written.inner = solve.inner;
   }
   timings.verify = seconds_since(stage_start);
+  if (tick) tick("verify", 1.0);
   c.summary.mode = options.cavity;
   c.summary.offset_goal_met = c.verification.goal_met;
   c.summary.offset_valid = c.verification.valid;
@@ -541,6 +553,8 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
     std::vector<ContourRound>& rounds = c.summary.rounds.emplace();
     double contour_seconds = 0.0;
     for (int round = 0;; ++round) {
+      // Most runs need one or two rounds; the estimate is the round over the rounds allowed.
+      if (tick) tick("contour", static_cast<double>(round) / (options.max_correction_rounds + 1));
       const auto contour_start = Clock::now();
       const TriangleBvh outer_offset_bvh = options.outer ? TriangleBvh(solve.outer.V, solve.outer.F) : TriangleBvh();
       const ContourCavity contoured =
@@ -585,6 +599,7 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
       if (!will_correct) break;
       solve.correct(delta, round + 1);
     }
+    if (tick) tick("contour", 1.0);
     timings.contour = contour_seconds;
     timings.correct = seconds_since(stage_start) - contour_seconds;
   }
@@ -847,10 +862,14 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     ManifoldHarmonicsOptions basis_options;
     basis_options.kind = options.basis;
     basis_options.lanczos.threads = options.threads;
-    const auto compute_basis = [&normalized = f.normalized, k, basis_options]() {
+    const auto& tick = options.on_stage_progress;
+    if (tick) basis_options.lanczos.on_progress = [&tick](double fraction) { tick("basis", fraction); };
+    const auto compute_basis = [&normalized = f.normalized, k, basis_options, &tick]() {
       const auto start = Clock::now();
       BasisOutcome outcome;
+      if (tick) tick("basis", 0.0);
       outcome.harmonics = manifold_harmonics(normalized, k, basis_options);
+      if (tick) tick("basis", 1.0);
       outcome.seconds = seconds_since(start);
       return outcome;
     };
@@ -865,19 +884,24 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   // than the skeleton, so the programme mostly fills the wait. A goal no void reaches stops here
   // (the basis in flight is waited for, at most its own time).
   say("reachability: can any void reach the goal?");
+  const auto& tick = options.on_stage_progress;
+  if (tick) tick("reachability", -1.0);
   stage_start = Clock::now();
   ReachabilitySummary reach = reachability_stage({&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
                                                   options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
                                                   options.threads});
   timings.reach = seconds_since(stage_start);
+  if (tick) tick("reachability", 1.0);
   if (reach.decided && !reach.reachable) return refuse_unreachable(input, f, std::move(reach), timings, total_start);
 
   say("skeleton: contracting " + std::to_string(n) + " vertices");
   stage_start = Clock::now();
   Band b;
+  if (tick) tick("skeleton", 0.0);
   if (const std::string problem = make_band(input, options, f, b); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
   timings.skeleton = seconds_since(stage_start);
+  if (tick) tick("skeleton", 1.0);
 
   // Basis: its own seconds, which overlap the skeleton's.
   Eigen::MatrixXd basis;
@@ -909,8 +933,10 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   if (const std::string problem_text = reduced_options.check(); !problem_text.empty())
     return failure(OptimizeStatus::bad_input, problem_text);
   OffsetSolve solve(input, options, f, b, basis, reduced_options, say);
+  if (tick) tick("solve", 0.0);
   solve.run();
   timings.solve = seconds_since(stage_start);
+  if (tick) tick("solve", 1.0);
 
   const Cavity cavity = make_cavity(options, f, b, solve, reach, timings, say);
   timings.total = seconds_since(total_start);

@@ -219,6 +219,8 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
       attraction[i] = initial_ring[i] > 0.0 ? options.attraction_weight * std::sqrt(initial_ring[i] / ring) : options.attraction_weight;
     }
     laplacian_weight *= options.laplacian_weight_growth;
+    // The rule fires after 2 to 4 steps on every mesh tried: 4 is the estimate of the whole.
+    if (options.on_progress) options.on_progress(std::min(0.95, step / 4.0));
     if (options.stop_volume_ratio > 0.0 && record.volume_ratio <= options.stop_volume_ratio) {
       result.status = ContractionStatus::volume_ratio_reached;
       break;

@@ -29,6 +29,7 @@
 // are floored at area_ratio_floor times their initial value (so W_H <= W_H0 / sqrt(floor)).
 // A failed factorisation or a non-finite solution ends the run with the last good positions.
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,9 @@ struct ContractionOptions {
   // for the three steps) and would need about 2 GB at 10^6 vertices. 0 turns it off.
   int coarse_above = 60000;
   int coarse_vertices = 30000;
+  // Observer (a progress display): called after each step with an estimate of the fraction done,
+  // in [0, 1). It cannot change any result.
+  std::function<void(double)> on_progress;
   // Threads for the ordering and the factorisations (1..256); the result is bit for bit the
   // same for any count.
   int threads = 2;
