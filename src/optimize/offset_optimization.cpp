@@ -259,13 +259,14 @@ struct Band {
   }
 };
 
-std::string make_band(const Mesh& input, const OptimizeOptions& options, const Frame& f, Band& b) {
+std::string make_band(const Mesh& input, const OptimizeOptions& options, const Frame& f, const CoarseCopy* coarse, Band& b) {
   const Eigen::Index n = input.V.rows();
   const auto& tick = options.on_stage_progress;
   ContractionOptions contraction_options;
   contraction_options.threads = options.threads;
   if (tick) contraction_options.on_progress = [&tick](double fraction) { tick("skeleton", 0.7 * fraction); };
-  b.contraction = laplacian_contraction(input.V, input.F, contraction_options);
+  b.contraction = coarse ? laplacian_contraction_of_copy(*coarse, contraction_options)
+                         : laplacian_contraction(input.V, input.F, contraction_options);
   b.bvh = TriangleBvh(input.V, input.F);
   b.input_self = find_self_intersections(input, 100000);
   OffsetFieldOptions field_options;
@@ -856,6 +857,22 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     double seconds = 0.0;
   };
   std::future<BasisOutcome> basis_future;
+  // Coarse to fine (skeleton/coarse_copy.h): above the contraction's coarse_above vertices the
+  // skeleton and the basis, both low-frequency, are computed on one decimated copy and carried
+  // back (at 10^6 vertices the basis cost 37 CPU s and the contraction would need 2 GB).
+  const ContractionOptions contraction_defaults;
+  std::optional<CoarseCopy> coarse;
+  if (contraction_defaults.coarse_above > 0 && n > contraction_defaults.coarse_above) {
+    say("coarse copy: " + std::to_string(contraction_defaults.coarse_vertices) + " of " + std::to_string(n) + " vertices");
+    coarse = coarse_copy(input.V, input.F, contraction_defaults.coarse_vertices, options.threads);
+  }
+  Mesh basis_mesh;
+  if (coarse) {
+    basis_mesh.F = coarse->decimated.mesh.F;
+    basis_mesh.V.resize(coarse->decimated.mesh.V.rows(), 3);
+    for (std::size_t c = 0; c < coarse->decimated.input_vertex.size(); ++c)
+      basis_mesh.V.row(static_cast<Eigen::Index>(c)) = f.normalized.V.row(coarse->decimated.input_vertex[c]);
+  }
   if (k > 0) {
     const bool alongside = options.threads > 1;
     say("basis: " + std::to_string(k) + " manifold harmonics" + (alongside ? ", alongside the skeleton" : ""));
@@ -864,7 +881,8 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     basis_options.lanczos.threads = options.threads;
     const auto& tick = options.on_stage_progress;
     if (tick) basis_options.lanczos.on_progress = [&tick](double fraction) { tick("basis", fraction); };
-    const auto compute_basis = [&normalized = f.normalized, k, basis_options, &tick]() {
+    const Mesh& harmonics_mesh = coarse ? basis_mesh : f.normalized;
+    const auto compute_basis = [&normalized = harmonics_mesh, k, basis_options, &tick]() {
       const auto start = Clock::now();
       BasisOutcome outcome;
       if (tick) tick("basis", 0.0);
@@ -898,7 +916,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   stage_start = Clock::now();
   Band b;
   if (tick) tick("skeleton", 0.0);
-  if (const std::string problem = make_band(input, options, f, b); !problem.empty())
+  if (const std::string problem = make_band(input, options, f, coarse ? &*coarse : nullptr, b); !problem.empty())
     return failure(OptimizeStatus::bad_input, problem);
   timings.skeleton = seconds_since(stage_start);
   if (tick) tick("skeleton", 1.0);
@@ -918,7 +936,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     basis_summary.largest_eigenvalue = harmonics.eigenvalues.size() ? harmonics.eigenvalues(harmonics.eigenvalues.size() - 1) : 0.0;
     if (harmonics.eigenvectors.cols() != k)
       return failure(OptimizeStatus::bad_input, "the eigensolver returned no basis: " + harmonics.message);
-    basis = harmonics.eigenvectors;
+    basis = coarse ? carry_to_input(*coarse, harmonics.eigenvectors) : harmonics.eigenvectors;
   }
   timings.basis = basis_seconds;
 

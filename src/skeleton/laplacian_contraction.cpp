@@ -6,11 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "geometry/bvh.h"
-#include "geometry/closest_point.h"
 #include "geometry/cotan_laplacian.h"
-#include "skeleton/decimate_mesh.h"
-#include "util/parallel.h"
 #include "sparse/fill_reducing_ordering.h"
 #include "sparse/supernodal_cholesky.h"
 
@@ -41,50 +37,9 @@ Measures measure(const Vertices& X, const Faces& F) {
 
 // Contracts the decimated copy and carries its positions back to every input vertex.
 ContractionResult coarse_to_fine(const Vertices& V, const Faces& F, const ContractionOptions& options) {
-  const DecimatedMesh coarse = decimate_mesh(V, F, options.coarse_vertices);
-  ContractionOptions on_coarse = options;
-  on_coarse.coarse_above = 0;
-  ContractionResult result = laplacian_contraction(coarse.mesh.V, coarse.mesh.F, on_coarse);
-  const Vertices contracted = std::move(result.V);
-  result.V = V;
-  if (result.status == ContractionStatus::degenerate_input) return result;
-  const TriangleBvh bvh(coarse.mesh.V, coarse.mesh.F);
-  const Eigen::Index n = V.rows();
-  // Each vertex on its own: a fixed partition, the same numbers for any thread count.
-  const auto carry = [&](Eigen::Index begin, Eigen::Index end) {
-    for (Eigen::Index i = begin; i < end; ++i) {
-      const int kept = coarse.coarse_vertex[static_cast<std::size_t>(i)];
-      if (kept >= 0) {
-        result.V.row(i) = contracted.row(kept);
-        continue;
-      }
-      const Eigen::Vector3d p = V.row(i).transpose();
-      const ClosestPoint nearest = closest_point(bvh, p);
-      if (!nearest.found) continue;
-      const Eigen::Index face = nearest.face;
-      const Eigen::Vector3d a = coarse.mesh.V.row(coarse.mesh.F(face, 0)), b = coarse.mesh.V.row(coarse.mesh.F(face, 1)),
-                            c = coarse.mesh.V.row(coarse.mesh.F(face, 2));
-      // Barycentric coordinates of the closest point (on the triangle, so in [0, 1]).
-      const Eigen::Vector3d e0 = b - a, e1 = c - a, d = nearest.point - a;
-      const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1), d20 = d.dot(e0), d21 = d.dot(e1);
-      const double denominator = d00 * d11 - d01 * d01;
-      double wb = 0.0, wc = 0.0;
-      if (denominator > 0.0) {
-        wb = std::clamp((d11 * d20 - d01 * d21) / denominator, 0.0, 1.0);
-        wc = std::clamp((d00 * d21 - d01 * d20) / denominator, 0.0, 1.0 - wb);
-      }
-      const double wa = 1.0 - wb - wc;
-      result.V.row(i) = wa * contracted.row(coarse.mesh.F(face, 0)) + wb * contracted.row(coarse.mesh.F(face, 1)) +
-                        wc * contracted.row(coarse.mesh.F(face, 2));
-    }
-  };
-  constexpr Eigen::Index kVerticesPerThread = 4096;
-  const int threads =
-      execution_policy(options.threads, static_cast<double>(n), 2.0 * kVerticesPerThread) == ExecutionPolicy::parallel
-          ? static_cast<int>(std::min<Eigen::Index>(options.threads, n / kVerticesPerThread))
-          : 1;
-  WorkerPool pool(threads);
-  pool.run([&](int part) { carry(split_point(n, pool.size(), part), split_point(n, pool.size(), part + 1)); });
+  const CoarseCopy copy = coarse_copy(V, F, options.coarse_vertices, options.threads);
+  ContractionResult result = laplacian_contraction_of_copy(copy, options);
+  if (result.status == ContractionStatus::degenerate_input) result.V = V;
   return result;
 }
 
@@ -227,6 +182,14 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
     }
   }
   for (Eigen::Index k = 0; k < n; ++k) result.V.row(new_to_old[static_cast<std::size_t>(k)]) = X.row(k) / scale + center;
+  return result;
+}
+
+ContractionResult laplacian_contraction_of_copy(const CoarseCopy& copy, const ContractionOptions& options) {
+  ContractionOptions on_copy = options;
+  on_copy.coarse_above = 0;
+  ContractionResult result = laplacian_contraction(copy.decimated.mesh.V, copy.decimated.mesh.F, on_copy);
+  result.V = carry_to_input(copy, result.V);
   return result;
 }
 

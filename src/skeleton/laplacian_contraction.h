@@ -35,6 +35,7 @@
 
 #include "geometry/intrinsic_mollification.h"
 #include "mesh/mesh.h"
+#include "skeleton/coarse_copy.h"
 
 namespace offsetopt {
 
@@ -126,5 +127,10 @@ struct ContractionResult {
 };
 
 ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const ContractionOptions& options = {});
+
+// The contraction of a coarse copy (skeleton/coarse_copy.h) carried back to its input vertices:
+// what laplacian_contraction does above coarse_above vertices, for a caller that shares the copy
+// with other stages. Step counts and ratios are the copy's.
+ContractionResult laplacian_contraction_of_copy(const CoarseCopy& copy, const ContractionOptions& options = {});
 
 }  // namespace offsetopt
