@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli/cli_support.h"
+#include "cli/progress_line.h"
 #include "cli/commands.h"
 #include "cli/optimize_report.h"
 #include "cli/pose_options.h"
@@ -250,13 +251,22 @@ int run_optimize(const Args& args) {
   const double load_seconds = seconds_since(load_start);
   if (!quiet) std::fprintf(stderr, "load: %s, %ld vertices (%.2f s)\n", mesh_path.c_str(), static_cast<long>(loaded.mesh.V.rows()), load_seconds);
 
+  // The live line (stage and fraction done) only on a terminal; the report and files do not
+  // depend on it.
+  ProgressLine live(!quiet && ProgressLine::stderr_is_terminal(), start);
   auto progress = [&](const std::string& line) {
-    if (!quiet) std::fprintf(stderr, "%s (%.2f s)\n", line.c_str(), seconds_since(start));
+    if (quiet) return;
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, " (%.2f s)", seconds_since(start));
+    live.print_line(line + seconds);
   };
+  options.on_stage_progress = [&live](const std::string& stage, double fraction) { live.update(stage, fraction); };
   const PosedInput posed = pose_input(loaded.mesh, pose_options, mesh_path, true);
   print_warnings(posed.warnings, quiet);
   options.flatten = pose_options.flatten;
   OptimizeResult result = optimize_offsets(posed.mesh, options, progress);
+  options.on_stage_progress = nullptr;
+  live.clear();
   if (result.status == OptimizeStatus::bad_input) throw UsageError(mesh_path + ": " + result.message);
   print_warnings(result.warnings, quiet);
 

@@ -299,7 +299,7 @@ std::vector<std::string> demo_mesh_names() {
 
 Mesh make_demo_mesh(const std::string& name, double detail) {
   const bool revolution = name == "bottle" || name == "top" || name == "rolypoly" || name == "buoy";
-  if (!(detail >= 0.25 && detail <= 16.0)) throw std::invalid_argument("detail must be in [0.25, 16]");
+  if (!(detail >= 0.25 && detail <= 32.0)) throw std::invalid_argument("detail must be in [0.25, 32]");
   if (detail != 1.0 && !revolution)
     throw std::invalid_argument("detail applies to bottle, top, rolypoly and buoy, not to '" + name + "'");
   Mesh mesh;

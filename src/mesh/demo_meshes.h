@@ -32,7 +32,7 @@ namespace offsetopt {
 // The names make_demo_mesh accepts, in a fixed order.
 std::vector<std::string> demo_mesh_names();
 
-// Throws std::invalid_argument for an unknown name. `detail` in [0.25, 16] multiplies the ring
+// Throws std::invalid_argument for an unknown name. `detail` in [0.25, 32] multiplies the ring
 // and segment counts of the revolution demos (bottle, top, rolypoly, buoy; vertex count about
 // detail² times), for benchmarks at other sizes; 1 gives the committed meshes.
 Mesh make_demo_mesh(const std::string& name, double detail = 1.0);

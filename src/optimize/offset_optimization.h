@@ -103,6 +103,11 @@ struct OptimizeOptions {
   AlOptions solver = default_solver_params();
   // Report every outer iteration of the solver through the progress callback (`-v`).
   bool trace_solver = false;
+  // Observer for a progress display: a stage ("basis", "reachability", "skeleton", "solve",
+  // "verify", "contour") and its fraction done, in [0, 1] (1: finished), or -1 when unknown. The
+  // basis reports from its own thread, alongside the others, so the observer must be safe to call
+  // from two threads. It is never read back: no output depends on it.
+  std::function<void(const std::string& stage, double fraction)> on_stage_progress;
   // Threads per stage (1..64). With more than one, the basis is computed alongside the skeleton
   // and every stage cuts its work into fixed parts; with one, everything runs on the calling
   // thread, one stage after another (the lowest peak memory). The output is bit for bit the same

@@ -35,6 +35,14 @@ Measures measure(const Vertices& X, const Faces& F) {
   return m;
 }
 
+// Contracts the decimated copy and carries its positions back to every input vertex.
+ContractionResult coarse_to_fine(const Vertices& V, const Faces& F, const ContractionOptions& options) {
+  const CoarseCopy copy = coarse_copy(V, F, options.coarse_vertices, options.threads);
+  ContractionResult result = laplacian_contraction_of_copy(copy, options);
+  if (result.status == ContractionStatus::degenerate_input) result.V = V;
+  return result;
+}
+
 }  // namespace
 
 std::string ContractionOptions::check() const {
@@ -56,6 +64,9 @@ std::string ContractionOptions::check() const {
   if (!(area_ratio_floor > 0.0 && area_ratio_floor < 1.0))
     return "ContractionOptions::area_ratio_floor must be in (0, 1)";
   if (!(threads >= 1 && threads <= 256)) return "ContractionOptions::threads must be in [1, 256]";
+  if (!(coarse_above >= 0)) return "ContractionOptions::coarse_above must be >= 0";
+  if (coarse_above > 0 && !(coarse_vertices >= 100 && coarse_vertices <= coarse_above))
+    return "ContractionOptions::coarse_vertices must be in [100, coarse_above]";
   return std::string();
 }
 
@@ -79,6 +90,8 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k)
       if (F(f, k) < 0 || F(f, k) >= n) throw std::invalid_argument("laplacian_contraction: face index out of range");
+  if (options.coarse_above > 0 && n > options.coarse_above) return coarse_to_fine(V, F, options);
+  result.contracted_vertices = n;
 
   const Eigen::RowVector3d lo = V.colwise().minCoeff(), hi = V.colwise().maxCoeff();
   const double diagonal = (hi - lo).norm();
@@ -161,12 +174,22 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
       attraction[i] = initial_ring[i] > 0.0 ? options.attraction_weight * std::sqrt(initial_ring[i] / ring) : options.attraction_weight;
     }
     laplacian_weight *= options.laplacian_weight_growth;
+    // The rule fires after 2 to 4 steps on every mesh tried: 4 is the estimate of the whole.
+    if (options.on_progress) options.on_progress(std::min(0.95, step / 4.0));
     if (options.stop_volume_ratio > 0.0 && record.volume_ratio <= options.stop_volume_ratio) {
       result.status = ContractionStatus::volume_ratio_reached;
       break;
     }
   }
   for (Eigen::Index k = 0; k < n; ++k) result.V.row(new_to_old[static_cast<std::size_t>(k)]) = X.row(k) / scale + center;
+  return result;
+}
+
+ContractionResult laplacian_contraction_of_copy(const CoarseCopy& copy, const ContractionOptions& options) {
+  ContractionOptions on_copy = options;
+  on_copy.coarse_above = 0;
+  ContractionResult result = laplacian_contraction(copy.decimated.mesh.V, copy.decimated.mesh.F, on_copy);
+  result.V = carry_to_input(copy, result.V);
   return result;
 }
 

@@ -177,6 +177,7 @@ class BlockKrylovSchur {
     long max_applications = 0;
     double tolerance = 0.0, cluster_tolerance = 0.0, shift = 0.0, norm_L = 0.0;
     std::uint64_t seed = 0;
+    std::function<void(double)> on_progress;  // fraction of the basis built (no restart), < 1
 
     // Empty when the iteration can run on these, else what is wrong (one line).
     std::string check() const {
@@ -588,6 +589,8 @@ bool BlockKrylovSchur::run() {
       return false;
     }
     expand();
+    if (settings_.on_progress)
+      settings_.on_progress(std::min(0.99, static_cast<double>(applications_) / static_cast<double>(settings_.basis)));
     if (j_ > k_) {
       rayleigh_ritz();
       if (converged_estimate()) return true;
@@ -688,6 +691,7 @@ LanczosResult lanczos_eigensolver(const Eigen::SparseMatrix<double>& L, const Ei
   settings.shift = result.shift;
   settings.norm_L = result.matrix_norm;
   settings.seed = options.seed;
+  settings.on_progress = options.on_progress;
   if (const std::string problem = settings.check(); !problem.empty())
     return fail(LanczosStatus::invalid_input, "iteration options: " + problem);
   BlockKrylovSchur solver(op, L, mass, settings, pool);

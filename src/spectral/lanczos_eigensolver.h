@@ -30,6 +30,7 @@
 #pragma once
 #include <Eigen/Sparse>
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "mesh/mesh.h"
@@ -60,6 +61,9 @@ struct LanczosOptions {
   // Threads for the iteration (triangular solves, projections); 0 means min(2, cores). The
   // results are bit for bit the same for any number (fixed partitions, no shared sums).
   int threads = 0;
+  // Observer of the iteration (a progress display): called with an estimate of the fraction
+  // done, in [0, 1), from the thread running the solver. It cannot change any result.
+  std::function<void(double)> on_progress;
 
   // Empty when valid, else what is wrong (one line).
   std::string check() const;

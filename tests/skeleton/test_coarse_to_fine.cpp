@@ -1,0 +1,100 @@
+// The coarse copy (decimate_mesh) stays a closed 2-manifold of input vertices close to the input
+// surface, and the coarse-to-fine contraction carries the coarse skeleton back to every vertex:
+// a torus still reaches its core circle, and the vertices agree with the full contraction's.
+#include <doctest/doctest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "mesh/primitives.h"
+#include "skeleton/decimate_mesh.h"
+#include "skeleton/laplacian_contraction.h"
+
+using namespace offsetopt;
+
+namespace {
+
+double signed_volume(const Vertices& V, const Faces& F) {
+  double v = 0.0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    v += a.dot(b.cross(c)) / 6.0;
+  }
+  return v;
+}
+
+// Every undirected edge in exactly two faces, once in each direction (closed and oriented).
+bool closed_and_oriented(const Faces& F) {
+  std::map<std::pair<int, int>, int> directed;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int a = F(f, c), b = F(f, (c + 1) % 3);
+      if (a == b) return false;
+      ++directed[{a, b}];
+    }
+  for (const auto& [edge, count] : directed) {
+    if (count != 1) return false;
+    const auto back = directed.find({edge.second, edge.first});
+    if (back == directed.end() || back->second != 1) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("decimate_mesh keeps a closed oriented manifold of input vertices near the surface") {
+  const double R = 2.0;
+  const Mesh m = make_icosphere(R, 5);  // 10,242 vertices
+  const DecimatedMesh d = decimate_mesh(m.V, m.F, 1000);
+  CHECK(d.mesh.V.rows() == 1000);
+  // Euler characteristic of a sphere: V - E + F = 2 with E = 3F/2.
+  CHECK(d.mesh.F.rows() == 2 * d.mesh.V.rows() - 4);
+  CHECK(closed_and_oriented(d.mesh.F));
+  for (std::size_t k = 0; k < d.input_vertex.size(); ++k) {
+    CHECK(d.coarse_vertex[static_cast<std::size_t>(d.input_vertex[k])] == static_cast<int>(k));
+    CHECK((d.mesh.V.row(static_cast<Eigen::Index>(k)) - m.V.row(d.input_vertex[k])).norm() == 0.0);
+  }
+  // 1000 vertices on a sphere: the inscribed polyhedron keeps most of the ball's volume.
+  const double ball = 4.0 / 3.0 * M_PI * R * R * R;
+  CHECK(signed_volume(d.mesh.V, d.mesh.F) > 0.97 * ball);
+  // A function of the mesh alone.
+  const DecimatedMesh again = decimate_mesh(m.V, m.F, 1000);
+  CHECK(again.input_vertex == d.input_vertex);
+  CHECK(again.mesh.F == d.mesh.F);
+}
+
+TEST_CASE("decimate_mesh keeps the genus of a torus") {
+  const Mesh m = make_torus(3.0, 1.0, 96, 32);
+  const DecimatedMesh d = decimate_mesh(m.V, m.F, 600);
+  CHECK(d.mesh.V.rows() == 600);
+  CHECK(d.mesh.F.rows() == 2 * d.mesh.V.rows());  // V - E + F = 0
+  CHECK(closed_and_oriented(d.mesh.F));
+}
+
+TEST_CASE("coarse-to-fine contraction: a torus reaches its core circle, close to the full contraction") {
+  const double R = 3.0, r_tube = 1.0;
+  const Mesh m = make_torus(R, r_tube, 192, 48);  // 9,216 vertices
+  ContractionOptions full;
+  full.coarse_above = 0;
+  ContractionOptions coarse;
+  coarse.coarse_above = 5000;
+  coarse.coarse_vertices = 2000;
+  const ContractionResult a = laplacian_contraction(m.V, m.F, full);
+  const ContractionResult b = laplacian_contraction(m.V, m.F, coarse);
+  CHECK(a.contracted_vertices == m.V.rows());
+  CHECK(b.contracted_vertices == 2000);
+  CHECK(b.status == ContractionStatus::volume_ratio_reached);
+  REQUIRE(b.V.rows() == m.V.rows());
+  CHECK(b.V.allFinite());
+  double worst_core = 0.0, worst_gap = 0.0;
+  for (Eigen::Index i = 0; i < m.V.rows(); ++i) {
+    worst_core = std::max(worst_core, std::hypot(std::hypot(b.V(i, 0), b.V(i, 1)) - R, b.V(i, 2)));
+    worst_gap = std::max(worst_gap, (a.V.row(i) - b.V.row(i)).norm());
+  }
+  // The meso-skeleton stage (volume ratio 0.1) is not yet the circle: within half the tube.
+  CHECK(worst_core < 0.5 * r_tube);
+  CHECK(worst_gap < 0.25 * r_tube);
+}
