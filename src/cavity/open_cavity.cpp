@@ -275,11 +275,24 @@ OpenedCavity open_cavity(const Mesh& outer, const Mesh& cavity, const OpenCavity
       }
     }
     for (int s = 0; s < shells.count; ++s) {
-      const Eigen::Vector3d p = cavity.V.row(lowest[static_cast<std::size_t>(s)]).transpose();
-      const ClosestPoint q = closest_point(outer_bvh, p);
-      const Eigen::Vector3d into_void = (p - q.point).normalized();
-      const double depth = void_depth(cavity_bvh, p, into_void, 1e-9 * options.hole_radius);
-      hole_through_nearest(p, options.hole_radius, std::min(0.5 * options.hole_radius, 0.45 * depth), "auto drain hole", s);
+      const int vertex = lowest[static_cast<std::size_t>(s)];
+      const Eigen::Vector3d p = cavity.V.row(vertex).transpose();
+      // Into the void along the cavity's inward vertex normal (its faces point out of the void),
+      // not away from the outer surface: where the offset surface, not the wall, bounds the cavity
+      // the two differ, and a hole whose end only grazes the void opens nothing.
+      RayCastOptions far_side;
+      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+      for (Eigen::Index f = 0; f < cavity.F.rows(); ++f)
+        if ((cavity.F.row(f).array() == vertex).any()) {
+          far_side.ignored_faces.push_back(static_cast<int>(f));  // the ray starts on them
+          const Eigen::Vector3d a = cavity.V.row(cavity.F(f, 0)).transpose();
+          normal += (cavity.V.row(cavity.F(f, 1)).transpose() - a).cross(cavity.V.row(cavity.F(f, 2)).transpose() - a);
+        }
+      const Eigen::Vector3d into_void = -normal.normalized();
+      const RayCastHit hit = ray_cast_closest(cavity_bvh, p, into_void, far_side);
+      const double depth = hit.hit ? hit.t : 0.0;
+      const Eigen::Vector3d start = p + std::min(0.5 * options.hole_radius, 0.45 * depth) * into_void;
+      hole_through_nearest(start, options.hole_radius, 0.0, "auto drain hole", s);
     }
   }
   if (options.opening.kind == FixRegion::Kind::half_space) {

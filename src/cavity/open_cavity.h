@@ -7,8 +7,9 @@
 //   - drain hole at a point P of the void (`--drain-hole X,Y,Z[,R]`): axis from P to the nearest
 //     point Q of the outer surface, the inner cap at P, the outer cap R + 2·wall beyond Q;
 //   - automatic drain hole (`--drain-holes auto`): one per cavity shell, at its lowest vertex p as
-//     posed (the print's orientation), through the thinnest wall there: the axis runs to p's nearest
-//     outer point; the inner cap min(R/2, 0.45 × the void's depth along the axis) inside the void;
+//     posed (the print's orientation): the inner cap at p moved into the void along the cavity's
+//     inward vertex normal by min(R/2, 0.45 × the void's depth there), the axis from it to its
+//     nearest outer point (the thinnest wall there);
 //   - channel for a half-space region (x/y/z > or < V): along the region's axis, through the
 //     centroid of the largest section of the outer surface at V; its radius the smallest distance
 //     from the axis to the outer surface's sections across the region (9 levels), less the wall
