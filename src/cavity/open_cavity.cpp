@@ -337,10 +337,44 @@ OpenedCavity open_cavity(const Mesh& outer, const Mesh& cavity, const OpenCavity
     }
     out.openings.push_back(record);
   }
-  out.pieces_after = mesh_shells(out.solid, origin).count;
-  const int outer_pieces = mesh_shells(outer, origin).count;
-  if (out.pieces_after != outer_pieces) {
-    out.message = std::to_string(out.pieces_after - outer_pieces) + " cavity shell(s) stay closed after the openings";
+  // A prism grazing a thin feature can cut a chip of material loose: a closed piece of positive
+  // volume below 1e-3 of the largest. It would fall out of the print, so it is dropped (its
+  // integrals leave the solid's); a closed piece of negative volume is a cavity left closed.
+  const MeshShells after = mesh_shells(out.solid, origin);
+  double largest = 0.0;
+  for (double v : after.volume) largest = std::max(largest, v);
+  std::vector<char> drop(static_cast<std::size_t>(after.count), 0);
+  int closed_cavities = 0;
+  for (int piece = 0; piece < after.count; ++piece) {
+    const double v = after.volume[static_cast<std::size_t>(piece)];
+    if (v < 0.0) ++closed_cavities;
+    else if (v < 1e-3 * largest) drop[static_cast<std::size_t>(piece)] = 1;
+  }
+  for (char d : drop) out.chips_dropped += d;
+  if (out.chips_dropped > 0) {
+    Mesh kept;
+    std::vector<int> source, index(static_cast<std::size_t>(out.solid.V.rows()), -1);
+    std::vector<Eigen::Index> faces;
+    for (Eigen::Index f = 0; f < out.solid.F.rows(); ++f)
+      if (!drop[static_cast<std::size_t>(after.shell_of_face[static_cast<std::size_t>(f)])]) faces.push_back(f);
+    int count = 0;
+    for (Eigen::Index f : faces)
+      for (int c = 0; c < 3; ++c)
+        if (index[static_cast<std::size_t>(out.solid.F(f, c))] < 0) index[static_cast<std::size_t>(out.solid.F(f, c))] = count++;
+    kept.V.resize(count, 3);
+    for (Eigen::Index v = 0; v < out.solid.V.rows(); ++v)
+      if (index[static_cast<std::size_t>(v)] >= 0) kept.V.row(index[static_cast<std::size_t>(v)]) = out.solid.V.row(v);
+    kept.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      for (int c = 0; c < 3; ++c) kept.F(static_cast<Eigen::Index>(i), c) = index[static_cast<std::size_t>(out.solid.F(faces[i], c))];
+      source.push_back(out.source_face[static_cast<std::size_t>(faces[i])]);
+    }
+    out.solid = std::move(kept);
+    out.source_face = std::move(source);
+  }
+  out.pieces_after = after.count - out.chips_dropped;
+  if (closed_cavities > 0) {
+    out.message = std::to_string(closed_cavities) + " cavity shell(s) stay closed after the openings";
     return out;
   }
   out.ok = true;

@@ -68,6 +68,9 @@ struct OpenedCavity {
   std::vector<CutOpening> openings;
   int cavity_shells = 0;
   int pieces_before = 0, pieces_after = 0;  // connected shells of the hollow solid and of the result
+  // Closed pieces of material the prisms cut loose (below 1e-3 of the largest piece's volume):
+  // dropped, as they would fall out of the print.
+  int chips_dropped = 0;
   // Channel: the height (z) of the lowest point where it leaves the outer surface: a liquid poured
   // in spills there.
   std::optional<double> spill_height;
