@@ -275,11 +275,24 @@ OpenedCavity open_cavity(const Mesh& outer, const Mesh& cavity, const OpenCavity
       }
     }
     for (int s = 0; s < shells.count; ++s) {
-      const Eigen::Vector3d p = cavity.V.row(lowest[static_cast<std::size_t>(s)]).transpose();
-      const ClosestPoint q = closest_point(outer_bvh, p);
-      const Eigen::Vector3d into_void = (p - q.point).normalized();
-      const double depth = void_depth(cavity_bvh, p, into_void, 1e-9 * options.hole_radius);
-      hole_through_nearest(p, options.hole_radius, std::min(0.5 * options.hole_radius, 0.45 * depth), "auto drain hole", s);
+      const int vertex = lowest[static_cast<std::size_t>(s)];
+      const Eigen::Vector3d p = cavity.V.row(vertex).transpose();
+      // Into the void along the cavity's inward vertex normal (its faces point out of the void),
+      // not away from the outer surface: where the offset surface, not the wall, bounds the cavity
+      // the two differ, and a hole whose end only grazes the void opens nothing.
+      RayCastOptions far_side;
+      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+      for (Eigen::Index f = 0; f < cavity.F.rows(); ++f)
+        if ((cavity.F.row(f).array() == vertex).any()) {
+          far_side.ignored_faces.push_back(static_cast<int>(f));  // the ray starts on them
+          const Eigen::Vector3d a = cavity.V.row(cavity.F(f, 0)).transpose();
+          normal += (cavity.V.row(cavity.F(f, 1)).transpose() - a).cross(cavity.V.row(cavity.F(f, 2)).transpose() - a);
+        }
+      const Eigen::Vector3d into_void = -normal.normalized();
+      const RayCastHit hit = ray_cast_closest(cavity_bvh, p, into_void, far_side);
+      const double depth = hit.hit ? hit.t : 0.0;
+      const Eigen::Vector3d start = p + std::min(0.5 * options.hole_radius, 0.45 * depth) * into_void;
+      hole_through_nearest(start, options.hole_radius, 0.0, "auto drain hole", s);
     }
   }
   if (options.opening.kind == FixRegion::Kind::half_space) {
@@ -324,10 +337,44 @@ OpenedCavity open_cavity(const Mesh& outer, const Mesh& cavity, const OpenCavity
     }
     out.openings.push_back(record);
   }
-  out.pieces_after = mesh_shells(out.solid, origin).count;
-  const int outer_pieces = mesh_shells(outer, origin).count;
-  if (out.pieces_after != outer_pieces) {
-    out.message = std::to_string(out.pieces_after - outer_pieces) + " cavity shell(s) stay closed after the openings";
+  // A prism grazing a thin feature can cut a chip of material loose: a closed piece of positive
+  // volume below 1e-3 of the largest. It would fall out of the print, so it is dropped (its
+  // integrals leave the solid's); a closed piece of negative volume is a cavity left closed.
+  const MeshShells after = mesh_shells(out.solid, origin);
+  double largest = 0.0;
+  for (double v : after.volume) largest = std::max(largest, v);
+  std::vector<char> drop(static_cast<std::size_t>(after.count), 0);
+  int closed_cavities = 0;
+  for (int piece = 0; piece < after.count; ++piece) {
+    const double v = after.volume[static_cast<std::size_t>(piece)];
+    if (v < 0.0) ++closed_cavities;
+    else if (v < 1e-3 * largest) drop[static_cast<std::size_t>(piece)] = 1;
+  }
+  for (char d : drop) out.chips_dropped += d;
+  if (out.chips_dropped > 0) {
+    Mesh kept;
+    std::vector<int> source, index(static_cast<std::size_t>(out.solid.V.rows()), -1);
+    std::vector<Eigen::Index> faces;
+    for (Eigen::Index f = 0; f < out.solid.F.rows(); ++f)
+      if (!drop[static_cast<std::size_t>(after.shell_of_face[static_cast<std::size_t>(f)])]) faces.push_back(f);
+    int count = 0;
+    for (Eigen::Index f : faces)
+      for (int c = 0; c < 3; ++c)
+        if (index[static_cast<std::size_t>(out.solid.F(f, c))] < 0) index[static_cast<std::size_t>(out.solid.F(f, c))] = count++;
+    kept.V.resize(count, 3);
+    for (Eigen::Index v = 0; v < out.solid.V.rows(); ++v)
+      if (index[static_cast<std::size_t>(v)] >= 0) kept.V.row(index[static_cast<std::size_t>(v)]) = out.solid.V.row(v);
+    kept.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      for (int c = 0; c < 3; ++c) kept.F(static_cast<Eigen::Index>(i), c) = index[static_cast<std::size_t>(out.solid.F(faces[i], c))];
+      source.push_back(out.source_face[static_cast<std::size_t>(faces[i])]);
+    }
+    out.solid = std::move(kept);
+    out.source_face = std::move(source);
+  }
+  out.pieces_after = after.count - out.chips_dropped;
+  if (closed_cavities > 0) {
+    out.message = std::to_string(closed_cavities) + " cavity shell(s) stay closed after the openings";
     return out;
   }
   out.ok = true;

@@ -7,8 +7,9 @@
 //   - drain hole at a point P of the void (`--drain-hole X,Y,Z[,R]`): axis from P to the nearest
 //     point Q of the outer surface, the inner cap at P, the outer cap R + 2·wall beyond Q;
 //   - automatic drain hole (`--drain-holes auto`): one per cavity shell, at its lowest vertex p as
-//     posed (the print's orientation), through the thinnest wall there: the axis runs to p's nearest
-//     outer point; the inner cap min(R/2, 0.45 × the void's depth along the axis) inside the void;
+//     posed (the print's orientation): the inner cap at p moved into the void along the cavity's
+//     inward vertex normal by min(R/2, 0.45 × the void's depth there), the axis from it to its
+//     nearest outer point (the thinnest wall there);
 //   - channel for a half-space region (x/y/z > or < V): along the region's axis, through the
 //     centroid of the largest section of the outer surface at V; its radius the smallest distance
 //     from the axis to the outer surface's sections across the region (9 levels), less the wall
@@ -67,6 +68,9 @@ struct OpenedCavity {
   std::vector<CutOpening> openings;
   int cavity_shells = 0;
   int pieces_before = 0, pieces_after = 0;  // connected shells of the hollow solid and of the result
+  // Closed pieces of material the prisms cut loose (below 1e-3 of the largest piece's volume):
+  // dropped, as they would fall out of the print.
+  int chips_dropped = 0;
   // Channel: the height (z) of the lowest point where it leaves the outer surface: a liquid poured
   // in spills there.
   std::optional<double> spill_height;

@@ -1,6 +1,8 @@
 #include "cavity/verify_opened_cavity.h"
 
+#include <array>
 #include <map>
+#include <vector>
 #include <utility>
 
 #include "cavity/printable_solid.h"
@@ -12,16 +14,24 @@
 namespace offsetopt {
 namespace {
 
-bool closed_and_oriented(const Mesh& mesh) {
+// Directed edges that are not used exactly once with their opposite used exactly once, on
+// positions rather than indices (a reader merges equal points, as CGAL's does).
+long long unmatched_edges(const Mesh& mesh) {
+  std::map<std::array<double, 3>, int> position;
+  std::vector<int> id(static_cast<std::size_t>(mesh.V.rows()));
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+    id[static_cast<std::size_t>(v)] = position.emplace(std::array<double, 3>{mesh.V(v, 0), mesh.V(v, 1), mesh.V(v, 2)},
+                                                       static_cast<int>(position.size())).first->second;
   std::map<std::pair<int, int>, int> directed;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) ++directed[{mesh.F(f, c), mesh.F(f, (c + 1) % 3)}];
+    for (int c = 0; c < 3; ++c)
+      ++directed[{id[static_cast<std::size_t>(mesh.F(f, c))], id[static_cast<std::size_t>(mesh.F(f, (c + 1) % 3))]}];
+  long long bad = 0;
   for (const auto& [edge, count] : directed) {
-    if (count != 1) return false;
     const auto opposite = directed.find({edge.second, edge.first});
-    if (opposite == directed.end() || opposite->second != 1) return false;
+    if (count != 1 || opposite == directed.end() || opposite->second != 1) ++bad;
   }
-  return !directed.empty();
+  return bad;
 }
 
 }  // namespace
@@ -39,7 +49,8 @@ VerifiedOpenedCavity verify_opened_cavity(const Mesh& outer, const Mesh& cavity,
   const RoundedForOutput rounded = round_for_output(out.opened.solid, Mesh(), {}, precision);
   out.solid = rounded.outer;
   out.rounding_new_pairs = rounded.outer_new_pairs;
-  out.closed = closed_and_oriented(out.solid);
+  // Closed and oriented as read back, but for what the input had (a pinched input keeps its pinch).
+  out.closed = out.solid.F.rows() > 0 && unmatched_edges(out.solid) <= unmatched_edges(hollow_solid(outer, cavity));
   const TriangleBvh bvh(out.solid.V, out.solid.F);
   const std::size_t cap = 100000;
   for (const auto& [f, g] : self_intersections(bvh, cap).pairs)

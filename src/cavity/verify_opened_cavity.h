@@ -1,6 +1,7 @@
 // The solid with its openings (cavity/open_cavity.h) verified as it will be written: the cut solid
 // rounded to the output's precision (cavity/round_for_output.h, the cut solid as one surface), then
-//   - one closed, oriented 2-manifold (each directed edge once, its opposite once);
+//   - one closed, oriented 2-manifold (each directed edge once, its opposite once, on positions as
+//     a reader merges them), up to the unmatched edges the uncut solid had (an input's own pinch);
 //   - no face pair meeting by the exact rule (geometry/intersecting_faces.h) where either face is
 //     new to the cut (re-triangulated or on a prism); the faces copied unchanged were verified with
 //     the cavity before the cut, the input's own pairs included;

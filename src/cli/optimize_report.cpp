@@ -367,6 +367,7 @@ Json openings_json(const OpeningsSummary& o) {
   if (o.liquid_volume) j["liquid_volume"] = *o.liquid_volume;
   j["closed"] = o.closed;
   j["new_face_pairs"] = o.new_pairs;
+  j["chips_dropped"] = o.chips_dropped;
   j["rounds"] = o.rounds;
   if (!o.message.empty()) j["problem"] = o.message;
   return j;

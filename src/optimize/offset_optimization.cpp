@@ -871,6 +871,7 @@ OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, con
     summary.liquid_volume = v.liquid ? std::optional<double>(v.liquid_volume) : std::nullopt;
     summary.closed = v.closed;
     summary.new_pairs = v.new_pairs;
+    summary.chips_dropped = v.opened.chips_dropped;
     summary.message = v.opened.ok ? "" : v.opened.message;
     say("openings " + std::to_string(attempt) + ": " + std::to_string(v.opened.openings.size()) + " cut, goal " +
         (v.verification.goal_met ? "met" : "not met") + ", " + (v.verification.valid ? "valid" : "not valid"));

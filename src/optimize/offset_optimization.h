@@ -288,6 +288,7 @@ struct OpeningsSummary {
   std::optional<double> liquid_volume; // stand-filled with a channel
   bool closed = false;
   long long new_pairs = 0;
+  int chips_dropped = 0;               // loose pieces of material the cuts made, dropped
   int rounds = 0;                      // cuts made (a correction between two)
   std::string message;                 // why the openings failed, if they did
 };
