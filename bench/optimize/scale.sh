@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Time and memory against the vertex count (issue 22): `offsetopt optimize --goal stand` on the
 # bottle generated at several --detail values (10^4 to 10^6 vertices), one process each. Prints
-# per run the stages of the report's `timings` (reach runs beside the basis; the basis beside the
-# skeleton with two or more threads), the solve's evaluations and seconds per evaluation, the end
-# to end wall clock and the peak resident memory (/usr/bin/time %M), then a table of total seconds
-# and peak memory against n with the local exponent between neighbouring sizes (log t / log n).
-# A figure, not a test: the machine is shared, so the load is printed beside it.
+# per run the stages of the report's `timings` (with two or more threads the coarse copy, then the
+# basis and the skeleton, run beside the reachability programme, so they overlap), the solve's evaluations and seconds per evaluation, the end
+# to end wall clock, the CPU seconds of all threads (user + system: less sensitive than the wall
+# clock to other jobs on a shared machine) and the peak resident memory (/usr/bin/time %M), then a
+# table of wall, CPU and peak memory against n with the local exponent between neighbouring sizes
+# (log ratio over log n ratio). A figure, not a test: the load is printed beside it.
 #
 # usage: bench/optimize/scale.sh [BINARY] [DETAIL...]   (default details: 1.8 3.2 5.8 10 17.2)
 #   THREADS=1 to run single-threaded; CALLGRIND=1 to add the instruction count of each run under
@@ -21,13 +22,13 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), threads $threads"
-printf '%-6s %8s %6s %6s %6s %6s %6s %5s %7s %6s %6s %6s %6s %6s %7s %8s %5s %s\n' \
-  detail verts load reach skel basis solve evals ms/eval verify contour correct quadric write wall peakMB exit load_avg
+printf '%-6s %8s %6s %6s %6s %6s %6s %6s %5s %7s %6s %6s %6s %6s %6s %7s %7s %8s %5s %s\n' \
+  detail verts load coarse reach skel basis solve evals ms/eval verify contour correct quadric write wall cpu peakMB exit load_avg
 for d in "${details[@]}"; do
   mesh=$out/bottle$d.obj
   "$binary" generate bottle --detail "$d" -o "$mesh"
   set +e
-  /usr/bin/time -f '%e %M' -o "$out/time" "$binary" optimize "$mesh" --goal stand --threads "$threads" \
+  /usr/bin/time -f '%e %M %U %S' -o "$out/time" "$binary" optimize "$mesh" --goal stand --threads "$threads" \
     -o "$out/solid.stl" --report "$out/r.json" --quiet 2>/dev/null
   code=$?
   set -e
@@ -42,27 +43,29 @@ for d in "${details[@]}"; do
 import json, sys
 report, timefile, detail, code, load, instructions, rows = sys.argv[1:8]
 r = json.load(open(report)); t = r['timings']
-wall, peak_kb = open(timefile).read().split()[-2:]
+wall, peak_kb, user, system = open(timefile).read().split()[-4:]
+cpu = float(user) + float(system)
 evals = r['solver']['evaluations']
-line = (f"{detail:6} {r['vertices']:8d} {t['load']:6.2f} {t.get('reach', 0):6.2f} {t['skeleton']:6.2f} {t['basis']:6.2f} "
+line = (f"{detail:6} {r['vertices']:8d} {t['load']:6.2f} {t.get('coarse', 0):6.2f} {t.get('reach', 0):6.2f} {t['skeleton']:6.2f} {t['basis']:6.2f} "
         f"{t['solve']:6.2f} {evals:5d} {1000 * t['solve'] / max(evals, 1):7.2f} {t['verify']:6.2f} {t.get('contour', 0):6.2f} "
         f"{t.get('correct', 0):6.2f} {t.get('quadric', 0):6.2f} {t['write']:6.2f} {float(wall):7.2f} {int(peak_kb) / 1024:8.1f} "
         f"{code:>5} {load}")
 if instructions: line += f"  {int(instructions) / 1e9:.1f} G instructions"
 print(line)
-open(rows, 'a').write(f"{r['vertices']} {wall} {int(peak_kb) / 1024}\n")
+open(rows, 'a').write(f"{r['vertices']} {wall} {cpu} {int(peak_kb) / 1024}\n")
 PY
 done
 echo
-echo "time and memory against n (exponent: log of the ratio to the previous size over log of the n ratio)"
+echo "wall, CPU and memory against n (exponent: log of the ratio to the previous size over log of the n ratio)"
 /usr/bin/python3 - "$out/rows" <<'PY'
 import math, sys
 rows = [tuple(map(float, l.split())) for l in open(sys.argv[1])]
-print(f"{'vertices':>9} {'wall s':>7} {'peak MB':>8} {'t exp':>6} {'mem exp':>7}")
-for i, (n, t, m) in enumerate(rows):
-    te = me = ''
+print(f"{'vertices':>9} {'wall s':>7} {'cpu s':>7} {'peak MB':>8} {'wall exp':>8} {'cpu exp':>7} {'mem exp':>7}")
+for i, (n, t, c, m) in enumerate(rows):
+    te = ce = me = ''
     if i:
-        pn, pt, pm = rows[i - 1]
-        te = f"{math.log(t / pt) / math.log(n / pn):.2f}"; me = f"{math.log(m / pm) / math.log(n / pn):.2f}"
-    print(f"{int(n):9d} {t:7.2f} {m:8.1f} {te:>6} {me:>7}")
+        pn, pt, pc, pm = rows[i - 1]
+        scale = math.log(n / pn)
+        te, ce, me = (f"{math.log(a / b) / scale:.2f}" for a, b in ((t, pt), (c, pc), (m, pm)))
+    print(f"{int(n):9d} {t:7.2f} {c:7.2f} {m:8.1f} {te:>8} {ce:>7} {me:>7}")
 PY

@@ -299,7 +299,7 @@ Json verification_json(const Verification& verification) {
 Json stage_timings_json(const StageTimings& timings) {
   // In stage order; contour and correct only when a contour was attempted.
   const std::pair<const char*, std::optional<double>> stages[] = {
-      {"frame", timings.frame},     {"skeleton", timings.skeleton}, {"basis", timings.basis},
+      {"frame", timings.frame},     {"coarse", timings.coarse},     {"skeleton", timings.skeleton}, {"basis", timings.basis},
       {"solve", timings.solve},     {"verify", timings.verify},     {"contour", timings.contour},
       {"correct", timings.correct}, {"reach", timings.reach},     {"quadric", timings.quadric}, {"openings", timings.openings},
       {"total", timings.total}};

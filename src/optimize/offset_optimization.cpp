@@ -1018,6 +1018,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   struct CoarseOutcome {
     std::optional<CoarseCopy> copy;
     Mesh mesh;  // the copy in the normalised frame
+    double seconds = 0.0;
   };
   const bool use_coarse = contraction_defaults.coarse_above > 0 && n > contraction_defaults.coarse_above;
   if (use_coarse)
@@ -1025,12 +1026,14 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   const auto make_coarse = [&input, &f, &options, use_coarse, target = contraction_defaults.coarse_vertices]() {
     CoarseOutcome outcome;
     if (!use_coarse) return outcome;
+    const auto start = Clock::now();
     outcome.copy = coarse_copy(input.V, input.F, target, options.threads);
     const DecimatedMesh& d = outcome.copy->decimated;
     outcome.mesh.F = d.mesh.F;
     outcome.mesh.V.resize(d.mesh.V.rows(), 3);
     for (std::size_t c = 0; c < d.input_vertex.size(); ++c)
       outcome.mesh.V.row(static_cast<Eigen::Index>(c)) = f.normalized.V.row(d.input_vertex[c]);
+    outcome.seconds = seconds_since(start);
     return outcome;
   };
   std::shared_future<CoarseOutcome> coarse_future;
@@ -1048,10 +1051,10 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     const auto& tick = options.on_stage_progress;
     if (tick) basis_options.lanczos.on_progress = [&tick](double fraction) { tick("basis", fraction); };
     const auto compute_basis = [&normalized = f.normalized, coarse_future, k, basis_options, &tick]() {
+      const CoarseOutcome& coarse = coarse_future.get();  // its own seconds are the copy's
       const auto start = Clock::now();
       BasisOutcome outcome;
       if (tick) tick("basis", 0.0);
-      const CoarseOutcome& coarse = coarse_future.get();
       outcome.harmonics = manifold_harmonics(coarse.copy ? coarse.mesh : normalized, k, basis_options);
       if (tick) tick("basis", 1.0);
       outcome.seconds = seconds_since(start);
@@ -1075,10 +1078,10 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     double seconds = 0.0;
   };
   const auto compute_band = [&input, &options, &f, coarse_future, &tick]() {
+    const std::optional<CoarseCopy>& coarse = coarse_future.get().copy;
     const auto start = Clock::now();
     BandOutcome outcome;
     if (tick) tick("skeleton", 0.0);
-    const std::optional<CoarseCopy>& coarse = coarse_future.get().copy;
     outcome.problem = make_band(input, options, f, coarse ? &*coarse : nullptr, outcome.band);
     outcome.seconds = seconds_since(start);
     if (tick) tick("skeleton", 1.0);
@@ -1107,6 +1110,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   BandOutcome band_outcome = band_future.get();
   const std::optional<CoarseCopy>& coarse = coarse_future.get().copy;
   const Mesh& basis_mesh = coarse_future.get().mesh;
+  if (coarse) timings.coarse = coarse_future.get().seconds;
   if (!band_outcome.problem.empty()) return failure(OptimizeStatus::bad_input, band_outcome.problem);
   Band b = std::move(band_outcome.band);
   timings.skeleton = band_outcome.seconds;

@@ -298,6 +298,7 @@ struct OpeningsSummary {
 struct StageTimings {
   double frame = 0.0, skeleton = 0.0, basis = 0.0, solve = 0.0, verify = 0.0;
   std::optional<double> contour, correct, reach, quadric, openings;
+  std::optional<double> coarse;  // the coarse copy (above 60,000 vertices), alongside the reachability
   double total = 0.0;
 };
 
