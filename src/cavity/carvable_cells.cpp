@@ -53,24 +53,44 @@ std::vector<std::int8_t> distance_band(const NodeGrid& g, const std::vector<std:
           const double half_diagonal = 0.5 * (hi - lo).norm();
           const ClosestPoint c = closest_point(bvh, mid, top + half_diagonal + g.spacing);
           const double D = c.found ? c.distance : kInf;
-          for (std::int64_t kk = k0; kk < k1; ++kk)
-            for (std::int64_t j = j0; j < j1; ++j)
-              for (std::int64_t i = i0; i < i1; ++i) {
-                const std::size_t v = static_cast<std::size_t>(g.index(i, j, kk));
-                if (!mask[v]) continue;
-                const Eigen::Vector3d p(g.x(i), g.y(j), g.z(kk));
-                const double r = (p - mid).norm();
-                const std::int8_t low = count_below(D - r - rounding), high = count_below(D + r + rounding);
-                if (low == high) {
-                  band[v] = low;
-                  continue;
-                }
-                // Only the thresholds in [low, high) are open: a decision each, lowest first
-                // (d >= t for a threshold implies it for the lower ones).
-                ++per_part[part];
-                std::int8_t reached = low;
-                while (reached < high && !face_within(bvh, p, thresholds[static_cast<std::size_t>(reached)], true)) ++reached;
-                band[v] = reached;
+          // Points the block's bound leaves open are bounded again from the centre of their 2³
+          // sub-block (one nearest-face search there, when any point needs it), and only those
+          // still open are decided one by one.
+          for (std::int64_t sk = k0; sk < k1; sk += 2)
+            for (std::int64_t sj = j0; sj < j1; sj += 2)
+              for (std::int64_t si = i0; si < i1; si += 2) {
+                const std::int64_t si1 = std::min(si + 2, i1), sj1 = std::min(sj + 2, j1), sk1 = std::min(sk + 2, k1);
+                const Eigen::Vector3d sub_lo(g.x(si), g.y(sj), g.z(sk)), sub_hi(g.x(si1 - 1), g.y(sj1 - 1), g.z(sk1 - 1));
+                const Eigen::Vector3d sub_mid = 0.5 * (sub_lo + sub_hi);
+                double D2 = -1.0;  // not searched yet
+                for (std::int64_t kk = sk; kk < sk1; ++kk)
+                  for (std::int64_t j = sj; j < sj1; ++j)
+                    for (std::int64_t i = si; i < si1; ++i) {
+                      const std::size_t v = static_cast<std::size_t>(g.index(i, j, kk));
+                      if (!mask[v]) continue;
+                      const Eigen::Vector3d p(g.x(i), g.y(j), g.z(kk));
+                      const double r = (p - mid).norm();
+                      std::int8_t low = count_below(D - r - rounding), high = count_below(D + r + rounding);
+                      if (low < high) {
+                        if (D2 < 0.0) {
+                          const ClosestPoint c2 = closest_point(bvh, sub_mid, top + 0.5 * (sub_hi - sub_lo).norm() + g.spacing);
+                          D2 = c2.found ? c2.distance : kInf;
+                        }
+                        const double r2 = (p - sub_mid).norm();
+                        low = std::max(low, count_below(D2 - r2 - rounding));
+                        high = std::min(high, count_below(D2 + r2 + rounding));
+                      }
+                      if (low >= high) {
+                        band[v] = low;
+                        continue;
+                      }
+                      // Only the thresholds in [low, high) are open: a decision each, lowest
+                      // first (d >= t for a threshold implies it for the lower ones).
+                      ++per_part[part];
+                      std::int8_t reached = low;
+                      while (reached < high && !face_within(bvh, p, thresholds[static_cast<std::size_t>(reached)], true)) ++reached;
+                      band[v] = reached;
+                    }
               }
         }
   });
