@@ -48,7 +48,7 @@ cpu = float(user) + float(system)
 evals = r['solver']['evaluations']
 line = (f"{detail:6} {r['vertices']:8d} {t['load']:6.2f} {t.get('coarse', 0):6.2f} {t.get('reach', 0):6.2f} {t['skeleton']:6.2f} {t['basis']:6.2f} "
         f"{t['solve']:6.2f} {evals:5d} {1000 * t['solve'] / max(evals, 1):7.2f} {t['verify']:6.2f} {t.get('contour', 0):6.2f} "
-        f"{t.get('correct', 0):6.2f} {t.get('quadric', 0):6.2f} {t['write']:6.2f} {float(wall):7.2f} {int(peak_kb) / 1024:8.1f} "
+        f"{t.get('correct', 0):6.2f} {t.get('quadric', 0):6.2f} {t['write']:6.2f} {float(wall):7.2f} {cpu:7.2f} {int(peak_kb) / 1024:8.1f} "
         f"{code:>5} {load}")
 if instructions: line += f"  {int(instructions) / 1e9:.1f} G instructions"
 print(line)
