@@ -1100,9 +1100,10 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   say("reachability: can any void reach the goal?");
   if (tick) tick("reachability", -1.0);
   stage_start = Clock::now();
-  ReachabilitySummary reach = reachability_stage({&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
-                                                  options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
-                                                  options.threads, options.flatten});
+  const ReachabilityStageInput reach_input{&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
+                                           options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
+                                           options.threads, options.flatten};
+  ReachabilitySummary reach = reachability_stage(reach_input);
   timings.reach = seconds_since(stage_start);
   if (tick) tick("reachability", 1.0);
   if (reach.decided && !reach.reachable) return refuse_unreachable(input, f, std::move(reach), timings, total_start);
@@ -1221,8 +1222,10 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
       result.message = failure_reason(options, b, solve, verification);
       if (written.quadric_rounds) result.message += "; the quadric void was tried: " + written.choice;
     }
-    if (result.reachability && (result.reachability->reachable || !result.reachability->decided))
+    if (result.reachability && (result.reachability->reachable || !result.reachability->decided)) {
+      add_remedies(reach_input, *result.reachability);
       result.message += "; " + reachability_note(*result.reachability);
+    }
   }
   return result;
 }

@@ -185,11 +185,19 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
   s.carvable_volume = r.carvable_volume;
   s.lps = r.lps;
   s.lp_iterations = r.lp_iterations;
-  if (r.reachable) return s;
+  if (!r.decided) return s;  // the remedies wait until the run has missed the goal (add_remedies)
+  add_remedies(in, s);
+  s.refusal = "no void can reach this: " + shortfall(in.goal, r);
+  s.refusal += s.remedy_list.empty() ? "; no remedy tried reaches it (re-pose the model or thicken it)" : "; try " + s.remedy_list;
+  return s;
+}
 
-  // Remedies, each checked by the same programme.
+void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& s) {
+  if (!s.programme || s.reachable || !s.remedies.empty()) return;
+  const Reachability& r = *s.programme;
   const bool band_helps = in.goal.kind != GoalKind::floating && in.goal.kind != GoalKind::volume;
   if (!in.outer && band_helps) {
+    const TriangleBvh bvh(in.input->V, in.input->F);
     const Reachability with_band = reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, options_for(in, true));
     if (with_band.ok) s.remedies.push_back(remedy_from("--outer", with_band));
   }
@@ -211,8 +219,7 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
       return a.best_margin.value_or(-1e300) > b.best_margin.value_or(-1e300);
     });
     s.remedies.insert(s.remedies.end(), poses.begin(), poses.end());
-    // A new cut means new cells, several times over: only for a refusal, not while the solve may
-    // still meet the goal.
+    // A new cut means new cells, several times over: only for a proved refusal.
     if (r.decided)
       if (auto remedy = smallest_flatten(in)) s.remedies.push_back(*remedy);
   }
@@ -224,11 +231,6 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
                                                    : in.goal.epsilon));
     if (may) names += (names.empty() ? "" : ", ") + remedy.option + (remedy.reachable ? "" : " (may)");
   }
-  if (r.decided) {
-    s.refusal = "no void can reach this: " + shortfall(in.goal, r);
-    s.refusal += names.empty() ? "; no remedy tried reaches it (re-pose the model or thicken it)" : "; try " + names;
-  }
-  return s;
 }
 
 std::string reachability_note(const ReachabilitySummary& summary) {

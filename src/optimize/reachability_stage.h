@@ -66,6 +66,12 @@ struct ReachabilityStageInput {
 
 ReachabilitySummary reachability_stage(const ReachabilityStageInput& in);
 
+// The remedies, each checked by the same programme, into `summary` (remedies, remedy_list): the
+// stage adds them itself to a proved refusal; for an undecided goal the pipeline asks only once
+// the run has missed it (six pose programmes and the --outer band cost more than many solves that
+// then meet the goal). Does nothing for a reachable goal or when they are already there.
+void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& summary);
+
 // For a run that missed the goal: what the programme found, in one clause. Undecided: "undecided
 // whether any void reaches it (best margin -0.0087 to -0.0013); try --outer (may), --pose stable";
 // reachable: "a void the tool can write reaches it (best margin 0.4), so this is the tool's
