@@ -1,4 +1,4 @@
-// The cells of a regular grid that a void may occupy (DESIGN.md "Reachability: what any void can
+// The cells of a regular grid that a void may occupy (docs/design.md "Reachability: what any void can
 // do"), read two ways so that both of reachability's answers are honest:
 // - inner: cells the contoured cavity can write whole: all 8 nodes inside the outer surface with
 //   distance >= wall + margin (the contour's own node test, cavity/contour_cavity.h, with its
@@ -8,7 +8,7 @@
 //   centre (positive inside) plus half its diagonal r = √3·h/2 is >= wall (with --outer, the wall
 //   may be measured from material added outside, so >= wall − outer_max). Every point of any
 //   void keeping the wall lies in an outer cell, so it backs the claim "unreachable". inner ⊆ outer.
-// With `band`, also the cells the outer offset may fill (material ADDED, DESIGN.md; the base is kept
+// With `band`, also the cells the outer offset may fill (material ADDED, docs/design.md; the base is kept
 // as cli --outer keeps it: nothing within 2·outer_max + ground_tol of the ground):
 // - band_inner: cells whose centre is outside within outer_max, the bottom above the kept base (the
 //   outer offset is a displaced surface, not a union of cells: no cell reading is exactly what it

@@ -2,13 +2,13 @@
 // cavity, the printable solid and the verification of the written surfaces. It may include
 // src/shape and every folder below it; src/optimize and src/cli sit above it.
 //
-// The written cavity, valid by construction (DESIGN.md "The written cavity"): the optimised inner
+// The written cavity, valid by construction (docs/design.md "The written cavity"): the optimised inner
 // offset surface may fold, cross itself or cross the outer surface, and keeps no wall in parts
 // left solid, so the cavity that is written is the contour of
 //   φ(p) = min( d_out(p) − wall − c·h ,  s_in(p) ),
 // d_out the distance to the outer surface (positive inside it), s_in the distance to the inner
 // offset surface with the sign of its winding number (inside where w >= 1), or the signed distance
-// to a quadric's zero set (the optimal void of DESIGN.md "Reachability"), h the grid spacing,
+// to a quadric's zero set (the optimal void of docs/design.md "Reachability"), h the grid spacing,
 // by marching tetrahedra (geometry/marching_tetrahedra.h) over the cells where φ changes sign.
 // Prusa's SLA hollowing contours a level set of the interior in the same spirit.
 //

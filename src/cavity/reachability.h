@@ -1,4 +1,4 @@
-// Moment-space reachability (DESIGN.md "Reachability: what any void can do"): can ANY void (any
+// Moment-space reachability (docs/design.md "Reachability: what any void can do"): can ANY void (any
 // set of carvable cells, cavity/carvable_cells.h) meet the goal as the mesh is posed, with how much
 // to spare, and if not, a proof.
 //

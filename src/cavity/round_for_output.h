@@ -1,4 +1,4 @@
-// The surfaces of a result as they will read back from the files written (DESIGN.md
+// The surfaces of a result as they will read back from the files written (docs/design.md
 // "Verification": verify the bytes written). OBJ, PLY and 3MF keep every double; STL stores
 // float32 (meshio/write_mesh.h, stored_precision), and rounding a vertex by up to half a float
 // ulp (6e-8 of its largest coordinate) can make nearly coplanar faces of a CAD part cross, or

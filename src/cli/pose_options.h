@@ -1,4 +1,4 @@
-// The pose options `inspect` and `optimize` share (issue 13; DESIGN.md "Command line"):
+// The pose options `inspect` and `optimize` share (issue 13; docs/design.md "Command line"):
 // --up AXIS (an exact signed permutation to z up), --pose as-is|stable (rest on the most stable
 // convex-hull facet) and --flatten H (cut a flat base H above the lowest point), applied in that
 // order to the loaded mesh, and the "pose" object of the reports.

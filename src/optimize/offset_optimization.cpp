@@ -538,7 +538,7 @@ std::optional<AlResult> coarse_solve(const OptimizeOptions& options, const Frame
 }
 
 // Stages "cavity" and "verify": the offset surfaces verified as they are, and, where they do not
-// verify (or `--cavity contour`), the contoured cavity corrected in moment space (DESIGN.md "The
+// verify (or `--cavity contour`), the contoured cavity corrected in moment space (docs/design.md "The
 // written cavity", step 4): the goal is solved again on the offset model's integrals plus the
 // difference the contour made, warm-started, until the written solid verifies.
 struct Cavity {

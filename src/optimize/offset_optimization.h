@@ -3,7 +3,7 @@
 // preview picture. It builds no JSON and prints nothing. It may include every folder below it;
 // only src/cli sits above it.
 //
-// The whole optimisation of DESIGN.md's pipeline for one input mesh (Musialski et al. 2015):
+// The whole optimisation of docs/design.md's pipeline for one input mesh (Musialski et al. 2015):
 //   frame (ground, support) -> contraction meso-skeleton -> offset directions and bounds
 //   -> manifold-harmonic basis Γk -> reduced problem in α (and β with outer offsets),
 //      solved by the augmented Lagrangian + L-BFGS-B -> final surfaces -> verification.
@@ -30,7 +30,7 @@
 
 namespace offsetopt {
 
-// Which cavity is written (DESIGN.md "The written cavity"): the smooth inner offset surface
+// Which cavity is written (docs/design.md "The written cavity"): the smooth inner offset surface
 // (the paper's result, the input's connectivity), the contour of the implicit cavity
 // (cavity/contour_cavity.h, corrected in moment space), or the offset surface when it verifies as
 // it is and the contour otherwise.

@@ -1,4 +1,4 @@
-// The quadric void (DESIGN.md "Reachability", use 2): where the offset model misses a goal that
+// The quadric void (docs/design.md "Reachability", use 2): where the offset model misses a goal that
 // some void reaches, or reaches it well short of the best any void does, the void written is the
 // reachability programme's optimum, {q < 0} ∩ carvable (cavity/reachability.h), contoured like any
 // cavity, φ = min(d_out − wall − c·h, −q/|∇q|) (cavity/contour_cavity.h), and corrected in moment

@@ -1,4 +1,4 @@
-// Stage "reachability" of the pipeline (DESIGN.md "Reachability: what any void can do"): before
+// Stage "reachability" of the pipeline (docs/design.md "Reachability: what any void can do"): before
 // the offset solve, can any void reach the goal as posed (cavity/reachability.h)? When no void can
 // (decided, with a certificate), the run stops at once with exit 3 and says by how much, and which
 // remedies the same programme finds to reach it: --outer (with its band), other faces down

@@ -14,7 +14,7 @@ struct Properties {
   D m, cx, cy, cz, Ixx, Iyy, Izz, Ixy, Iyz, Izx;
 };
 
-// Mass properties of the solid whose raw integrals are `f` (DESIGN.md convention).
+// Mass properties of the solid whose raw integrals are `f` (docs/design.md convention).
 Properties properties_of(const D* f) {
   Properties p;
   p.m = f[kIntVolume];

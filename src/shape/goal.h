@@ -1,4 +1,4 @@
-// The six goals of the optimiser (Musialski et al. 2015, section 6.2; DESIGN.md "Goals") as
+// The six goals of the optimiser (Musialski et al. 2015, section 6.2; docs/design.md "Goals") as
 // closed-form functions of the raw volume integrals of the outer and the inner surface:
 //   shell = outer − inner (the printed material, density 1), filled = shell + ρ_fill · inner.
 // Each goal gives an objective f, equality constraints h = 0 and inequality constraints c ≤ 0,

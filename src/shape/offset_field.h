@@ -1,5 +1,5 @@
 // Offset directions and bounds from a contracted mesh (Musialski et al. 2015, section 4: inner
-// vectors toward the meso-skeleton, 4.2: maximal and minimal bounds; DESIGN.md "Meso-skeleton and
+// vectors toward the meso-skeleton, 4.2: maximal and minimal bounds; docs/design.md "Meso-skeleton and
 // offset field"). All lengths are in the units of `mesh`.
 //
 // For input vertex x_i with contracted position s_i (same index) and outward unit normal n_i
@@ -33,7 +33,7 @@
 //   delta_l_i = t / max(c, -v_i . n_i),  c = thickness_cosine_floor (default 0.2: an oblique
 //   direction never demands more than 5 t).
 // No clamping of delta_l to delta_u happens here: where a part is thinner than the wall the band
-// is empty (delta_l > delta_u) and the optimiser decides (DESIGN.md, "Reduced problem").
+// is empty (delta_l > delta_u) and the optimiser decides (docs/design.md, "Reduced problem").
 // Outer directions: w_i = -v_i (default, the paper's choice) or n_i.
 #pragma once
 #include <cstdint>

@@ -1,5 +1,5 @@
 // How far each vertex of a closed surface may be thickened along its outer direction without the
-// thickened surface folding onto itself (DESIGN.md "Reduced problem": the outer offsets; issue 20).
+// thickened surface folding onto itself (docs/design.md "Reduced problem": the outer offsets; issue 20).
 // All lengths in the units of `mesh`; directions w_i unit (or zero), pointing out of the solid;
 // n_i the outward vertex normals (geometry/vertex_normals.h). Three rules lower the requested
 // limit r_i, then a slope bound joins them:

@@ -3,7 +3,7 @@
 // below it (util, optim, mesh, geometry, io, meshio, sparse, spectral, skeleton, mass) and itself;
 // src/cavity and src/optimize sit above it.
 //
-// The reduced-order offset problem (Musialski et al. 2015, eq. 3, in the form DESIGN.md "Reduced
+// The reduced-order offset problem (Musialski et al. 2015, eq. 3, in the form docs/design.md "Reduced
 // problem" fixes). With Γ the #V by k basis (manifold harmonics; rows of fixed vertices zeroed,
 // paper 5.2) the variables are x = [α] or, with outer offsets, x = [α; β]:
 //   outer offset  δout = smoothclamp(Γβ, −min(omax_i, (hi−δl)₊/2), omax_i)   along w (outward),
@@ -94,7 +94,7 @@ class ReducedProblem {
   Eigen::VectorXd start_point() const;
 
   // A constant added to the inner surface's integrals before the goal reads them: the moment-space
-  // correction (DESIGN.md "The written cavity", step 4), the written cavity's integrals less the
+  // correction (docs/design.md "The written cavity", step 4), the written cavity's integrals less the
   // offset surface's. It does not depend on the variables, so no derivative changes.
   void set_inner_integral_shift(const Vector10d& shift);
   // The goal's margins (GoalSpec::margin, ::epsilon) for later solves: a correction aims a little

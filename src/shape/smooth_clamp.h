@@ -1,4 +1,4 @@
-// The C1 clamp that holds the per-vertex offset bounds by construction (DESIGN.md "Reduced
+// The C1 clamp that holds the per-vertex offset bounds by construction (docs/design.md "Reduced
 // problem"): instead of the paper's linear constraints δl <= Γk α <= δu (eq. 3), which have no
 // feasible point on ordinary models with parts left solid, the offset actually applied is
 //   δeff = smoothclamp(Γk α) into [lo, hi],
