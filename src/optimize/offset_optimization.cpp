@@ -775,7 +775,7 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
   QuadricVoid q = write_quadric_void(in);
   std::optional<Optimality> quadric_optimality = optimality(f, programme, q.verification);
   // Where the void is thin (blades, plates), a contour a wall / 1.5 fine loses much of the
-  // lowering the programme's cells reach (cgal-data_turbine: 84% of it, 98% on a grid twice as fine).
+  // lowering the programme's cells reach (cgal-data_turbine: 84% of it; 97% on a grid twice as fine).
   if (quadric_optimality && quadric_optimality->fraction < options.quadric_below_fraction &&
       2.0 * in.contour.cells_per_wall <= kFinestQuadricCellsPerWall) {
     in.contour.cells_per_wall *= 2.0;

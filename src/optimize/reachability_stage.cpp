@@ -185,7 +185,9 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
   s.carvable_volume = r.carvable_volume;
   s.lps = r.lps;
   s.lp_iterations = r.lp_iterations;
-  if (!r.decided) return s;  // the remedies wait until the run has missed the goal (add_remedies)
+  // Reachable: nothing to remedy. Undecided: the remedies wait until the run has missed the goal
+  // (add_remedies).
+  if (r.reachable || !r.decided) return s;
   add_remedies(in, s);
   s.refusal = "no void can reach this: " + shortfall(in.goal, r);
   s.refusal += s.remedy_list.empty() ? "; no remedy tried reaches it (re-pose the model or thicken it)" : "; try " + s.remedy_list;
