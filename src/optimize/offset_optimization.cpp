@@ -172,6 +172,26 @@ struct Frame {
   Eigen::Vector3d to_frame(const Eigen::Vector3d& p) const { return (p - origin) * scale; }
 };
 
+// The ten volume integrals of a surface in the normalised frame (origin, 1 / diagonal).
+Vector10d integrals_in_frame(const Frame& f, const Mesh& mesh) {
+  Mesh framed = mesh;
+  for (Eigen::Index i = 0; i < framed.V.rows(); ++i) framed.V.row(i) = f.to_frame(framed.V.row(i).transpose()).transpose();
+  return volume_integrals(framed, Eigen::Vector3d::Zero()).values;
+}
+
+// What every verification of a written solid takes from the frame and the options: the goal,
+// its tolerances, the wall and the output's precision (the surfaces are set per use).
+VerifyInput verify_input_for(const OptimizeOptions& options, const Frame& f) {
+  VerifyInput v;
+  v.goal = f.goal_input;
+  v.diagonal = f.diag;
+  v.ground_tol = f.ground_tol;
+  v.wall = f.wall;
+  v.threads = options.threads;
+  v.precision = options.output_precision;
+  return v;
+}
+
 // Empty when the frame and goal are set, else why the input does not allow the goal.
 std::string make_frame(const Mesh& input, const OptimizeOptions& options, Frame& f) {
   const Eigen::Index n = input.V.rows();
@@ -559,17 +579,11 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
                           StageTimings& timings, const Progress& say, const Vector10d& opening_void = Vector10d::Zero()) {
   auto stage_start = Clock::now();
   Cavity c;
-  VerifyInput verify_input;
+  VerifyInput verify_input = verify_input_for(options, f);
   verify_input.outer = &solve.outer;
   verify_input.inner = &solve.inner;
-  verify_input.goal = f.goal_input;
-  verify_input.diagonal = f.diag;
-  verify_input.ground_tol = f.ground_tol;
-  verify_input.wall = f.wall;
   verify_input.fixed = b.band.fixed;
   verify_input.bound_violation = solve.bound_violation();
-  verify_input.threads = options.threads;
-  verify_input.precision = options.output_precision;
   if (options.outer) verify_input.outer_own_pairs = &b.input_pairs;
   const auto& tick = options.on_stage_progress;
   if (tick) tick("verify", -1.0);
@@ -626,9 +640,7 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
         problem = "the cavity could not be contoured: " + contoured.message;
         break;
       }
-      Mesh framed = contoured.cavity;
-      for (Eigen::Index i = 0; i < framed.V.rows(); ++i) framed.V.row(i) = f.to_frame(framed.V.row(i).transpose()).transpose();
-      const Vector10d delta = volume_integrals(framed, Eigen::Vector3d::Zero()).values - solve.eval.inner_integrals;
+      const Vector10d delta = integrals_in_frame(f, contoured.cavity) - solve.eval.inner_integrals;
       VerifyInput contour_input = verify_input;
       contour_input.outer = &solve.outer;
       contour_input.inner = &contoured.cavity;
@@ -683,14 +695,7 @@ bool lowers_centre(GoalKind kind) {
 // the centre of buoyancy negated: smaller is better either way.
 double written_score(const Frame& f, const Mesh& outer, const Mesh& cavity, const Verification& v) {
   if (f.goal.kind == GoalKind::floating) return -v.goal.com_below_buoyancy * f.scale;
-  Mesh framed = cavity;
-  for (Eigen::Index i = 0; i < framed.V.rows(); ++i) framed.V.row(i) = f.to_frame(framed.V.row(i).transpose()).transpose();
-  Mesh outer_framed = outer;
-  for (Eigen::Index i = 0; i < outer_framed.V.rows(); ++i)
-    outer_framed.V.row(i) = f.to_frame(outer_framed.V.row(i).transpose()).transpose();
-  return evaluate_goal(f.goal, volume_integrals(outer_framed, Eigen::Vector3d::Zero()).values,
-                       volume_integrals(framed, Eigen::Vector3d::Zero()).values)
-      .objective;
+  return evaluate_goal(f.goal, integrals_in_frame(f, outer), integrals_in_frame(f, cavity)).objective;
 }
 
 std::optional<Optimality> optimality(const Frame& f, const Reachability& reach, const Verification& v) {
@@ -763,13 +768,8 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
   in.contour.cells_per_wall = options.cavity_cells_per_wall;
   in.contour.margin_cells = options.cavity_margin_cells;
   in.contour.threads = options.threads;
+  in.verify = verify_input_for(options, f);
   in.verify.outer = &solve.outer;
-  in.verify.goal = f.goal_input;
-  in.verify.diagonal = f.diag;
-  in.verify.ground_tol = f.ground_tol;
-  in.verify.wall = f.wall;
-  in.verify.threads = options.threads;
-  in.verify.precision = options.output_precision;
   in.max_rounds = options.max_correction_rounds;
   in.headroom = kCorrectionHeadroom;
   QuadricVoid q = write_quadric_void(in);
@@ -843,18 +843,7 @@ OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, con
   open_options.hole_radius = options.drain_hole_radius > 0.0 ? options.drain_hole_radius : std::min(2.0, 0.02 * f.diag);
   if (wants_channel(options, b)) open_options.opening = options.fix;
   open_options.wall = f.wall;
-  VerifyInput base;
-  base.goal = f.goal_input;
-  base.diagonal = f.diag;
-  base.ground_tol = f.ground_tol;
-  base.wall = f.wall;
-  base.threads = options.threads;
-  base.precision = options.output_precision;
-  auto frame_integrals = [&](const Mesh& mesh) {
-    Mesh framed = mesh;
-    for (Eigen::Index i = 0; i < framed.V.rows(); ++i) framed.V.row(i) = f.to_frame(framed.V.row(i).transpose()).transpose();
-    return volume_integrals(framed, Eigen::Vector3d::Zero()).values;
-  };
+  const VerifyInput base = verify_input_for(options, f);
   OpeningsSummary summary;
   for (int attempt = 0;; ++attempt) {
     if (!cavity.verification.valid) {
@@ -883,7 +872,7 @@ OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, con
       if (v.opened.ok) opened_solid = std::move(v.solid);
       break;
     }
-    const Vector10d extra = frame_integrals(v.void_surfaces) - frame_integrals(cavity.written);
+    const Vector10d extra = integrals_in_frame(f, v.void_surfaces) - integrals_in_frame(f, cavity.written);
     solve.correct(cavity.summary.rounds->back().delta_in_frame + extra, 100 + attempt);
     cavity = make_offset_cavity(options, f, b, solve, timings, say, extra);
   }
