@@ -12,34 +12,85 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <stdexcept>
 
 namespace offsetopt::cli {
+
+namespace {
+
+// A bound as people write it: "1e12", "1e-6", "0.999999" (to_chars' "1e+12", "1e-06" tidied).
+std::string bound_text(double value) {
+  std::string text = format_double(value);
+  const std::size_t e = text.find('e');
+  if (e == std::string::npos) return text;
+  std::string exponent = text.substr(e + 1);
+  const bool negative = exponent[0] == '-';
+  if (exponent[0] == '-' || exponent[0] == '+') exponent.erase(0, 1);
+  while (exponent.size() > 1 && exponent[0] == '0') exponent.erase(0, 1);
+  return text.substr(0, e + 1) + (negative ? "-" : "") + exponent;
+}
+
+}  // namespace
 
 const std::string& ArgCursor::value_of(const std::string& name) {
   if (done()) throw UsageError("option " + name + " needs a value");
   return next();
 }
 
-double parse_double(const std::string& text, const std::string& option, double lo, double hi) {
+namespace {
+
+const OptionSpec& row_of(const std::vector<OptionSpec>& options, const std::string& arg) {
+  for (const OptionSpec& o : options)
+    for (const std::string& name : option_names(o.names))
+      if (name == arg) return o;
+  throw std::logic_error("option " + arg + " has no row in its command's table");
+}
+
+// "[0, 1e12]", "(0, 1e12]", "[1, #vertices - 1]": a number range without the words after it.
+std::string interval_text(const OptionRange& range) {
+  auto text = [&range](double bound) {
+    return range.kind == OptionRange::Kind::integer ? std::to_string(static_cast<long long>(bound)) : bound_text(bound);
+  };
+  return std::string(range.lo_open ? "(" : "[") + text(range.lo) + ", " +
+         (*range.hi_words ? std::string(range.hi_words) : text(range.hi)) + "]";
+}
+
+}  // namespace
+
+std::string range_text(const OptionRange& range) {
+  return range.kind == OptionRange::Kind::words ? range.words : interval_text(range) + range.words;
+}
+
+double parse_in_range(const std::string& text, const std::string& option, const OptionRange& range) {
+  const bool integer = range.kind == OptionRange::Kind::integer;
   char* end = nullptr;
   errno = 0;
-  const double value = std::strtod(text.c_str(), &end);
+  const double value = integer ? static_cast<double>(std::strtol(text.c_str(), &end, 10)) : std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(value))
-    throw UsageError(option + " expects a number, got '" + text + "'");
-  if (value < lo || value > hi)
-    throw UsageError(option + " must be in [" + format_double(lo) + ", " + format_double(hi) + "], got " + text);
+    throw UsageError(option + (integer ? " expects an integer, got '" : " expects a number, got '") + text + "'");
+  const bool below = range.lo_open ? !(value > range.lo) : value < range.lo;
+  if (below || value > range.hi) throw UsageError(option + " must be in " + interval_text(range) + ", got " + text);
   return value;
 }
 
+double parse_real_option(const std::vector<OptionSpec>& options, const std::string& arg, const std::string& text) {
+  const OptionSpec& row = row_of(options, arg);
+  if (row.range.kind != OptionRange::Kind::real) throw std::logic_error(arg + "'s row is not a real range");
+  return parse_in_range(text, arg, row.range);
+}
+
+double parse_double(const std::string& text, const std::string& option, double lo, double hi) {
+  return parse_in_range(text, option, OptionRange::real(lo, hi));
+}
+
 int parse_int(const std::string& text, const std::string& option, int lo, int hi) {
-  char* end = nullptr;
-  errno = 0;
-  const long value = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
-    throw UsageError(option + " expects an integer, got '" + text + "'");
-  if (value < lo || value > hi)
-    throw UsageError(option + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
-  return static_cast<int>(value);
+  return static_cast<int>(parse_in_range(text, option, OptionRange::integer(lo, hi)));
+}
+
+int parse_integer_option(const std::vector<OptionSpec>& options, const std::string& arg, const std::string& text) {
+  const OptionSpec& row = row_of(options, arg);
+  if (row.range.kind != OptionRange::Kind::integer) throw std::logic_error(arg + "'s row is not an integer range");
+  return static_cast<int>(parse_in_range(text, arg, row.range));
 }
 
 namespace {
@@ -124,7 +175,7 @@ std::string format_help(const CommandHelp& help) {
       out += '\n';
       append_wrapped(out, o.help, indent, false);
     }
-    std::string facts = std::string("default: ") + o.default_value + "; range: " + o.range;
+    std::string facts = std::string("default: ") + o.default_value + "; range: " + range_text(o.range);
     // "example: X" stays on one line (a placeholder for its space survives the wrapping).
     if (*o.example) facts += std::string("; example:\x01") + o.example;
     const std::size_t start = out.size();

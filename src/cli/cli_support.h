@@ -50,18 +50,63 @@ void write_text(const std::string& path, const std::string& text, const std::vec
 // Same protection for mesh outputs: UsageError when `output` names one of `inputs`.
 void refuse_overwriting_input(const std::string& output, const std::vector<std::string>& inputs);
 
+// The values an option takes, as its table row states them: the help prints this and the
+// parser checks this (read_real, read_integer), so the two cannot disagree. A number range is
+// [lo, hi] (lo excluded when lo_open); when the upper bound depends on the input (hi_words:
+// "#vertices - 1"), the help names it and the command checks it once the input is read, the
+// parser only lo. Other options give their values in words ("mass | laplacian", "flag").
+struct OptionRange {
+  enum class Kind { words, real, integer };
+  Kind kind = Kind::words;
+  const char* words = "";     // words: the whole range text; numbers: text after "[lo, hi]" (" mesh units")
+  double lo = 0.0, hi = 0.0;
+  bool lo_open = false;
+  const char* hi_words = "";  // printed in place of hi, which is then not checked by the parser
+
+  constexpr OptionRange(const char* text) : words(text) {}  // NOLINT: rows name word ranges as plain strings
+  static constexpr OptionRange real(double lo, double hi, const char* after = "") {
+    return OptionRange(Kind::real, lo, hi, false, "", after);
+  }
+  // (lo, hi]: lo itself refused.
+  static constexpr OptionRange real_above(double lo, double hi, const char* after = "") {
+    return OptionRange(Kind::real, lo, hi, true, "", after);
+  }
+  static constexpr OptionRange integer(int lo, int hi, const char* after = "") {
+    return OptionRange(Kind::integer, lo, hi, false, "", after);
+  }
+  // [lo, hi_words]: the upper bound is the input's, checked by the command.
+  static constexpr OptionRange integer_up_to(int lo, const char* hi_words) {
+    return OptionRange(Kind::integer, lo, 2147483647.0, false, hi_words, "");
+  }
+
+ private:
+  constexpr OptionRange(Kind k, double l, double h, bool open, const char* hw, const char* after)
+      : kind(k), words(after), lo(l), hi(h), lo_open(open), hi_words(hw) {}
+};
+
+// The range as the help prints it: "[0, 1e12] mesh units", "(0, 1e12]", "[1, #vertices - 1]".
+std::string range_text(const OptionRange& range);
+
 // One row of a command's option table: the single place an option is declared. The help text is
 // generated from the table, and each parser refuses anything not in it (require_known_option),
 // so every accepted option is in the help; tests/cli/test_help_agreement.cpp runs every row's
-// example through the real parser, so every option in the help is accepted.
+// example through the real parser, so every option in the help is accepted, and a value just
+// outside every number range is refused.
 struct OptionSpec {
   const char* names;          // "--wall" or "-o, --output"
   const char* argument;       // "T", "FILE", ...; "" for a flag
   const char* default_value;  // "0.01 diag", "none", "off"
-  const char* range;          // "[0, 1e12]", "mass | laplacian", "flag"
+  OptionRange range;          // OptionRange::real(0, 1e12), "mass | laplacian", "flag"
   const char* help;           // one sentence or two; wrapped by the generator
   const char* example;        // a value the parser accepts ("" for a flag)
 };
+
+// `text`, the value of option `arg`, parsed and checked against the range of arg's row in
+// `options`: UsageError "--wall must be in [0, 1e12], got -1" when outside.
+double parse_real_option(const std::vector<OptionSpec>& options, const std::string& arg, const std::string& text);
+int parse_integer_option(const std::vector<OptionSpec>& options, const std::string& arg, const std::string& text);
+// `text` parsed as a number in `range` (a real or integer one), for option `option`.
+double parse_in_range(const std::string& text, const std::string& option, const OptionRange& range);
 
 struct CommandHelp {
   const char* intro;   // usage lines and what the command does (ends with a newline)

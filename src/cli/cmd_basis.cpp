@@ -25,7 +25,7 @@ const CommandHelp kHelp = {
     "The k smallest eigenpairs of the cotan Laplacian (manifold harmonics), by a shift-invert\n"
     "block Lanczos solver. The JSON report goes to stdout unless --json names a file.\n",
     {
-        {"--k", "N", "none (required)", "[1, #vertices - 1]", "number of eigenpairs", "4"},
+        {"--k", "N", "none (required)", OptionRange::integer_up_to(1, "#vertices - 1"), "number of eigenpairs", "4"},
         {"--basis", "KIND", "mass", "mass | laplacian",
          "'mass': L phi = lambda M phi, phi'M phi = 1, with the lumped mass M; 'laplacian': L phi = lambda phi, |phi| = 1 (the paper)",
          "laplacian"},
@@ -35,10 +35,10 @@ const CommandHelp kHelp = {
          "vectors.npy"},
         {"--ply", "FILE", "none", "a path ending in .ply",
          "write the mesh as binary PLY with eigenvector J as per-vertex 'quality' and a blue-white-red colour", "basis.ply"},
-        {"--ply-vector", "J", "1 (the first non-constant; 0 when k = 1)", "[0, k - 1]", "which eigenvector --ply shows", "0"},
-        {"--tol", "T", "1e-10", "[1e-15, 1e-2]", "convergence: |L phi - lambda M phi| <= T |L|inf |phi|", "1e-8"},
-        {"--block-size", "B", "6", "[1, 64]", "Lanczos block size (at least the largest eigenvalue multiplicity)", "4"},
-        {"--threads", "N", "0 (min(2, cores))", "[0, 64]", "threads for the iteration; the results are the same bits for any N",
+        {"--ply-vector", "J", "1 (the first non-constant; 0 when k = 1)", OptionRange::integer_up_to(0, "k - 1"), "which eigenvector --ply shows", "0"},
+        {"--tol", "T", "1e-10", OptionRange::real(1e-15, 1e-2), "convergence: |L phi - lambda M phi| <= T |L|inf |phi|", "1e-8"},
+        {"--block-size", "B", "6", OptionRange::integer(1, 64), "Lanczos block size (at least the largest eigenvalue multiplicity)", "4"},
+        {"--threads", "N", "0 (min(2, cores))", OptionRange::integer(0, 64), "threads for the iteration; the results are the same bits for any N",
          "1"},
         {"--matrices", "PREFIX", "none", "a path prefix",
          "also write PREFIX_L.mtx and PREFIX_M.mtx (Matrix Market), the exact matrices solved, for comparisons with other eigensolvers",
@@ -79,7 +79,7 @@ int run_basis(const Args& args) {
       write_text("-", format_help(kHelp));
       return kExitOk;
     } else if (arg == "--k") {
-      k = parse_int(cursor.value_of(arg), arg, 1, INT_MAX);
+      k = parse_integer_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--basis") {
       const std::string& kind = cursor.value_of(arg);
       if (!parse_basis_kind(kind, options.kind))
@@ -94,13 +94,13 @@ int run_basis(const Args& args) {
       ply_path = cursor.value_of(arg);
       if (!ends_with(ply_path, ".ply")) throw UsageError("--ply " + ply_path + ": the name must end in .ply");
     } else if (arg == "--ply-vector") {
-      ply_vector = parse_int(cursor.value_of(arg), arg, 0, INT_MAX);
+      ply_vector = parse_integer_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--tol") {
-      options.lanczos.tolerance = parse_double(cursor.value_of(arg), arg, 1e-15, 1e-2);
+      options.lanczos.tolerance = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--block-size") {
-      options.lanczos.block_size = parse_int(cursor.value_of(arg), arg, 1, 64);
+      options.lanczos.block_size = parse_integer_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--threads") {
-      options.lanczos.threads = parse_int(cursor.value_of(arg), arg, 0, 64);
+      options.lanczos.threads = parse_integer_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--matrices") {
       matrices_prefix = cursor.value_of(arg);
     } else if (arg == "--quiet") {

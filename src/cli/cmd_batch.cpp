@@ -50,8 +50,8 @@ const CommandHelp kHelp = {
     "without .tsv; with --line I or --shard I/N: .summary.line-I / .summary.shard-I-of-N) list\n"
     "each line's status, exit code, reason and seconds.\n",
     {
-        {"--jobs", "N", "1", "[1, 256]", "jobs run at the same time (each optimize uses --threads threads, 2 by default)", "2"},
-        {"--line", "I", "every line", "[1, number of lines]",
+        {"--jobs", "N", "1", OptionRange::integer(1, 256), "jobs run at the same time (each optimize uses --threads threads, 2 by default)", "2"},
+        {"--line", "I", "every line", OptionRange::integer(1, 1000000, " and at most the number of lines"),
          "run only data line I (1 = the first line after the header), e.g. a Slurm array index", "1"},
         {"--shard", "I/N", "every line", "0 <= I < N <= 1000000",
          "run only the lines whose number L has (L - 1) mod N = I, e.g. a Kubernetes completion index", "0/2"},
@@ -231,9 +231,9 @@ BatchOptions parse_batch_options(const Args& args) {
       o.help = true;
       return o;
     } else if (arg == "--jobs") {
-      o.jobs_at_once = parse_int(cursor.value_of(arg), arg, 1, 256);
+      o.jobs_at_once = parse_integer_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--line") {
-      o.only_line = parse_int(cursor.value_of(arg), arg, 1, 1000000);
+      o.only_line = parse_integer_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--shard") {
       const std::string& value = cursor.value_of(arg);
       const std::size_t slash = value.find('/');

@@ -23,7 +23,7 @@ const CommandHelp kHelp = {
     {
         {"-o, --output", "FILE", "none (required)", "a path ending in .obj, .stl, .ply or .3mf, or -",
          "where to write the mesh", "demo.obj"},
-        {"--detail", "D", "1", "[0.25, 32]",
+        {"--detail", "D", "1", OptionRange::real(0.25, 32),
          "multiply the ring and segment counts by D (bottle, top, rolypoly and buoy only): about D^2 times the vertices, for benchmarks",
          "2"},
         {"--unit", "UNIT", "millimeter", "micron | millimeter | centimeter | inch | foot | meter",
@@ -54,7 +54,7 @@ int run_generate(const Args& args) {
     } else if (arg == "--unit") {
       unit = parse_unit(cursor.value_of(arg));
     } else if (arg == "--detail") {
-      detail = parse_double(cursor.value_of(arg), arg, 0.25, 32.0);
+      detail = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg.size() > 1 && arg[0] == '-') {
       throw UsageError("unknown option '" + arg + "' for generate (try 'offsetopt generate --help')");
     } else if (name.empty()) {

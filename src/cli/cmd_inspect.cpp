@@ -28,7 +28,7 @@ const CommandHelp kHelp = {
     {
         {"--json", "FILE|-", "none (a readable summary goes to stdout)", "a path, or - for stdout",
          "write the report as JSON to FILE, or to stdout with '-'", "-"},
-        {"--ground-tol", "T", "1e-3 x the bounding-box diagonal", "[0, 1e9] mesh units",
+        {"--ground-tol", "T", "1e-3 x the bounding-box diagonal", OptionRange::real(0, 1e9, " mesh units"),
          "vertices with z <= zmin + T touch the ground", "0.01"},
         kPoseOptionSpecs[0],
         kPoseOptionSpecs[1],
@@ -64,7 +64,7 @@ int run_inspect(const Args& args) {
       json_path = cursor.value_of(arg);
       json_requested = true;
     } else if (arg == "--ground-tol") {
-      stability_options.ground_tol = parse_double(cursor.value_of(arg), arg, 0.0, 1e9);
+      stability_options.ground_tol = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (parse_pose_option(arg, cursor, pose_options)) {
     } else if (arg.size() > 1 && arg[0] == '-') {
       throw UsageError("unknown option '" + arg + "' for inspect (try 'offsetopt inspect --help')");

@@ -55,22 +55,22 @@ const CommandHelp kHelp = {
         // The problem.
         {"--goal", "GOAL", "none (required)", "stand | stand-filled | roly-poly | spin | volume | float", "one of the goals above",
          "stand"},
-        {"--k", "N|all", "36", "[1, #V - 1] or all", "basis size; 'all' solves per vertex (paper eq. 1)", "12"},
+        {"--k", "N|all", "36", OptionRange::integer(1, 100000, " and below #V, or all"), "basis size; 'all' solves per vertex (paper eq. 1)", "12"},
         {"--basis", "KIND", "mass", "mass | laplacian", "mass: L phi = lambda M phi; laplacian: L phi = lambda phi", "laplacian"},
         {"--bounds", "MODE", "clamp", "clamp | hard",
          "clamp: bounds held by construction; hard: the paper's per-vertex linear constraints", "hard"},
         {"--outer", "", "off", "flag", "also optimise an outer offset (thickening, paper 4.1)", ""},
-        {"--wall", "T", "0.01 diag", "[0, 1e12]", "minimum wall thickness", "0.5"},
-        {"--outer-max", "D", "0.02 diag", "[0, 1e12]", "largest outer offset", "1"},
-        {"--penalty", "WP", "1", "[0, 1e12]", "weight of the outer offset's mean term", "2"},
-        {"--margin", "E", "0.002 diag", "[0, 1e12]",
+        {"--wall", "T", "0.01 diag", OptionRange::real(0, 1e12), "minimum wall thickness", "0.5"},
+        {"--outer-max", "D", "0.02 diag", OptionRange::real(0, 1e12), "largest outer offset", "1"},
+        {"--penalty", "WP", "1", OptionRange::real(0, 1e12), "weight of the outer offset's mean term", "2"},
+        {"--margin", "E", "0.002 diag", OptionRange::real(0, 1e12),
          "stand: distance inside the support polygon; roly-poly, float: depth of the centre of mass below the centre", "0.1"},
-        {"--fill-density", "R", "1", "[1e-6, 1e6]", "stand-filled: density of the filling", "0.5"},
-        {"--fluid-density", "R", "none (required for float)", "[1e-6, 0.999999]", "float: fluid density relative to the material",
+        {"--fill-density", "R", "1", OptionRange::real(1e-6, 1e6), "stand-filled: density of the filling", "0.5"},
+        {"--fluid-density", "R", "none (required for float)", OptionRange::real(1e-6, 0.999999), "float: fluid density relative to the material",
          "0.8"},
-        {"--target-volume", "V", "none (required for volume)", "[1e-300, 1e36] mesh units cubed", "volume: the void's volume",
+        {"--target-volume", "V", "none (required for volume)", OptionRange::real(1e-300, 1e36, " mesh units cubed"), "volume: the void's volume",
          "100"},
-        {"--radius", "R", "sphere fitted to the bottom", "[1e-300, 1e12]", "roly-poly: hemisphere radius", "20"},
+        {"--radius", "R", "sphere fitted to the bottom", OptionRange::real(1e-300, 1e12), "roly-poly: hemisphere radius", "20"},
         {"--fix", "REGION", "none", "x>V, x<V, y>V, y<V, z>V, z<V or sphere:X,Y,Z,R",
          "keep the surface (an opening) where REGION holds; with a contoured cavity and x/y/z>V or <V, a channel is cut "
          "from the cavity to the outside inside REGION (docs/printable-solid.md)",
@@ -80,22 +80,22 @@ const CommandHelp kHelp = {
          "a drain hole of radius R from the point through the nearest outer surface (contoured cavity)", "10,0,5,1.5"},
         {"--drain-holes", "auto", "none", "auto",
          "one drain hole per cavity shell, at its lowest point as posed, through the nearest wall", "auto"},
-        {"--drain-hole-radius", "R", "2 (PrusaSlicer's 4 mm drain hole), at most 0.02 diag", "[1e-300, 1e12]", "the drain holes' default radius",
+        {"--drain-hole-radius", "R", "2 (PrusaSlicer's 4 mm drain hole), at most 0.02 diag", OptionRange::real(1e-300, 1e12), "the drain holes' default radius",
          "1"},
-        {"--ground-tol", "T", "0.001 diag", "[0, 1e12]", "ground contact tolerance", "0.01"},
+        {"--ground-tol", "T", "0.001 diag", OptionRange::real(0, 1e12), "ground contact tolerance", "0.01"},
         {"--cavity", "MODE", "auto", "auto | offset | contour | quadric",
          "the cavity written: the inner offset surface (offset: the paper's, with repair rounds), the contoured implicit "
          "cavity (contour: closed, embedded, the wall kept exactly), the best void any carving reaches, bounded by a "
          "quadric (quadric), or auto: the offset surface when it verifies as it is, the contour otherwise, and the quadric "
          "void when the offset void misses a goal some void reaches or falls more than 1% short of the best",
          "contour"},
-        {"--cavity-cells", "C", "1.5", "[1.25, 8]", "contour grid cells per wall thickness", "3"},
+        {"--cavity-cells", "C", "1.5", OptionRange::real(1.25, 8), "contour grid cells per wall thickness", "3"},
         kPoseOptionSpecs[0],
         kPoseOptionSpecs[1],
         kPoseOptionSpecs[2],
         {"--no-repair-ring", "", "off", "flag",
          "--cavity offset: repairs tighten only the vertices on folds, not their one-ring too", ""},
-        {"--threads", "N", "2", "[1, 64]",
+        {"--threads", "N", "2", OptionRange::integer(1, 64),
          "threads per stage; 1 runs the stages one after another on one thread (lowest memory). The output is the same for "
          "any N.",
          "1"},
@@ -116,7 +116,6 @@ int run_optimize(const Args& args) {
   std::string mesh_path, output, report_path, inner_path, outer_path, skeleton_path, preview_path, unit = "millimeter";
   bool quiet = false, timings_in_report = true, goal_given = false, unit_given = false;
   OptimizeOptions options = OptimizeOptions::defaults();
-  const double big = 1e12;
   PoseOptions pose_options;
   while (!cursor.done()) {
     const std::string& arg = cursor.next();
@@ -148,7 +147,7 @@ int run_optimize(const Args& args) {
       goal_given = true;
     } else if (arg == "--k") {
       const std::string& value = cursor.value_of(arg);
-      options.k = value == "all" ? 0 : parse_int(value, arg, 1, 100000);
+      options.k = value == "all" ? 0 : parse_integer_option(kHelp.options, arg, value);
     } else if (arg == "--basis") {
       const std::string& value = cursor.value_of(arg);
       if (!parse_basis_kind(value, options.basis)) throw UsageError("--basis must be mass or laplacian, got '" + value + "'");
@@ -160,21 +159,21 @@ int run_optimize(const Args& args) {
     } else if (arg == "--outer") {
       options.outer = true;
     } else if (arg == "--wall") {
-      options.wall = parse_double(cursor.value_of(arg), arg, 0.0, big);
+      options.wall = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--outer-max") {
-      options.outer_max = parse_double(cursor.value_of(arg), arg, 0.0, big);
+      options.outer_max = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--penalty") {
-      options.penalty = parse_double(cursor.value_of(arg), arg, 0.0, big);
+      options.penalty = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--margin") {
-      options.margin = parse_double(cursor.value_of(arg), arg, 0.0, big);
+      options.margin = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--fill-density") {
-      options.fill_density = parse_double(cursor.value_of(arg), arg, 1e-6, 1e6);
+      options.fill_density = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--fluid-density") {
-      options.fluid_density = parse_double(cursor.value_of(arg), arg, 1e-6, 0.999999);
+      options.fluid_density = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--target-volume") {
-      options.target_volume = parse_double(cursor.value_of(arg), arg, 1e-300, 1e36);
+      options.target_volume = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--radius") {
-      options.radius = parse_double(cursor.value_of(arg), arg, 1e-300, big);
+      options.radius = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--fix" || arg == "--opening") {
       const std::string& value = cursor.value_of(arg);
       if (const std::string problem = parse_fix_region(value, options.fix); !problem.empty())
@@ -186,7 +185,7 @@ int run_optimize(const Args& args) {
       while (begin <= value.size()) {
         const std::size_t comma = value.find(',', begin);
         const std::size_t end = comma == std::string::npos ? value.size() : comma;
-        numbers.push_back(parse_double(value.substr(begin, end - begin), arg, -big, big));
+        numbers.push_back(parse_double(value.substr(begin, end - begin), arg, -1e12, 1e12));
         if (comma == std::string::npos) break;
         begin = comma + 1;
       }
@@ -203,21 +202,21 @@ int run_optimize(const Args& args) {
       if (value != "auto") throw UsageError("--drain-holes takes 'auto', got '" + value + "'");
       options.drain_holes_auto = true;
     } else if (arg == "--drain-hole-radius") {
-      options.drain_hole_radius = parse_double(cursor.value_of(arg), arg, 1e-300, big);
+      options.drain_hole_radius = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--cavity") {
       const std::string& value = cursor.value_of(arg);
       if (!parse_cavity_mode(value, options.cavity))
         throw UsageError("--cavity must be auto, offset, contour or quadric, got '" + value + "'");
     } else if (arg == "--cavity-cells") {
-      options.cavity_cells_per_wall = parse_double(cursor.value_of(arg), arg, 1.25, 8.0);
+      options.cavity_cells_per_wall = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--ground-tol") {
-      options.ground_tol = parse_double(cursor.value_of(arg), arg, 0.0, big);
+      options.ground_tol = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--quiet") {
       quiet = true;
     } else if (arg == "--no-repair-ring") {
       options.repair_ring = false;
     } else if (arg == "--threads") {
-      options.threads = parse_int(cursor.value_of(arg), arg, 1, 64);
+      options.threads = parse_integer_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "-v" || arg == "--verbose") {
       options.trace_solver = true;
     } else if (parse_pose_option(arg, cursor, pose_options)) {

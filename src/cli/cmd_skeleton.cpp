@@ -30,9 +30,9 @@ const CommandHelp kHelp = {
          "where to write the contracted mesh", "skeleton.obj"},
         {"--json", "FILE|-", "none", "a path, or - for stdout", "write statistics as JSON to FILE, or to stdout with '-'",
          "stats.json"},
-        {"--wall", "T", "0", "[0, 1e12] mesh units",
+        {"--wall", "T", "0", OptionRange::real(0, 1e12, " mesh units"),
          "wall thickness for the lower offset bounds; the report then counts vertices whose bound band is empty", "0.5"},
-        {"--max-steps", "N", "8", "[1, 100]",
+        {"--max-steps", "N", "8", OptionRange::integer(1, 100),
          "contraction step cap; the run stops earlier once the enclosed volume is at most 10% of the input's", "4"},
         {"--unit", "UNIT", "the input's unit for a .3mf input, else millimeter", "micron | millimeter | centimeter | inch | foot | meter",
          "the unit written into a .3mf output (the numbers are not scaled)", "millimeter"},
@@ -61,12 +61,12 @@ int run_skeleton(const Args& args) {
     } else if (arg == "--json") {
       json_path = cursor.value_of(arg);
     } else if (arg == "--wall") {
-      field_options.wall = parse_double(cursor.value_of(arg), arg, 0.0, 1e12);
+      field_options.wall = parse_real_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--unit") {
       unit = parse_unit(cursor.value_of(arg));
       unit_given = true;
     } else if (arg == "--max-steps") {
-      contraction_options.max_steps = parse_int(cursor.value_of(arg), arg, 1, 100);
+      contraction_options.max_steps = parse_integer_option(kHelp.options, arg, cursor.value_of(arg));
     } else if (arg == "--quiet") {
       quiet = true;
     } else if (arg.size() > 1 && arg[0] == '-') {

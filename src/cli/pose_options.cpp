@@ -34,7 +34,7 @@ bool parse_pose_option(const std::string& arg, ArgCursor& cursor, PoseOptions& o
     return true;
   }
   if (arg == "--flatten") {
-    options.flatten = parse_double(cursor.value_of(arg), arg, 1e-300, 1e12);
+    options.flatten = parse_in_range(cursor.value_of(arg), arg, kPoseOptionSpecs[2].range);
     return true;
   }
   return false;

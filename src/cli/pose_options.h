@@ -34,7 +34,7 @@ inline constexpr OptionSpec kPoseOptionSpecs[3] = {
      "stable: rest on the convex-hull face that keeps the centre of mass furthest inside it, lowest point at z = 0; "
      "outputs are then written in that new pose",
      "stable"},
-    {"--flatten", "H", "none", "(0, 1e12] mesh units",
+    {"--flatten", "H", "none", OptionRange::real_above(0, 1e12, " mesh units"),
      "cut a flat base H above the lowest point and cap it, after --up and --pose (for objects touching the ground in a "
      "point or a line); figures are of the result, in the turned frame (the report's \"pose\" object gives the rotation "
      "and what was done)",
