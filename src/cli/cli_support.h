@@ -9,9 +9,8 @@
 #include <Eigen/Core>
 
 #include "cli/commands.h"
-#include "geometry/mesh_defects.h"
 #include "io/json.h"
-#include "meshio/load_mesh.h"
+#include "meshio/load_input.h"
 #include "util/seconds_since.h"
 
 namespace offsetopt::cli {
@@ -128,21 +127,6 @@ std::vector<std::string> option_names(const char* names);
 
 // The value of --unit: one of the 3MF units (meshio/write_3mf.h), else UsageError.
 std::string parse_unit(const std::string& text);
-
-// load_mesh, then the geometric defects validate_mesh does not check (geometry/mesh_defects.h): faces that
-// cross each other and pinches are accepted, each with one warning naming the count and the
-// first pair in the file's numbering. Every command but `check` loads through here.
-LoadedMesh load_input(const std::string& path, const LoadOptions& options = {});
-
-// "3 self-intersecting face pairs (first: faces 10 and 52, lines 30 and 71; faces numbered from
-// 0 in file order after triangulation)". `face_origin` maps the mesh's faces to the file's (empty:
-// the same); `face_line` gives each file face's source line (empty: binary format).
-std::string describe_self_intersections(const SelfIntersectionReport& report, const std::vector<long long>& face_origin,
-                                        const std::vector<int>& face_line);
-// "1 pinch: vertex pairs at one position whose fans touch only there (first: vertices 3 and 9,
-// lines 4 and 10)".
-std::string describe_pinches(const PinchReport& report, const std::vector<long long>& vertex_origin,
-                             const std::vector<int>& vertex_line);
 
 // Prints each warning as "Warning: <text>" on stderr unless quiet.
 void print_warnings(const std::vector<std::string>& warnings, bool quiet = false);

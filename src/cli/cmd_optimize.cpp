@@ -12,7 +12,7 @@
 #include "cli/pose_options.h"
 #include "cli/write_preview.h"
 #include "io/json.h"
-#include "meshio/load_mesh.h"
+#include "meshio/load_input.h"
 #include "meshio/write_mesh.h"
 #include "optimize/offset_optimization.h"
 
@@ -244,7 +244,7 @@ int run_optimize(const Args& args) {
   const auto load_start = std::chrono::steady_clock::now();
   LoadOptions load_options;
   load_options.single_component = true;  // one solid: one skeleton, one constant mode
-  const LoadedMesh loaded = load_input(mesh_path, load_options);
+  const InputMesh loaded = load_input(mesh_path, load_options);
   print_warnings(loaded.warnings, quiet);
   if (!unit_given && !loaded.unit.empty()) unit = loaded.unit;  // a 3MF input's unit carries over
   const double load_seconds = seconds_since(load_start);
@@ -263,6 +263,8 @@ int run_optimize(const Args& args) {
   const PosedInput posed = pose_input(loaded.mesh, pose_options, mesh_path, true);
   print_warnings(posed.warnings, quiet);
   options.flatten = pose_options.flatten;
+  // Searched once at the input boundary; a posed mesh is another mesh and is searched again.
+  if (!pose_options.any()) options.input_self_intersections = loaded.self_intersections;
   OptimizeResult result = optimize_offsets(posed.mesh, options, progress);
   options.on_stage_progress = nullptr;
   live.clear();

@@ -1,6 +1,6 @@
 // Defects of a closed mesh that validate_mesh (meshio/validate_mesh.h) does not check because
 // they need the BVH: faces that cross each other, and pinches. `offsetopt check`
-// refuses both (exit 2); the other commands accept them with a warning (cli/cli_support.h); the
+// refuses both (exit 2); the other commands accept them with a warning (meshio/load_input.h); the
 // optimiser's verification compares the written cavity's pair count with the input's own.
 //
 // Self-intersections (find_self_intersections): pairs of faces (f, g), f < g, numbered as rows of

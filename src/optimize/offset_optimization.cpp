@@ -288,6 +288,20 @@ struct Band {
   }
 };
 
+// The input's own crossings as a search capped at 10^5 pairs counts them (pairs, truncated): from
+// the input boundary's search when given (its larger cap finds the same pairs below this one),
+// else searched.
+SelfIntersectionReport input_self_intersections(const Mesh& input, const OptimizeOptions& options) {
+  const long long cap = 100000;
+  if (!options.input_self_intersections) return find_self_intersections(input, cap);
+  SelfIntersectionReport known = *options.input_self_intersections;
+  if (known.pairs >= cap) {
+    known.pairs = cap;
+    known.truncated = true;
+  }
+  return known;
+}
+
 std::string make_band(const Mesh& input, const OptimizeOptions& options, const Frame& f, const CoarseCopy* coarse, Band& b) {
   const Eigen::Index n = input.V.rows();
   const auto& tick = options.on_stage_progress;
@@ -297,7 +311,7 @@ std::string make_band(const Mesh& input, const OptimizeOptions& options, const F
   b.contraction = coarse ? laplacian_contraction_of_copy(*coarse, contraction_options)
                          : laplacian_contraction(input.V, input.F, contraction_options);
   b.bvh = TriangleBvh(input.V, input.F);
-  b.input_self = find_self_intersections(input, 100000);
+  b.input_self = input_self_intersections(input, options);
   OffsetFieldOptions field_options;
   field_options.wall = f.wall;
   field_options.threads = options.threads;
@@ -1180,7 +1194,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   if (reach.programme && !options.outer) result.optimality = optimality(f, *reach.programme, cavity.verification);
   result.timings = timings;
   result.reachability = std::move(reach);
-  // The input's own crossings are named where it is loaded (cli/cli_support.h, load_input); the
+  // The input's own crossings are named where it is loaded (meshio/load_input.h); the
   // report keeps their count, and the verification counts only the cavity's.
   // "Parts thinner than two walls" is the users' wording for parts left solid (kept as it was).
   if (b.left_solid_count > 0)

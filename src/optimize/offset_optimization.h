@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/mesh_defects.h"
 #include "mesh/mesh.h"
 #include "optim/augmented_lagrangian.h"
 #include "shape/fix_region.h"
@@ -118,6 +119,10 @@ struct OptimizeOptions {
   // the final verification (cavity/round_for_output.h), so what is verified is what reads back,
   // and the contour keeps the rounding's margin on top of the wall.
   StoredPrecision output_precision = StoredPrecision::exact;
+  // The input's self-intersections as the input boundary found them (meshio/load_input.h), when
+  // the mesh given to optimize_offsets is that mesh as loaded; unset: searched here (the report's
+  // before.self_intersections).
+  std::optional<SelfIntersectionReport> input_self_intersections;
 
   static AlOptions default_solver_params() {
     AlOptions p;

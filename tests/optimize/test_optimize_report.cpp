@@ -14,6 +14,7 @@
 #include "../support.h"
 #include "cli/cli_support.h"
 #include "cli/optimize_report.h"
+#include "meshio/load_input.h"
 #include "io/json.h"
 #include "optimize/offset_optimization.h"
 
@@ -44,14 +45,14 @@ void collect_keys(const Json& j, const std::string& path, std::vector<std::strin
   }
 }
 
-// Runs the case as `optimize` does (cli_support.h's load_input, one component) and compares the
+// Runs the case as `optimize` does (meshio/load_input.h, one component) and compares the
 // run's keys of the report with the golden file's.
 void check_against_golden(const std::string& name, const std::string& mesh, const OptimizeOptions& options,
                           OptimizeStatus expected) {
   CAPTURE(name);
   LoadOptions load_options;
   load_options.single_component = true;
-  const LoadedMesh loaded = cli::load_input(kSource + "/meshes/" + mesh, load_options);
+  const LoadedMesh loaded = load_input(kSource + "/meshes/" + mesh, load_options);
   const OptimizeResult result = optimize_offsets(loaded.mesh, options);
   REQUIRE(result.status == expected);
   const Json ours = cli::optimize_report(options, result);
