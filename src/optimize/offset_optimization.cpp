@@ -156,6 +156,12 @@ constexpr double kCorrectionHeadroom = 0.01;  // see OffsetSolve::correct
 constexpr double kFinestQuadricCellsPerWall = 3.0;  // one refinement of the default 1.5
 constexpr int kOuterFoldRepairs = 4;           // see OffsetSolve::solve
 
+// The solve met the goal's constraints: not infeasible, and violated by at most 100 times the
+// solver's feasibility tolerance (normalised frame); a NaN violation is not met.
+bool constraints_met(const AlResult& solved, const OptimizeOptions& options) {
+  return solved.status != AlStatus::infeasible && solved.max_violation <= 100.0 * options.solver.feasibility_tolerance;
+}
+
 // Stage "frame": ground, support polygon, scale, and the goal in input units (for verification)
 // and in the normalised frame (for the solver).
 struct Frame {
@@ -520,8 +526,7 @@ class OffsetSolve {
     // A problem the solver refuses (hard bounds with an empty box) or cannot evaluate at the start
     // is not changed by tighter bounds or a correction either.
     const bool refused = solved.status == AlStatus::invalid_input || solved.status == AlStatus::numerical_issue;
-    constraints_met = !refused && solved.status != AlStatus::infeasible &&
-                      solved.max_violation <= 100.0 * options_.solver.feasibility_tolerance;
+    constraints_met = !refused && offsetopt::constraints_met(solved, options_);
   }
 
   const Mesh& input_;
@@ -941,8 +946,7 @@ std::string failure_reason(const OptimizeOptions& options, const Band& b, const 
                            const Verification& verification) {
   std::string why = verification.failures.empty() ? "unknown" : verification.failures.front();
   const AlResult& solved = solve.solved;
-  const bool constraints_unmet =
-      solved.status == AlStatus::infeasible || solved.max_violation > 100.0 * options.solver.feasibility_tolerance;
+  const bool constraints_unmet = !constraints_met(solved, options);
   if (options.bounds == BoundsMode::hard && b.left_solid_count_initial > 0)
     return std::string("the per-vertex bounds cannot be met") + (options.k == 0 ? ": " : " in the basis: ") +
            std::to_string(b.left_solid_count_initial) +
@@ -1210,8 +1214,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     // report's solver status alone would read as a failure.
     const AlResult& solved = solve.solved;
     const bool offset_written = cavity.summary.written != WrittenCavity::quadric;
-    if (offset_written &&
-        (solved.status == AlStatus::infeasible || solved.max_violation > 100.0 * options.solver.feasibility_tolerance))
+    if (offset_written && !constraints_met(solved, options))
       result.warnings.push_back(std::string("the solver ended ") + to_string(solved.status) + " with constraint violation " +
                                 format_double(solved.max_violation) + " (tolerance " +
                                 format_double(options.solver.feasibility_tolerance) +
