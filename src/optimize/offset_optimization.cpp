@@ -6,7 +6,6 @@
 #include <future>
 #include <limits>
 #include <memory>
-#include <system_error>
 
 #include <Eigen/Cholesky>
 
@@ -29,6 +28,7 @@
 #include "optimize/quadric_void.h"
 #include "skeleton/laplacian_contraction.h"
 #include "util/format_double.h"
+#include "util/parallel.h"
 #include "util/seconds_since.h"
 
 namespace offsetopt {
@@ -1043,12 +1043,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     outcome.seconds = seconds_since(start);
     return outcome;
   };
-  std::shared_future<CoarseOutcome> coarse_future;
-  try {
-    if (options.threads > 1 && use_coarse) coarse_future = std::async(std::launch::async, make_coarse).share();
-  } catch (const std::system_error&) {
-  }
-  if (!coarse_future.valid()) coarse_future = std::async(std::launch::deferred, make_coarse).share();
+  const std::shared_future<CoarseOutcome> coarse_future = start_task(options.threads > 1 && use_coarse, make_coarse).share();
   if (k > 0) {
     const bool alongside = options.threads > 1;
     say("basis: " + std::to_string(k) + " manifold harmonics" + (alongside ? ", alongside the skeleton" : ""));
@@ -1067,11 +1062,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
       outcome.seconds = seconds_since(start);
       return outcome;
     };
-    try {
-      if (alongside) basis_future = std::async(std::launch::async, compute_basis);
-    } catch (const std::system_error&) {
-    }
-    if (!basis_future.valid()) basis_future = std::async(std::launch::deferred, compute_basis);  // computed at get()
+    basis_future = start_task(alongside, compute_basis);
   }
 
   // The skeleton and the offset field need the input alone too: with two or more threads they are
@@ -1095,12 +1086,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     return outcome;
   };
   say("skeleton: contracting " + std::to_string(n) + " vertices" + (options.threads > 1 ? ", alongside the reachability" : ""));
-  std::future<BandOutcome> band_future;
-  try {
-    if (options.threads > 1) band_future = std::async(std::launch::async, compute_band);
-  } catch (const std::system_error&) {
-  }
-  if (!band_future.valid()) band_future = std::async(std::launch::deferred, compute_band);
+  std::future<BandOutcome> band_future = start_task(options.threads > 1, compute_band);
 
   // Reachability, on this thread while the basis and the skeleton are computed on others. A goal
   // no void reaches stops here (the work in flight is waited for, at most its own time).

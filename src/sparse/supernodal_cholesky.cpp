@@ -3,8 +3,6 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <stdexcept>
-#include <system_error>
-#include <thread>
 
 #include "util/parallel.h"
 
@@ -278,7 +276,7 @@ void SupernodalCholesky::plan_threads(int threads) {
 }
 
 bool SupernodalCholesky::factor_supernode(int s, const SparseMatrix& A, Workspace& work,
-                                          std::vector<std::vector<double>>& updates, bool split_across_threads) {
+                                          std::vector<std::vector<double>>& updates, WorkerPool* split_pool) {
   const std::size_t u = static_cast<std::size_t>(s);
   const int begin = first_column_[u], end = first_column_[u + 1];
   const int k = end - begin;
@@ -341,16 +339,12 @@ bool SupernodalCholesky::factor_supernode(int s, const SparseMatrix& A, Workspac
     auto right_part = [&] {
       trailing.bottomRightCorner(rest - cut, rest - cut).selfadjointView<Eigen::Lower>().rankUpdate(panel.bottomRows(rest - cut), -1.0);
     };
-    std::thread helper;
-    if (split_across_threads) {
-      try {
-        helper = std::thread(right_part);
-      } catch (const std::system_error&) {  // no thread to be had: both parts on this one
-      }
+    if (split_pool) {
+      split_pool->run_parts(2, [&](int part) { part == 0 ? left_part() : right_part(); });
+    } else {
+      left_part();
+      right_part();
     }
-    left_part();
-    if (helper.joinable()) helper.join();
-    else right_part();
   }
   if (ok && r > 0) {
     std::vector<double>& update = updates[u];
@@ -380,7 +374,7 @@ bool SupernodalCholesky::factorize(const SparseMatrix& A) {
   auto run_list = [&](int t) {
     try {
       for (int s : thread_lists_[static_cast<std::size_t>(t)])
-        if (!factor_supernode(s, A, workspaces[static_cast<std::size_t>(t)], updates, false)) {
+        if (!factor_supernode(s, A, workspaces[static_cast<std::size_t>(t)], updates, nullptr)) {
           failed[static_cast<std::size_t>(t)] = 1;
           return;
         }
@@ -388,27 +382,17 @@ bool SupernodalCholesky::factorize(const SparseMatrix& A) {
       failed[static_cast<std::size_t>(t)] = 2;
     }
   };
-  if (threads > 1) {
-    // Lists whose thread cannot be started run on this one afterwards (the same numbers).
-    std::vector<std::thread> pool;
-    int started = 1;
-    try {
-      for (; started < threads; ++started) pool.emplace_back(run_list, started);
-    } catch (const std::system_error&) {
-    }
-    run_list(0);
-    for (auto& thread : pool) thread.join();
-    for (int t = started; t < threads; ++t) run_list(t);
-  } else if (threads == 1) {
-    run_list(0);
-  }
+  // One pool for the subtree lists and the top's split updates; with fewer threads than lists
+  // (the system refused some) a thread runs several lists, one after another (the same numbers).
+  WorkerPool pool(std::max({threads, thread_count_ > 1 ? 2 : 1, 1}));
+  if (threads > 0) pool.run_parts(threads, run_list);
   for (char f : failed) {
     if (f == 2) throw std::runtime_error("SupernodalCholesky: a worker thread failed (out of memory?)");
     if (f == 1) return false;
   }
   // The top of the tree holds the largest fronts: their trailing updates use the second thread.
   for (int s : top_list_)
-    if (!factor_supernode(s, A, workspaces[0], updates, thread_count_ > 1)) return false;
+    if (!factor_supernode(s, A, workspaces[0], updates, thread_count_ > 1 ? &pool : nullptr)) return false;
   factorized_ = true;
   return true;
 }

@@ -35,6 +35,8 @@
 
 namespace offsetopt {
 
+class WorkerPool;  // util/parallel.h
+
 // A factor A = L D Lᵀ with L unit lower, stored for block triangular solves. Columns are in the
 // factor's own order: column j is the caller's row/column order[j]. A supernode is a run of
 // columns [first, first + width) whose strictly lower triangle is packed by rows at `triangle`
@@ -105,8 +107,10 @@ class SupernodalCholesky {
     std::vector<double> front;
   };
   void plan_threads(int threads);
+  // `split_pool`: the pool that takes the second part of a large trailing update (nullptr: both
+  // parts on the calling thread, in the same order of parts).
   bool factor_supernode(int s, const Eigen::SparseMatrix<double>& A, Workspace& work, std::vector<std::vector<double>>& updates,
-                        bool split_across_threads);
+                        WorkerPool* split_pool);
   // Dense column-major block of supernode s: (k + r) by k, at value_start_[s].
   std::vector<std::size_t> value_start_;
   std::vector<double> values_;

@@ -7,7 +7,8 @@
 // into the same parts, each part writes outputs no other part touches, and every sum stays inside
 // one part in the order the single-threaded code uses, so results are bit for bit the same for
 // any number of threads. Used by the eigensolver, the sparse factorisations, the offset field,
-// the reduced problem, verification, grid winding numbers and the contoured cavity.
+// the reduced problem, verification, grid winding numbers and the contoured cavity. Every thread
+// the program starts comes from here (WorkerPool, start_task).
 //
 // The size policy (after Manifold's autoPolicy, Manifold/src/parallel.h): whether a loop is worth
 // waking the pool for is decided by one function, execution_policy(), from the work's size and
@@ -16,7 +17,9 @@
 #pragma once
 #include <condition_variable>
 #include <functional>
+#include <future>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -51,6 +54,21 @@ class WorkerPool {
   int pending_ = 0;
   bool stop_ = false;
 };
+
+// `work()` started on a thread of its own when `alongside` and the system gives one, else run on
+// the first thread that asks the future for its result: the same result either way. For a stage
+// the calling thread does not wait for at once (optimize_offsets' basis and skeleton run
+// alongside its reachability programme); work cut into parts uses WorkerPool.
+template <class Work>
+std::future<decltype(std::declval<Work&>()())> start_task(bool alongside, Work work) {
+  if (alongside) {
+    try {
+      return std::async(std::launch::async, work);
+    } catch (const std::system_error&) {  // no thread to be had: computed when asked for
+    }
+  }
+  return std::async(std::launch::deferred, std::move(work));
+}
 
 // Splits [0, count) into `parts` contiguous ranges, sizes differing by at most `granule`
 // multiples: range p is [split_point(p), split_point(p + 1)).
