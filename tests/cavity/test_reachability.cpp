@@ -172,7 +172,7 @@ TEST_CASE("reachability: a quadric about an origin, re-expanded about zero, has 
     return c(0) + c(1) * x.x() + c(2) * x.y() + c(3) * x.z() + c(4) * x.x() * x.x() + c(5) * x.y() * x.y() +
            c(6) * x.z() * x.z() + c(7) * x.x() * x.y() + c(8) * x.y() * x.z() + c(9) * x.z() * x.x();
   };
-  for (const Eigen::Vector3d p : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(12.5, -3.0, 40.25), Eigen::Vector3d(-7, 4.5, 1.25),
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(12.5, -3.0, 40.25), Eigen::Vector3d(-7, 4.5, 1.25),
                                   Eigen::Vector3d(30, 20, -10)}) {
     CAPTURE(p.transpose());
     const double expected = value(q.coefficients, p - q.origin);
