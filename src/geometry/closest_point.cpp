@@ -41,70 +41,24 @@ double squared_box_distance(const Aabb& box, const Eigen::Vector3d& p) {
   return d;
 }
 
-}  // namespace
-
-ClosestPoint closest_point(const TriangleBvh& bvh, const Eigen::Vector3d& p, double max_distance,
-                           const std::vector<int>& ignored_faces) {
-  ClosestPoint best;
-  if (bvh.empty()) return best;
-  double best_squared = max_distance * max_distance;
+// The one walk both queries make: depth first, nearer child first (it tightens the bound
+// soonest), skipping a node whose box is farther than `prune_squared` from p. The bound is read
+// anew at every node, so a visitor may lower it. visit(face) is called for every face of a
+// reached leaf, in leaf order, and returns true to stop the walk; returns whether it was stopped.
+// Inlined into each query, so the bound stays in a register (out of line, closest_point ran
+// 2.8% more instructions).
+template <class Visit>
+[[gnu::always_inline]] inline bool walk_nearest_first(const TriangleBvh& bvh, const Eigen::Vector3d& p, const double& prune_squared, Visit&& visit) {
   const auto& nodes = bvh.nodes();
   int stack[128];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const BvhNode& node = nodes[static_cast<std::size_t>(stack[--top])];
-    if (squared_box_distance(node.box, p) > best_squared) continue;
+    if (squared_box_distance(node.box, p) > prune_squared) continue;
     if (node.is_leaf()) {
-      for (int k = node.first; k < node.first + node.count; ++k) {
-        const int face = bvh.leaf_faces()[static_cast<std::size_t>(k)];
-        if (!ignored_faces.empty() && std::find(ignored_faces.begin(), ignored_faces.end(), face) != ignored_faces.end()) continue;
-        const Eigen::Vector3d q = closest_point_on_triangle(p, bvh.corner(face, 0), bvh.corner(face, 1), bvh.corner(face, 2));
-        const double d = (q - p).squaredNorm();
-        if (d < best_squared || (d == best_squared && best.found && face < best.face)) {
-          best_squared = d;
-          best.found = true;
-          best.face = face;
-          best.point = q;
-        }
-      }
-      continue;
-    }
-    // Nearer child last on the stack, so it is searched first and tightens the bound.
-    const double dl = squared_box_distance(nodes[static_cast<std::size_t>(node.left)].box, p);
-    const double dr = squared_box_distance(nodes[static_cast<std::size_t>(node.right)].box, p);
-    if (dl <= dr) {
-      stack[top++] = node.right;
-      stack[top++] = node.left;
-    } else {
-      stack[top++] = node.left;
-      stack[top++] = node.right;
-    }
-  }
-  if (best.found) best.distance = (best.point - p).norm();
-  return best;
-}
-
-bool face_within(const TriangleBvh& bvh, const Eigen::Vector3d& p, double radius, bool by_root) {
-  if (bvh.empty() || !(radius > 0.0)) return false;
-  const double limit = radius * radius;
-  // Boxes are pruned a hair more loosely than faces are judged, so a face the exact test would
-  // accept is never pruned away by rounding (|q − p| < r can hold with |q − p|² a little above r²).
-  const double prune = by_root ? limit * (1.0 + 1e-12) : limit;
-  auto near = [&](double squared) { return by_root ? std::sqrt(squared) < radius : squared < limit; };
-  const auto& nodes = bvh.nodes();
-  int stack[128];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const BvhNode& node = nodes[static_cast<std::size_t>(stack[--top])];
-    if (squared_box_distance(node.box, p) > prune) continue;
-    if (node.is_leaf()) {
-      for (int k = node.first; k < node.first + node.count; ++k) {
-        const int face = bvh.leaf_faces()[static_cast<std::size_t>(k)];
-        const Eigen::Vector3d q = closest_point_on_triangle(p, bvh.corner(face, 0), bvh.corner(face, 1), bvh.corner(face, 2));
-        if (near((q - p).squaredNorm())) return true;
-      }
+      for (int k = node.first; k < node.first + node.count; ++k)
+        if (visit(bvh.leaf_faces()[static_cast<std::size_t>(k)])) return true;
       continue;
     }
     const double dl = squared_box_distance(nodes[static_cast<std::size_t>(node.left)].box, p);
@@ -118,6 +72,45 @@ bool face_within(const TriangleBvh& bvh, const Eigen::Vector3d& p, double radius
     }
   }
   return false;
+}
+
+Eigen::Vector3d closest_point_on_face(const TriangleBvh& bvh, int face, const Eigen::Vector3d& p) {
+  return closest_point_on_triangle(p, bvh.corner(face, 0), bvh.corner(face, 1), bvh.corner(face, 2));
+}
+
+}  // namespace
+
+ClosestPoint closest_point(const TriangleBvh& bvh, const Eigen::Vector3d& p, double max_distance,
+                           const std::vector<int>& ignored_faces) {
+  ClosestPoint best;
+  if (bvh.empty()) return best;
+  double best_squared = max_distance * max_distance;
+  walk_nearest_first(bvh, p, best_squared, [&](int face) {
+    if (!ignored_faces.empty() && std::find(ignored_faces.begin(), ignored_faces.end(), face) != ignored_faces.end()) return false;
+    const Eigen::Vector3d q = closest_point_on_face(bvh, face, p);
+    const double d = (q - p).squaredNorm();
+    if (d < best_squared || (d == best_squared && best.found && face < best.face)) {
+      best_squared = d;
+      best.found = true;
+      best.face = face;
+      best.point = q;
+    }
+    return false;
+  });
+  if (best.found) best.distance = (best.point - p).norm();
+  return best;
+}
+
+bool face_within(const TriangleBvh& bvh, const Eigen::Vector3d& p, double radius, bool by_root) {
+  if (bvh.empty() || !(radius > 0.0)) return false;
+  const double limit = radius * radius;
+  // Boxes are pruned a hair more loosely than faces are judged, so a face the exact test would
+  // accept is never pruned away by rounding (|q − p| < r can hold with |q − p|² a little above r²).
+  const double prune = by_root ? limit * (1.0 + 1e-12) : limit;
+  return walk_nearest_first(bvh, p, prune, [&](int face) {
+    const double squared = (closest_point_on_face(bvh, face, p) - p).squaredNorm();
+    return by_root ? std::sqrt(squared) < radius : squared < limit;
+  });
 }
 
 }  // namespace offsetopt
