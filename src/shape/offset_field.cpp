@@ -121,16 +121,8 @@ OffsetField offset_field(const Mesh& mesh, const Vertices& contracted, const Tri
       field.lower[i] = options.wall / (cosine > options.thickness_cosine_floor ? cosine : options.thickness_cosine_floor);
     }
   };
-  // A thread costs more than it saves below a few thousand vertices: one thread per
-  // kVerticesPerThread, and serial below two of them. Every vertex is computed on its own, so the
-  // count changes no result.
-  constexpr Eigen::Index kVerticesPerThread = 4096;
-  const int threads =
-      execution_policy(options.threads, static_cast<double>(n), 2.0 * kVerticesPerThread) == ExecutionPolicy::parallel
-          ? static_cast<int>(std::min<Eigen::Index>(options.threads, n / kVerticesPerThread))
-          : 1;
-  WorkerPool pool(threads);
-  pool.run([&](int part) { compute_range(split_point(n, pool.size(), part), split_point(n, pool.size(), part + 1)); });
+  // Every vertex is computed on its own: ranges of at least 4096 vertices per thread.
+  for_ranges(n, options.threads, 4096, compute_range);
 
   for (const OffsetSource source : field.source) {
     if (source == OffsetSource::shortened) ++field.shortened_count;

@@ -140,13 +140,7 @@ OuterOffsetLimit outer_offset_limit(const Mesh& mesh, const TriangleBvh& bvh, co
       out.limit(i) = limit;
     }
   };
-  constexpr Eigen::Index kVerticesPerThread = 4096;
-  const int threads =
-      execution_policy(options.threads, static_cast<double>(n), 2.0 * kVerticesPerThread) == ExecutionPolicy::parallel
-          ? static_cast<int>(std::min<Eigen::Index>(options.threads, n / kVerticesPerThread))
-          : 1;
-  WorkerPool pool(threads);
-  pool.run([&](int part) { compute_range(split_point(n, pool.size(), part), split_point(n, pool.size(), part + 1)); });
+  for_ranges(n, options.threads, 4096, compute_range);
   for (Eigen::Index i = 0; i < n; ++i) {
     out.free_limited += lowered[static_cast<std::size_t>(3 * i)];
     out.focal_limited += lowered[static_cast<std::size_t>(3 * i + 1)];

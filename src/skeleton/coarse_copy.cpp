@@ -8,21 +8,6 @@
 
 namespace offsetopt {
 
-namespace {
-
-// Fixed ranges of a few thousand vertices per thread (a thread costs more than it saves below).
-template <typename Body>
-void over_vertices(Eigen::Index n, int threads, const Body& body) {
-  constexpr Eigen::Index kVerticesPerThread = 4096;
-  const int used = execution_policy(threads, static_cast<double>(n), 2.0 * kVerticesPerThread) == ExecutionPolicy::parallel
-                       ? static_cast<int>(std::min<Eigen::Index>(threads, n / kVerticesPerThread))
-                       : 1;
-  WorkerPool pool(used);
-  pool.run([&](int part) { body(split_point(n, pool.size(), part), split_point(n, pool.size(), part + 1)); });
-}
-
-}  // namespace
-
 CoarseCopy coarse_copy(const Vertices& V, const Faces& F, int target_vertices, int threads) {
   CoarseCopy copy;
   copy.decimated = decimate_mesh(V, F, target_vertices);
@@ -31,7 +16,7 @@ CoarseCopy coarse_copy(const Vertices& V, const Faces& F, int target_vertices, i
   copy.corners.assign(static_cast<std::size_t>(n), {0, 0, 0});
   copy.weights.assign(static_cast<std::size_t>(n), {1.0, 0.0, 0.0});
   const TriangleBvh bvh(coarse.V, coarse.F);
-  over_vertices(n, threads, [&](Eigen::Index begin, Eigen::Index end) {
+  for_ranges(n, threads, 4096, [&](Eigen::Index begin, Eigen::Index end) {
     for (Eigen::Index i = begin; i < end; ++i) {
       const std::size_t u = static_cast<std::size_t>(i);
       const int kept = copy.decimated.coarse_vertex[u];

@@ -15,6 +15,7 @@
 // the call site's threshold (in the call site's own unit: panels, rows, multiply-adds). Because
 // of the fixed partition, the decision only changes speed, never a result.
 #pragma once
+#include <algorithm>
 #include <condition_variable>
 #include <functional>
 #include <future>
@@ -55,21 +56,6 @@ class WorkerPool {
   bool stop_ = false;
 };
 
-// `work()` started on a thread of its own when `alongside` and the system gives one, else run on
-// the first thread that asks the future for its result: the same result either way. For a stage
-// the calling thread does not wait for at once (optimize_offsets' basis and skeleton run
-// alongside its reachability programme); work cut into parts uses WorkerPool.
-template <class Work>
-std::future<decltype(std::declval<Work&>()())> start_task(bool alongside, Work work) {
-  if (alongside) {
-    try {
-      return std::async(std::launch::async, work);
-    } catch (const std::system_error&) {  // no thread to be had: computed when asked for
-    }
-  }
-  return std::async(std::launch::deferred, std::move(work));
-}
-
 // Splits [0, count) into `parts` contiguous ranges, sizes differing by at most `granule`
 // multiples: range p is [split_point(p), split_point(p + 1)).
 inline long split_point(long count, int parts, int p, long granule = 1) {
@@ -90,6 +76,35 @@ inline ExecutionPolicy execution_policy(int threads, double work, double min_par
 // The same for a pool that may be absent (nullptr: serial).
 inline ExecutionPolicy execution_policy(const WorkerPool* pool, double work, double min_parallel_work) {
   return execution_policy(pool ? pool->size() : 1, work, min_parallel_work);
+}
+
+// body(begin, end) over [0, count) cut into contiguous ranges, one per thread: as many threads as
+// `threads` allows with at least `per_thread` items each, and serial below two such ranges (a
+// thread costs more than it saves on less). body must write only its own range's outputs; then
+// the count changes no result.
+template <typename Body>
+void for_ranges(long count, int threads, long per_thread, const Body& body) {
+  const int used = execution_policy(threads, static_cast<double>(count), 2.0 * static_cast<double>(per_thread)) ==
+                           ExecutionPolicy::parallel
+                       ? static_cast<int>(std::min<long>(threads, count / per_thread))
+                       : 1;
+  WorkerPool pool(used);
+  pool.run([&](int part) { body(split_point(count, pool.size(), part), split_point(count, pool.size(), part + 1)); });
+}
+
+// `work()` started on a thread of its own when `alongside` and the system gives one, else run on
+// the first thread that asks the future for its result: the same result either way. For a stage
+// the calling thread does not wait for at once (optimize_offsets' basis and skeleton run
+// alongside its reachability programme); work cut into parts uses WorkerPool.
+template <class Work>
+std::future<decltype(std::declval<Work&>()())> start_task(bool alongside, Work work) {
+  if (alongside) {
+    try {
+      return std::async(std::launch::async, work);
+    } catch (const std::system_error&) {  // no thread to be had: computed when asked for
+    }
+  }
+  return std::async(std::launch::deferred, std::move(work));
 }
 
 }  // namespace offsetopt

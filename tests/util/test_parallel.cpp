@@ -2,7 +2,9 @@
 // each exactly once, however many threads the pool has (fewer than asked when the system refuses).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <future>
 #include <vector>
 
 #include "util/parallel.h"
@@ -65,4 +67,41 @@ TEST_CASE("execution_policy: parallel only with more than one thread and enough 
     CHECK(execution_policy(&two, 16.0, 16.0) == ExecutionPolicy::parallel);
     CHECK(execution_policy(&two, 15.0, 16.0) == ExecutionPolicy::serial);
   }
+}
+
+TEST_CASE("for_ranges: every index exactly once, in ranges of at least per_thread, serial below two ranges") {
+  for (long count : {0L, 1L, 99L, 100L, 199L, 200L, 1001L}) {
+    for (int threads : {1, 2, 3, 8}) {
+      CAPTURE(count);
+      CAPTURE(threads);
+      std::vector<std::atomic<int>> seen(static_cast<std::size_t>(count));
+      for (auto& s : seen) s = 0;
+      std::atomic<int> ranges{0};
+      std::atomic<long> shortest{count};
+      for_ranges(count, threads, 100, [&](long begin, long end) {
+        ++ranges;
+        long expected = shortest.load();
+        while (end - begin < expected && !shortest.compare_exchange_weak(expected, end - begin)) {
+        }
+        for (long i = begin; i < end; ++i) ++seen[static_cast<std::size_t>(i)];
+      });
+      for (auto& s : seen) CHECK(s == 1);
+      // Expected ranges: one unless two or more threads and at least two ranges' worth of items.
+      const long wanted = threads > 1 && count >= 200 ? std::min<long>(threads, count / 100) : 1;
+      CHECK(ranges <= wanted);  // the system may give fewer threads
+      CHECK(ranges >= 1);
+      if (ranges > 1) CHECK(shortest >= 100);
+    }
+  }
+}
+
+TEST_CASE("start_task: the same result run alongside or deferred") {
+  int calls = 0;
+  auto work = [&calls] { return ++calls * 7; };
+  std::future<int> deferred = start_task(false, work);
+  CHECK(calls == 0);  // not run until asked for
+  CHECK(deferred.get() == 7);
+  std::future<int> alongside = start_task(true, work);
+  CHECK(alongside.get() == 14);
+  CHECK(calls == 2);
 }
