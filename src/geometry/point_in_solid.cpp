@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "geometry/ray_triangle.h"
+#include "geometry/triangle_solid_angle.h"
 #include "util/det_math.h"
 
 namespace offsetopt {
@@ -80,10 +81,7 @@ double winding_number(const Vertices& V, const Faces& F, const Eigen::Vector3d& 
     const Eigen::Vector3d a = V.row(F(f, 0)).transpose() - point;
     const Eigen::Vector3d b = V.row(F(f, 1)).transpose() - point;
     const Eigen::Vector3d c = V.row(F(f, 2)).transpose() - point;
-    const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    const double numerator = a.dot(b.cross(c));
-    const double denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
-    total += 2.0 * det_atan2(numerator, denominator);
+    total += triangle_solid_angle(a, b, c);
   }
   return total / (4.0 * kPi);
 }

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "util/det_math.h"
+#include "geometry/triangle_solid_angle.h"
 
 namespace offsetopt {
 
@@ -24,10 +24,7 @@ bool direction_enters_solid(const Vertices& V, const Faces& F, const std::vector
     const Eigen::Vector3d a = V.row(F(f, 0)).transpose() - p;
     const Eigen::Vector3d b = V.row(F(f, 1)).transpose() - p;
     const Eigen::Vector3d c = V.row(F(f, 2)).transpose() - p;
-    const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    const double numerator = a.dot(b.cross(c));
-    const double denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
-    solid_angle += 2.0 * det_atan2(numerator, denominator);
+    solid_angle += triangle_solid_angle(a, b, c);
   }
   return solid_angle > 0.0;
 }
