@@ -16,6 +16,20 @@ double scaled_root(double s, double theta, double a, double b) {
   return s * std::sqrt(std::max(0.0, disc));
 }
 
+// The cubic through (stp, fp, dp) and (st, f, d): its minimiser is stp + r·(st − stp); returns
+// r (cases 2 and 4 below; the end point is stx or sty). (f − fp)/(stp − st) is computed as case 4
+// always wrote it, (fp − f)/(st − stp): negating both differences is exact, so the bits are the
+// same either way.
+double cubic_step_ratio(double stp, double fp, double dp, double st, double f, double d) {
+  const double theta = 3.0 * (fp - f) / (st - stp) + d + dp;
+  const double s = max3(std::fabs(theta), std::fabs(d), std::fabs(dp));
+  double gamma = scaled_root(s, theta, d, dp);
+  if (stp > st) gamma = -gamma;
+  const double p = (gamma - dp) + theta;
+  const double q = ((gamma - dp) + gamma) + d;
+  return p / q;
+}
+
 }  // namespace
 
 void more_thuente_step(double& stx, double& fx, double& dx, double& sty, double& fy, double& dy,
@@ -45,14 +59,7 @@ void more_thuente_step(double& stx, double& fx, double& dx, double& sty, double&
   } else if (sgnd < 0.0) {
     // Case 2: lower function value and derivatives of opposite sign: bracketed; take the cubic
     // step if it is farther from stp than the secant step, else the secant step.
-    const double theta = 3.0 * (fx - fp) / (stp - stx) + dx + dp;
-    const double s = max3(std::fabs(theta), std::fabs(dx), std::fabs(dp));
-    double gamma = scaled_root(s, theta, dx, dp);
-    if (stp > stx) gamma = -gamma;
-    const double p = (gamma - dp) + theta;
-    const double q = ((gamma - dp) + gamma) + dx;
-    const double r = p / q;
-    const double stpc = stp + r * (stx - stp);
+    const double stpc = stp + cubic_step_ratio(stp, fp, dp, stx, fx, dx) * (stx - stp);
     const double stpq = stp + (dp / (dp - dx)) * (stx - stp);
     if (std::fabs(stpc - stp) > std::fabs(stpq - stp)) {
       stpf = stpc;
@@ -99,14 +106,7 @@ void more_thuente_step(double& stx, double& fx, double& dx, double& sty, double&
     // Case 4: lower function value, derivatives of the same sign, and the magnitude of the
     // derivative does not decrease. Without a bracket the step goes to stpmin or stpmax.
     if (brackt) {
-      const double theta = 3.0 * (fp - fy) / (sty - stp) + dy + dp;
-      const double s = max3(std::fabs(theta), std::fabs(dy), std::fabs(dp));
-      double gamma = scaled_root(s, theta, dy, dp);
-      if (stp > sty) gamma = -gamma;
-      const double p = (gamma - dp) + theta;
-      const double q = ((gamma - dp) + gamma) + dy;
-      const double r = p / q;
-      stpf = stp + r * (sty - stp);
+      stpf = stp + cubic_step_ratio(stp, fp, dp, sty, fy, dy) * (sty - stp);
     } else if (stp > stx) {
       stpf = stpmax;
     } else {
