@@ -971,9 +971,10 @@ std::string failure_reason(const OptimizeOptions& options, const Band& b, const 
   return why;
 }
 
-// No void can reach the goal (a checked certificate): the input is written as it is, exit 3.
-OptimizeResult refuse_unreachable(const Mesh& input, const Frame& f, ReachabilitySummary reach, StageTimings timings,
-                                  Clock::time_point total_start) {
+// No void can reach the goal (a checked certificate): the input is written as it is, exit 3. The
+// report's `before` still counts the input's own crossings, as every other report does.
+OptimizeResult refuse_unreachable(const Mesh& input, const OptimizeOptions& options, const Frame& f, ReachabilitySummary reach,
+                                  StageTimings timings, Clock::time_point total_start) {
   OptimizeResult result;
   result.status = OptimizeStatus::goal_not_met;
   result.message = reach.refusal;
@@ -981,7 +982,8 @@ OptimizeResult refuse_unreachable(const Mesh& input, const Frame& f, Reachabilit
   result.printable = input;
   result.goal = f.setup;
   result.frame = {f.origin, f.scale, f.diag, f.wall, f.outer_max, f.margin, f.ground_tol};
-  result.before = {f.before, f.stability_before.com_margin, f.stability_before.stands, 0, false};
+  const SelfIntersectionReport own = input_self_intersections(input, options);
+  result.before = {f.before, f.stability_before.com_margin, f.stability_before.stands, own.pairs, own.truncated};
   result.after.goal.goal = f.goal_input.kind;
   timings.total = seconds_since(total_start);
   result.timings = timings;
@@ -1099,7 +1101,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   ReachabilitySummary reach = reachability_stage(reach_input);
   timings.reach = seconds_since(stage_start);
   if (tick) tick("reachability", 1.0);
-  if (reach.decided && !reach.reachable) return refuse_unreachable(input, f, std::move(reach), timings, total_start);
+  if (reach.decided && !reach.reachable) return refuse_unreachable(input, options, f, std::move(reach), timings, total_start);
 
   BandOutcome band_outcome = band_future.get();
   const std::optional<CoarseCopy>& coarse = coarse_future.get().copy;

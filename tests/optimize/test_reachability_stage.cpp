@@ -58,6 +58,15 @@ TEST_CASE("reachability stage: a leaning cylinder is refused before the solve, w
   CHECK(*r.reachability->best_margin_upper < -0.5);
   CHECK(r.printable.F.rows() == mesh.F.rows());  // nothing carved
   CHECK(r.reachability->certificate);
+  CHECK(r.before.self_intersecting_pairs == 0);
+
+  // A refusal's report counts the input's own crossings as every report does: the count the input
+  // boundary found (meshio/load_input) is carried, not dropped.
+  options.input_self_intersections = SelfIntersectionReport{};
+  options.input_self_intersections->pairs = 7;
+  const OptimizeResult told = optimize_offsets(mesh, options);
+  REQUIRE(told.status == OptimizeStatus::goal_not_met);
+  CHECK(told.before.self_intersecting_pairs == 7);
 }
 
 TEST_CASE("reachability stage: an upright cylinder is reachable, its lowest centre of mass between closed forms") {
