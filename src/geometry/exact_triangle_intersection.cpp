@@ -77,21 +77,31 @@ bool coplanar_segment_meets_triangle(const Vec3& a, const Vec3& b, const Vec3& p
 
 namespace {
 
-// Three points sharing two coordinates lie on one axis-parallel line.
-bool on_axis_line(const Vec3& p, const Vec3& q, const Vec3& r) {
-  int shared = 0;
-  for (int k = 0; k < 3; ++k) shared += p[k] == q[k] && p[k] == r[k] ? 1 : 0;
-  return shared >= 2;
+// Seen along axis k, the four points fall on at most two points of the plane: they lie in a plane
+// parallel to axis k (three of them on one axis-parallel line is a case of it).
+bool two_projections(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, int k) {
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  auto same = [&](const Vec3& p, const Vec3& q) { return p[i] == q[i] && p[j] == q[j]; };
+  const Vec3* second = nullptr;
+  for (const Vec3* p : {&b, &c, &d}) {
+    if (same(*p, a)) continue;
+    if (!second) second = p;
+    else if (!same(*p, *second)) return false;
+  }
+  return true;
 }
 
-// Zero determinants that comparisons decide: the four points on one axis-aligned plane, or three
-// of them on one axis-parallel line. Real inputs are full of both (a posed base at z = 0,
-// vertical walls with stacked vertices, contoured cavities on grid planes), and each would
-// otherwise go through both filters and the exact expansions.
+// Zero determinants that comparisons decide: the four points on one axis-aligned plane, or on a
+// plane parallel to an axis through two stacks of vertices (three on one axis-parallel line is
+// such a case). Real inputs are full of both (a posed base at z = 0, the vertical quads of a
+// turned or extruded surface, contoured cavities on grid planes), and each would otherwise go
+// through both filters and the exact expansions (the buoy's quads: 2·10⁵ exact zeros a run).
 bool exactly_degenerate(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   for (int k = 0; k < 3; ++k)
     if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return true;
-  return on_axis_line(a, b, c) || on_axis_line(a, b, d) || on_axis_line(a, c, d) || on_axis_line(b, c, d);
+  for (int k = 0; k < 3; ++k)
+    if (two_projections(a, b, c, d, k)) return true;
+  return false;
 }
 
 }  // namespace
