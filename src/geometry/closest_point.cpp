@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace offsetopt {
 
@@ -49,15 +50,20 @@ ClosestPoint closest_point(const TriangleBvh& bvh, const Eigen::Vector3d& p, dou
   if (bvh.empty()) return best;
   double best_squared = max_distance * max_distance;
   const auto& nodes = bvh.nodes();
-  int stack[128];
+  // Nodes with their box distance, computed once when pushed (the root's when it starts).
+  std::pair<int, double> stack[128];
   int top = 0;
-  stack[top++] = 0;
+  stack[top++] = {0, squared_box_distance(nodes.front().box, p)};
   while (top > 0) {
-    const BvhNode& node = nodes[static_cast<std::size_t>(stack[--top])];
-    if (squared_box_distance(node.box, p) > best_squared) continue;
+    const auto [index, box_squared] = stack[--top];
+    if (box_squared > best_squared) continue;
+    const BvhNode& node = nodes[static_cast<std::size_t>(index)];
     if (node.is_leaf()) {
       for (int k = node.first; k < node.first + node.count; ++k) {
         const int face = bvh.leaf_faces()[static_cast<std::size_t>(k)];
+        // A face whose own box is clearly further than the best cannot be nearer or tie (the
+        // factor covers the rounding of both distances).
+        if (squared_box_distance(bvh.face_box(face), p) > best_squared * (1.0 + 1e-9)) continue;
         if (!ignored_faces.empty() && std::find(ignored_faces.begin(), ignored_faces.end(), face) != ignored_faces.end()) continue;
         const Eigen::Vector3d q = closest_point_on_triangle(p, bvh.corner(face, 0), bvh.corner(face, 1), bvh.corner(face, 2));
         const double d = (q - p).squaredNorm();
@@ -74,11 +80,11 @@ ClosestPoint closest_point(const TriangleBvh& bvh, const Eigen::Vector3d& p, dou
     const double dl = squared_box_distance(nodes[static_cast<std::size_t>(node.left)].box, p);
     const double dr = squared_box_distance(nodes[static_cast<std::size_t>(node.right)].box, p);
     if (dl <= dr) {
-      stack[top++] = node.right;
-      stack[top++] = node.left;
+      stack[top++] = {node.right, dr};
+      stack[top++] = {node.left, dl};
     } else {
-      stack[top++] = node.left;
-      stack[top++] = node.right;
+      stack[top++] = {node.left, dl};
+      stack[top++] = {node.right, dr};
     }
   }
   if (best.found) best.distance = (best.point - p).norm();
@@ -93,15 +99,17 @@ bool face_within(const TriangleBvh& bvh, const Eigen::Vector3d& p, double radius
   const double prune = by_root ? limit * (1.0 + 1e-12) : limit;
   auto near = [&](double squared) { return by_root ? std::sqrt(squared) < radius : squared < limit; };
   const auto& nodes = bvh.nodes();
-  int stack[128];
+  std::pair<int, double> stack[128];
   int top = 0;
-  stack[top++] = 0;
+  stack[top++] = {0, squared_box_distance(nodes.front().box, p)};
   while (top > 0) {
-    const BvhNode& node = nodes[static_cast<std::size_t>(stack[--top])];
-    if (squared_box_distance(node.box, p) > prune) continue;
+    const auto [index, box_squared] = stack[--top];
+    if (box_squared > prune) continue;
+    const BvhNode& node = nodes[static_cast<std::size_t>(index)];
     if (node.is_leaf()) {
       for (int k = node.first; k < node.first + node.count; ++k) {
         const int face = bvh.leaf_faces()[static_cast<std::size_t>(k)];
+        if (squared_box_distance(bvh.face_box(face), p) > prune * (1.0 + 1e-9)) continue;  // clearly beyond the radius
         const Eigen::Vector3d q = closest_point_on_triangle(p, bvh.corner(face, 0), bvh.corner(face, 1), bvh.corner(face, 2));
         if (near((q - p).squaredNorm())) return true;
       }
@@ -110,11 +118,11 @@ bool face_within(const TriangleBvh& bvh, const Eigen::Vector3d& p, double radius
     const double dl = squared_box_distance(nodes[static_cast<std::size_t>(node.left)].box, p);
     const double dr = squared_box_distance(nodes[static_cast<std::size_t>(node.right)].box, p);
     if (dl <= dr) {
-      stack[top++] = node.right;
-      stack[top++] = node.left;
+      stack[top++] = {node.right, dr};
+      stack[top++] = {node.left, dl};
     } else {
-      stack[top++] = node.left;
-      stack[top++] = node.right;
+      stack[top++] = {node.left, dl};
+      stack[top++] = {node.right, dr};
     }
   }
   return false;
