@@ -133,6 +133,23 @@ int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return sign(orient3d(a, b, c, d));
 }
 
+PlaneSide::PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c) : a_(a), b_(b), c_(c) {
+  const Vec3 u = b - a, v = c - a;
+  normal_ = Vec3(u.y() * v.z() - u.z() * v.y(), u.z() * v.x() - u.x() * v.z(), u.x() * v.y() - u.y() * v.x());
+  bound_ = Vec3(std::fabs(u.y() * v.z()) + std::fabs(u.z() * v.y()), std::fabs(u.z() * v.x()) + std::fabs(u.x() * v.z()),
+                std::fabs(u.x() * v.y()) + std::fabs(u.y() * v.x()));
+}
+
+int PlaneSide::operator()(const Vec3& d) const {
+  // det[u; v; w] = (u × v) · w, and its permanent the same six products |u_i v_j w_k|: the
+  // filter of orient3d_sign, expanded along w instead of u.
+  const Vec3 w = d - a_;
+  const double det = normal_.x() * w.x() + normal_.y() * w.y() + normal_.z() * w.z();
+  const double permanent = bound_.x() * std::fabs(w.x()) + bound_.y() * std::fabs(w.y()) + bound_.z() * std::fabs(w.z());
+  if (std::fabs(det) > 1e-14 * permanent) return sign(det);
+  return orient3d_sign(a_, b_, c_, d);
+}
+
 int orient2d_sign(const Vec2& a, const Vec2& b, const Vec2& c) {
   const double left = (a.x() - c.x()) * (b.y() - c.y()), right = (a.y() - c.y()) * (b.x() - c.x());
   if (std::fabs(left - right) > 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right))) return sign(left - right);
@@ -173,11 +190,17 @@ bool segment_meets_triangle_exact(const Vec3& a, const Vec3& b, const Vec3& p, c
   return segment_with_sides_meets_triangle(a, b, oa, ob, p, q, r);
 }
 
+bool segment_meets_triangle_exact(const Vec3& a, const Vec3& b, int side_a, int side_b, const Vec3& p, const Vec3& q,
+                                  const Vec3& r) {
+  return segment_with_sides_meets_triangle(a, b, side_a, side_b, p, q, r);
+}
+
 bool triangles_meet_exact(const Vec3 a[3], const Vec3 b[3]) {
   int side_a[3], side_b[3];
+  const PlaneSide plane_a(a[0], a[1], a[2]), plane_b(b[0], b[1], b[2]);
   for (int k = 0; k < 3; ++k) {
-    side_a[k] = orient3d_sign(b[0], b[1], b[2], a[k]);
-    side_b[k] = orient3d_sign(a[0], a[1], a[2], b[k]);
+    side_a[k] = plane_b(a[k]);
+    side_b[k] = plane_a(b[k]);
   }
   auto one_side = [](const int s[3]) { return (s[0] > 0 && s[1] > 0 && s[2] > 0) || (s[0] < 0 && s[1] < 0 && s[2] < 0); };
   if (one_side(side_a) || one_side(side_b)) return false;
