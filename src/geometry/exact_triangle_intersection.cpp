@@ -91,17 +91,44 @@ bool two_projections(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
   return true;
 }
 
+// The extended-precision filters below assume a 64-bit significand. Where long double is a
+// double (MSVC) or is computed as one (valgrind emulates x87 arithmetic in double precision),
+// their bounds do not hold: there the filter is skipped and the exact expansions decide.
+bool extended_precision() {
+  static const bool holds = [] {
+    volatile long double one = 1.0L, tiny = 0x1p-60L;
+    const long double sum = one + tiny;
+    return sum != one;
+  }();
+  return holds;
+}
+
+// p + q == r + s exactly (each sum as its rounded value and the exact error of the rounding: two
+// sums are equal exactly when both parts are).
+bool same_sum(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s) {
+  for (int k = 0; k < 3; ++k) {
+    const double x = p[k] + q[k], y = r[k] + s[k];
+    if (x != y) return false;
+    const double xv = x - p[k], yv = y - r[k];
+    if ((p[k] - (x - xv)) + (q[k] - xv) != (r[k] - (y - yv)) + (s[k] - yv)) return false;
+  }
+  return true;
+}
+
 // Zero determinants that comparisons decide: the four points on one axis-aligned plane, or on a
 // plane parallel to an axis through two stacks of vertices (three on one axis-parallel line is
-// such a case). Real inputs are full of both (a posed base at z = 0, the vertical quads of a
-// turned or extruded surface, contoured cavities on grid planes), and each would otherwise go
-// through both filters and the exact expansions (the buoy's quads: 2·10⁵ exact zeros a run).
+// such a case), or a parallelogram. Real inputs are full of them (a posed base at z = 0, the
+// vertical and sloped quads of a turned or extruded surface, contoured cavities on grid planes),
+// and each would otherwise go through both filters and the exact expansions (the buoy's quads:
+// 2·10⁵ exact zeros a run, the bottle's 8·10⁴).
 bool exactly_degenerate(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   for (int k = 0; k < 3; ++k)
     if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return true;
   for (int k = 0; k < 3; ++k)
     if (two_projections(a, b, c, d, k)) return true;
-  return false;
+  // A parallelogram (an edge and its translate: the sloped quads of a turned surface whose rings
+  // are moved copies of each other) is flat.
+  return same_sum(a, b, c, d) || same_sum(a, c, b, d) || same_sum(a, d, b, c);
 }
 
 }  // namespace
@@ -115,6 +142,7 @@ int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
                            std::fabs(u.z()) * (std::fabs(v.x() * w.y()) + std::fabs(v.y() * w.x()));
   if (std::fabs(det) > 1e-14 * permanent) return sign(det);
   if (exactly_degenerate(a, b, c, d)) return 0;
+  if (!extended_precision()) return sign(orient3d(a, b, c, d));
   // The same evaluation in x87 extended precision (unit roundoff 2^-64): Shewchuk's bound for it
   // is (7 + 56 eps) eps = 3.8e-19 of the permanent; 1e-18 leaves a margin.
   long double U[3], W[3], X[3];
@@ -153,6 +181,7 @@ int PlaneSide::operator()(const Vec3& d) const {
 int orient2d_sign(const Vec2& a, const Vec2& b, const Vec2& c) {
   const double left = (a.x() - c.x()) * (b.y() - c.y()), right = (a.y() - c.y()) * (b.x() - c.x());
   if (std::fabs(left - right) > 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right))) return sign(left - right);
+  if (!extended_precision()) return sign(orient2d(a, b, c));
   // Extended precision: (3 + 16 eps) eps = 1.6e-19 with eps = 2^-64.
   const long double l = (static_cast<long double>(a.x()) - c.x()) * (static_cast<long double>(b.y()) - c.y());
   const long double r = (static_cast<long double>(a.y()) - c.y()) * (static_cast<long double>(b.x()) - c.x());
