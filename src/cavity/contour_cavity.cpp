@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <memory>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -365,7 +367,7 @@ std::vector<double> face_deficits(const TriangleBvh& outer_bvh, const Mesh& mesh
 // Distance pass: a candidate stays cavity when d_out >= level. One query per block of 4³ nodes
 // decides most of them by the Lipschitz bound. Returns the nodes queried one by one.
 std::int64_t keep_nodes_at_level(const TriangleBvh& outer_bvh, const NodeGrid& grid, double level,
-                                 std::vector<std::int8_t>& sign, WorkerPool& pool) {
+                                 std::vector<std::int8_t>& sign, WorkerPool& pool, std::vector<std::int8_t>* queried = nullptr) {
   const std::int64_t bx = (grid.nx + kBlock - 1) / kBlock, by = (grid.ny + kBlock - 1) / kBlock,
                      bz = (grid.nz + kBlock - 1) / kBlock;
   const double rounding = 1e-9 * grid.spacing;  // what a Lipschitz bound gives away to rounding
@@ -406,6 +408,7 @@ std::int64_t keep_nodes_at_level(const TriangleBvh& outer_bvh, const NodeGrid& g
                   continue;
                 }
                 ++per_node[part];
+                if (queried) (*queried)[static_cast<std::size_t>(grid.index(i, j, k))] = 1;
                 if (face_within(outer_bvh, node, level)) s = 0;
               }
         }
@@ -446,10 +449,54 @@ struct NodeValues {
   }
 };
 
+}  // namespace
+
+// What does not depend on the inner field, kept from one contour for the next on the same outer
+// surface, grid and levels (cavity/contour_cavity.h). Every entry is what the contour computed
+// for the same inputs, so a contour that reads it is the contour that would have computed it.
+struct ContourReuse {
+  NodeGrid grid;
+  double level = 0.0, target = 0.0;
+  std::vector<std::int8_t> outer_winding;
+  // Per node, once decided: bit 0 keeps d_out >= level, bit 1 was queried one by one; -1 unknown.
+  std::vector<std::int8_t> deep;
+  std::vector<std::pair<std::int64_t, double>> outer_distance;  // by node
+  // A vertex placed on its edge with these inputs, as the last contour placed it.
+  struct Vertex {
+    std::int64_t positive = 0, negative = 0;
+    double t_in = 0.0, target = 0.0;  // the placement's inputs besides the nodes' distances
+    double fraction = 0.0, placed_lower = 0.0;  // the placement (Placement's fields)
+    bool on_wall = false;
+    bool valid = false;
+  };
+  std::vector<Vertex> vertices;  // sorted by (positive, negative)
+
+  bool matches(const NodeGrid& g, double level_now, double target_now) const {
+    return !outer_winding.empty() && g.origin == grid.origin && g.spacing == grid.spacing && g.nx == grid.nx &&
+           g.ny == grid.ny && g.nz == grid.nz && level_now == level && target_now == target;
+  }
+  const Vertex* find(std::int64_t positive, std::int64_t negative) const {
+    const auto it = std::lower_bound(vertices.begin(), vertices.end(), std::make_pair(positive, negative),
+                                     [](const Vertex& x, const std::pair<std::int64_t, std::int64_t>& key) {
+                                       return std::make_pair(x.positive, x.negative) < key;
+                                     });
+    return it != vertices.end() && it->positive == positive && it->negative == negative && it->valid ? &*it : nullptr;
+  }
+  bool known_distance(std::int64_t node, double& distance) const {
+    const auto it = std::lower_bound(outer_distance.begin(), outer_distance.end(), std::make_pair(node, -kInfinity));
+    if (it == outer_distance.end() || it->first != node) return false;
+    distance = it->second;
+    return true;
+  }
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
+};
+
+namespace {
+
 NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, const NodeGrid& grid,
                        const std::vector<std::int64_t>& cells, const std::vector<std::int8_t>& sign,
                        const std::vector<std::int8_t>& outer_winding, const std::vector<std::int8_t>& inner_inside,
-                       double target, double level, const NodeValues& previous, WorkerPool& pool) {
+                       double target, double level, const NodeValues& previous, const ContourReuse* reuse, WorkerPool& pool) {
   NodeValues v;
   v.nodes.reserve(cells.size() * 4);
   for (const std::int64_t c : cells)
@@ -472,8 +519,13 @@ NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, co
         v.inner[i] = previous.inner[before];
       } else {
         const Eigen::Vector3d p = grid.position(node);
-        const ClosestPoint to_outer = closest_point(outer_bvh, p, level + cap);
-        v.outer_distance[i] = to_outer.found ? to_outer.distance : level + cap;
+        double known = 0.0;
+        if (reuse && reuse->known_distance(node, known)) {
+          v.outer_distance[i] = known;
+        } else {
+          const ClosestPoint to_outer = closest_point(outer_bvh, p, level + cap);
+          v.outer_distance[i] = to_outer.found ? to_outer.distance : level + cap;
+        }
         v.inner[i] = field.signed_distance(p, inner_inside[static_cast<std::size_t>(node)] != 0, cap);
       }
       const double d_out = v.outer_distance[i];
@@ -496,6 +548,7 @@ struct PassMemory {
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
     double lower = 0.0, raise = 0.0;
     char on_wall = 0;
+    ContourReuse::Vertex placed;  // how it was placed (for ContourReuse)
   };
   std::vector<Vertex> vertices;                          // sorted by (positive, negative)
   std::vector<std::array<std::int64_t, 6>> kept_faces;  // sorted; each face's three edges, sorted
@@ -524,20 +577,39 @@ std::array<std::int64_t, 6> face_key(const TetContour& contour, int f) {
 // vertices, a few rounds. Returns the faces still below the wall.
 std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& field, const NodeGrid& grid,
                                 const NodeValues& values, double target, double wall, double hair, TetContour& contour,
-                                const PassMemory& previous, PassMemory& next, WorkerPool& pool, ContourCavity& out) {
+                                const PassMemory& previous, PassMemory& next, const ContourReuse* reuse,
+                                std::vector<ContourReuse::Vertex>* record, WorkerPool& pool, ContourCavity& out) {
   Mesh& mesh = contour.mesh;
   const long vertex_count = static_cast<long>(mesh.V.rows());
   std::vector<double> raise(static_cast<std::size_t>(vertex_count), 0.0), lower(static_cast<std::size_t>(vertex_count));
   std::vector<char> on_wall(static_cast<std::size_t>(vertex_count), 0);
   const double rounding = 1e-9 * grid.spacing;
   const double tolerance = 1e-4 * wall;  // how far above the target a vertex on the wall may sit
+  if (record) record->assign(static_cast<std::size_t>(vertex_count), ContourReuse::Vertex());
   auto place = [&](long v) {
     const std::size_t i = static_cast<std::size_t>(v);
     const std::size_t ip = values.at(contour.positive_node[i]), iq = values.at(contour.negative_node[i]);
     const Eigen::Vector3d p = grid.position(contour.positive_node[i]), q = grid.position(contour.negative_node[i]);
     const double t_in = std::clamp(field.crossing(p, q, values.inner[ip], values.inner[iq]), kMinFraction, 1.0 - kMinFraction);
-    const Placement placed = place_on_edge(outer_bvh, p, q, values.outer_distance[ip], values.outer_distance[iq], t_in,
-                                           target + raise[i], tolerance, rounding);
+    const double aim = target + raise[i];
+    // The same edge with the same inputs in the last contour (the nodes' distances are the same):
+    // its placement, without the distance queries.
+    const ContourReuse::Vertex* was = reuse ? reuse->find(contour.positive_node[i], contour.negative_node[i]) : nullptr;
+    const Placement placed = was && was->t_in == t_in && was->target == aim
+                                 ? Placement{was->fraction, was->placed_lower, was->on_wall}
+                                 : place_on_edge(outer_bvh, p, q, values.outer_distance[ip], values.outer_distance[iq], t_in,
+                                                 aim, tolerance, rounding);
+    if (record) {
+      ContourReuse::Vertex& r = (*record)[i];
+      r.positive = contour.positive_node[i];
+      r.negative = contour.negative_node[i];
+      r.t_in = t_in;
+      r.target = aim;
+      r.fraction = placed.fraction;
+      r.placed_lower = placed.lower;
+      r.on_wall = placed.on_wall;
+      r.valid = true;
+    }
     mesh.V.row(v) = (p + placed.fraction * (q - p)).transpose();
     lower[i] = placed.lower;
     on_wall[i] = placed.on_wall;
@@ -552,6 +624,7 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
         raise[i] = was->raise;
         on_wall[i] = was->on_wall;
         remembered[i] = 1;
+        if (record) (*record)[i] = was->placed;
       } else {
         place(v);
       }
@@ -606,11 +679,13 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
   }
   out.vertices_moved_for_wall = 0;
   for (const char w : on_wall) out.vertices_moved_for_wall += w;
+
   if (!below.empty()) {  // a demotion follows: remember this pass
     next.vertices.resize(static_cast<std::size_t>(vertex_count));
     for (long v = 0; v < vertex_count; ++v) {
       const std::size_t i = static_cast<std::size_t>(v);
-      next.vertices[i] = {contour.positive_node[i], contour.negative_node[i], mesh.V.row(v).transpose(), lower[i], raise[i], on_wall[i]};
+      next.vertices[i] = {contour.positive_node[i], contour.negative_node[i], mesh.V.row(v).transpose(), lower[i], raise[i], on_wall[i],
+                          record ? (*record)[i] : ContourReuse::Vertex()};
     }
     std::sort(next.vertices.begin(), next.vertices.end(), [](const PassMemory::Vertex& x, const PassMemory::Vertex& y) {
       return std::make_pair(x.positive, x.negative) < std::make_pair(y.positive, y.negative);
@@ -664,7 +739,7 @@ void keep_shells(const Mesh& mesh, const NodeGrid& grid, double min_shell_fracti
 }
 
 ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, const InnerField& field,
-                            const ContourCavityOptions& options) {
+                            const ContourCavityOptions& options, ContourReuse* reuse = nullptr) {
   ContourCavity out;
   if (const std::string problem = options.check(); !problem.empty()) {
     out.message = problem;
@@ -695,23 +770,56 @@ ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, con
 
   WorkerPool pool(std::max(1, std::min(options.threads, kParts)));
   // Inside the outer surface and inside the inner void: the candidates for the cavity.
-  const std::vector<std::int8_t> outer_winding = grid_winding(outer, grid, options.threads);
+  if (reuse && !reuse->matches(grid, level, target)) {
+    *reuse = ContourReuse();
+    reuse->grid = grid;
+    reuse->level = level;
+    reuse->target = target;
+    reuse->outer_winding = grid_winding(outer, grid, options.threads);
+    reuse->deep.assign(static_cast<std::size_t>(grid.node_count()), -1);
+  }
+  const std::vector<std::int8_t> outer_winding = reuse ? reuse->outer_winding : grid_winding(outer, grid, options.threads);
   const std::vector<std::int8_t> inner_inside = field.inside(grid, outer_winding, options.threads);
   std::vector<std::int8_t> sign(static_cast<std::size_t>(grid.node_count()));  // becomes 1: cavity
   for (std::size_t v = 0; v < sign.size(); ++v) sign[v] = outer_winding[v] >= 1 && inner_inside[v] != 0;
-  out.distance_nodes = keep_nodes_at_level(outer_bvh, grid, level, sign, pool);
+  if (!reuse) {
+    out.distance_nodes = keep_nodes_at_level(outer_bvh, grid, level, sign, pool);
+  } else {
+    // Only the nodes no earlier contour decided; the count is of every node queried for this one.
+    std::vector<std::int8_t> open(sign.size()), queried(sign.size(), 0);
+    for (std::size_t v = 0; v < sign.size(); ++v) open[v] = sign[v] && reuse->deep[v] < 0;
+    keep_nodes_at_level(outer_bvh, grid, level, open, pool, &queried);
+    out.distance_nodes = 0;
+    for (std::size_t v = 0; v < sign.size(); ++v) {
+      if (!sign[v]) continue;
+      if (reuse->deep[v] < 0) reuse->deep[v] = static_cast<std::int8_t>(open[v] + 2 * queried[v]);
+      sign[v] = reuse->deep[v] & 1;
+      out.distance_nodes += reuse->deep[v] >> 1;
+    }
+  }
 
   TetContour contour;
   NodeValues values;
   PassMemory memory;
+  std::vector<ContourReuse::Vertex> record;
   for (int pass = 0;; ++pass) {
     const std::vector<std::int64_t> cells = mixed_cells(grid, sign, pool);
     out.active_cells = static_cast<std::int64_t>(cells.size());
-    values = node_values(outer_bvh, field, grid, cells, sign, outer_winding, inner_inside, target, level, values, pool);
+    values = node_values(outer_bvh, field, grid, cells, sign, outer_winding, inner_inside, target, level, values, reuse, pool);
     contour = marching_tetrahedra(grid, cells, [&](std::int64_t node) { return values.phi[values.at(node)]; }, kMinFraction);
     PassMemory next;
-    const std::vector<int> below =
-        place_vertices(outer_bvh, field, grid, values, target, wall, hair, contour, memory, next, pool, out);
+    const std::vector<int> below = place_vertices(outer_bvh, field, grid, values, target, wall, hair, contour, memory, next,
+                                                  reuse, reuse ? &record : nullptr, pool, out);
+    if (reuse) {
+      std::vector<std::pair<std::int64_t, double>> measured;
+      for (std::size_t i = 0; i < values.nodes.size(); ++i) measured.emplace_back(values.nodes[i], values.outer_distance[i]);
+      std::vector<std::pair<std::int64_t, double>> merged;
+      std::merge(reuse->outer_distance.begin(), reuse->outer_distance.end(), measured.begin(), measured.end(),
+                 std::back_inserter(merged), [](const auto& a, const auto& b) { return a.first < b.first; });
+      merged.erase(std::unique(merged.begin(), merged.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+                   merged.end());
+      reuse->outer_distance = std::move(merged);
+    }
     memory = std::move(next);
     out.faces_below_wall = static_cast<int>(below.size());
     if (below.empty() || pass == kDemotions) break;
@@ -719,6 +827,16 @@ ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, con
     for (const int f : below)
       for (int c = 0; c < 3; ++c) sign[static_cast<std::size_t>(contour.positive_node[static_cast<std::size_t>(contour.mesh.F(f, c))])] = 0;
     ++out.demotions;
+  }
+  if (reuse) {  // the last pass's placements, by edge, for the next contour
+    std::vector<std::pair<std::pair<std::int64_t, std::int64_t>, std::size_t>> order;
+    order.reserve(record.size());
+    for (std::size_t v = 0; v < record.size(); ++v)
+      if (record[v].valid) order.push_back({{record[v].positive, record[v].negative}, v});
+    std::sort(order.begin(), order.end());
+    reuse->vertices.clear();
+    reuse->vertices.reserve(order.size());
+    for (const auto& entry : order) reuse->vertices.push_back(record[entry.second]);
   }
   keep_shells(contour.mesh, grid, options.min_shell_fraction, out);
   return out;
@@ -773,13 +891,14 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
 }
 
 ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Vector10d& quadric,
-                             const ContourCavityOptions& options) {
+                             const ContourCavityOptions& options, std::shared_ptr<ContourReuse>* reuse) {
   if (!quadric.allFinite()) {
     ContourCavity out;
     out.message = "the quadric's coefficients must be finite";
     return out;
   }
-  return contour_field(outer, outer_bvh, QuadricField(quadric, bounding_box(outer.V)), options);
+  if (reuse && !*reuse) *reuse = std::make_shared<ContourReuse>();
+  return contour_field(outer, outer_bvh, QuadricField(quadric, bounding_box(outer.V)), options, reuse ? reuse->get() : nullptr);
 }
 
 }  // namespace offsetopt

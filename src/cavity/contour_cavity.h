@@ -34,6 +34,7 @@
 // exact values only at the nodes of cells that change sign.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "geometry/bvh.h"
@@ -94,7 +95,14 @@ ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, co
 // q(x) = Σ quadric_i m_i(x) over the monomials m = [1, x, y, z, x², y², z², xy, yz, zx] (the order
 // of mass/volume_integrals.h), x in the outer surface's units, and s_in = −q/|∇q| (its signed
 // distance to first order; exact for a plane). The coefficients may have any common scale.
+//
+// `reuse` (optional): what does not depend on the quadric (the outer surface's winding numbers
+// at the nodes, which nodes keep the node level, their distances, and the wall placement of every
+// vertex whose edge and inputs are the same), kept from one call to the next on the same outer
+// surface and options (the rounds of optimize/quadric_void.h); the result is the one computed
+// without it. Started empty (a null pointer); started afresh when the grid or levels differ.
+struct ContourReuse;
 ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Vector10d& quadric,
-                             const ContourCavityOptions& options);
+                             const ContourCavityOptions& options, std::shared_ptr<ContourReuse>* reuse = nullptr);
 
 }  // namespace offsetopt

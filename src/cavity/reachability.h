@@ -83,6 +83,7 @@ struct ReachabilityOptions {
     o.feasibility_tolerance = 1e-11;
     o.optimality_tolerance = 1e-14;
     o.pivot_tolerance = 1e-10;
+    o.dual = true;  // a Dinkelbach step or a block split moves thousands of cells at once
     return o;
   }
   static ReachabilityOptions defaults() { return ReachabilityOptions(); }

@@ -26,9 +26,27 @@ int orient2d_sign(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eige
 // CGAL's self-intersection search reports such a face by itself and tests it against nothing.
 bool collinear_exact(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r);
 
+// orient3d_sign(a, b, c, ·) for many points against one triangle's plane: (b − a) × (c − a) and
+// its part of the filter's error bound are computed once; what the filter leaves open goes to
+// orient3d_sign itself, so every sign is the same.
+class PlaneSide {
+ public:
+  PlaneSide(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+  int operator()(const Eigen::Vector3d& d) const;
+
+ private:
+  const Eigen::Vector3d &a_, &b_, &c_;
+  Eigen::Vector3d normal_, bound_;  // bound_: per component, |the two products| it is the difference of
+};
+
 // Closed segment a-b (a != b) against the closed triangle p-q-r (not collinear).
 bool segment_meets_triangle_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& p,
                                   const Eigen::Vector3d& q, const Eigen::Vector3d& r);
+
+// The same with the ends' sides of the triangle's plane known (orient3d_sign(p, q, r, a) and
+// (p, q, r, b)).
+bool segment_meets_triangle_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, int side_a, int side_b,
+                                  const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r);
 
 // Closed triangles a and b (neither collinear) share at least one point.
 bool triangles_meet_exact(const Eigen::Vector3d a[3], const Eigen::Vector3d b[3]);

@@ -42,8 +42,15 @@ bool faces_intersect_exact(const Eigen::Vector3d f[3], const int f_ids[3], const
   if (shared == 0) return triangles_meet_exact(f, g);
   if (shared == 1) {
     const int i = in_f[0], j = in_g[0];
-    return segment_meets_triangle_exact(g[(j + 1) % 3], g[(j + 2) % 3], f[0], f[1], f[2]) ||
-           segment_meets_triangle_exact(f[(i + 1) % 3], f[(i + 2) % 3], g[0], g[1], g[2]);
+    // Each segment's ends against the other plane first (one normal per face, both ends): most
+    // neighbours have both on one side and need nothing else.
+    const Eigen::Vector3d &g1 = g[(j + 1) % 3], &g2 = g[(j + 2) % 3], &f1 = f[(i + 1) % 3], &f2 = f[(i + 2) % 3];
+    const PlaneSide plane_f(f[0], f[1], f[2]);
+    const int side_g1 = plane_f(g1), side_g2 = plane_f(g2);
+    if (side_g1 * side_g2 <= 0 && segment_meets_triangle_exact(g1, g2, side_g1, side_g2, f[0], f[1], f[2])) return true;
+    const PlaneSide plane_g(g[0], g[1], g[2]);
+    const int side_f1 = plane_g(f1), side_f2 = plane_g(f2);
+    return side_f1 * side_f2 <= 0 && segment_meets_triangle_exact(f1, f2, side_f1, side_f2, g[0], g[1], g[2]);
   }
   // A common edge u-w; r and s the corners off it (the same corner for a duplicate face).
   const Eigen::Vector3d& u = f[in_f[0]];

@@ -1,6 +1,7 @@
 #include "optim/bounded_simplex.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -38,6 +39,19 @@ class Simplex {
       lo_[n_ + i] = s == RowSense::greater_equal ? -kInf : 0.0;
       hi_[n_ + i] = s == RowSense::less_equal ? kInf : 0.0;
     }
+  }
+
+  // The dual method, then the primal phase 2 from its basis; false when the dual method gave up
+  // (r keeps its iteration counts).
+  bool solve_from_dual(LpResult& r, const std::vector<std::int8_t>* start) {
+    if (!solve_dual(r, start)) return false;
+    r.phase1_iterations = r.iterations;
+    if (!refactor()) return false;
+    const LpStatus s = run(r);
+    if (s != LpStatus::optimal) return false;
+    r.y = duals();
+    finish(r, s, "");
+    return true;
   }
 
   LpResult solve(const std::vector<std::int8_t>* start) {
@@ -230,6 +244,157 @@ class Simplex {
     }
   }
 
+  // The dual simplex with bound flips, from the slack basis: every column starts at the bound its
+  // cost favours (`start` breaks ties), so the basis is dual feasible, and each step lets the most
+  // infeasible basic variable leave, flipping every column whose reduced cost changes sign before
+  // the entering one's (Maros 2003; Koberstein 2005, "bound flipping ratio test"): one pass over
+  // the columns moves many of them, where the primal method pivots about once per column.
+  // Infinite bounds are replaced by ±kArtificialBound while it runs. It ends primal feasible and
+  // hands over to the primal method's phase 2 (which confirms optimality on a fresh
+  // factorisation), or returns false: infeasible, stalled, or stopped on an artificial bound.
+  bool solve_dual(LpResult& r, const std::vector<std::int8_t>* start) {
+    constexpr double kArtificialBound = 1e3;
+    const std::vector<double> lo_saved = lo_, hi_saved = hi_;
+    const auto restore = [&] {
+      lo_ = lo_saved;
+      hi_ = hi_saved;
+    };
+    for (int var = 0; var < n_ + m_; ++var) {
+      if (!std::isfinite(lo_[var])) lo_[var] = -kArtificialBound;
+      if (!std::isfinite(hi_[var])) hi_[var] = kArtificialBound;
+    }
+    const double dtol = o_.optimality_tolerance, ftol = o_.feasibility_tolerance, ptol = o_.pivot_tolerance;
+    for (int j = 0; j < n_; ++j) {
+      cost_[j] = lp_.c(j);
+      const bool up = cost_[j] > dtol || (cost_[j] >= -dtol && start && (*start)[static_cast<std::size_t>(j)] == 1);
+      value_[j] = up ? hi_[j] : lo_[j];
+    }
+    basis_.assign(static_cast<std::size_t>(m_), -1);
+    for (int i = 0; i < m_; ++i) set_basic(i, n_ + i);
+    if (!refactor()) {
+      restore();
+      return false;
+    }
+    const int max_pivots = 20 * m_ + 200;
+    int pivots = 0;
+    std::vector<std::pair<double, int>> flips;   // (|α|, column) of the pass's breakpoints
+    std::vector<std::array<double, 3>> breaks;   // θ, −|α|, column
+    Eigen::MatrixXd yr(m_, 2);
+    Eigen::MatrixXd priced;
+    for (;;) {
+      if (r.iterations >= o_.max_iterations || pivots >= max_pivots) break;
+      // The leaving row: the largest bound violation among the basic variables.
+      int row = -1;
+      double worst = ftol;
+      for (int i = 0; i < m_; ++i) {
+        const int var = basis_[static_cast<std::size_t>(i)];
+        const double v = value_[var], off = std::max(lo_[var] - v, v - hi_[var]);
+        if (off > worst) {
+          worst = off;
+          row = i;
+        }
+      }
+      if (row < 0) {
+        if (pivots_since_refactor_ == 0 && flips_since_refactor_ == 0) {
+          // Feasible: no column may rest on an artificial bound.
+          for (int var = 0; var < n_ + m_; ++var)
+            if (position_[static_cast<std::size_t>(var)] < 0 &&
+                ((value_[var] == lo_[var] && !std::isfinite(lo_saved[var])) ||
+                 (value_[var] == hi_[var] && !std::isfinite(hi_saved[var])))) {
+              restore();
+              return false;
+            }
+          restore();
+          return true;
+        }
+        if (!refactor()) break;
+        continue;
+      }
+      const int leaving = basis_[static_cast<std::size_t>(row)];
+      const bool below = value_[leaving] < lo_[leaving];
+      const double sigma = below ? -1.0 : 1.0;
+      yr.col(0) = duals();
+      yr.col(1) = binv_.row(row).transpose();
+      priced.noalias() = lp_.A.transpose() * yr;
+      // Breakpoints: a column at its lower bound (reduced cost d ≤ 0) turns when σα > 0, one at
+      // its upper bound when σα < 0; θ = |d| / |α|. Columns whose cost has the wrong sign
+      // (rounding) are put on the right bound first.
+      breaks.clear();
+      Eigen::VectorXd moved = Eigen::VectorXd::Zero(m_);
+      int corrected = 0;
+      for (int var = 0; var < n_ + m_; ++var) {
+        if (position_[static_cast<std::size_t>(var)] >= 0 || lo_[var] == hi_[var]) continue;
+        const double d = cost_[var] - (var < n_ ? priced(var, 0) : yr(var - n_, 0));
+        const double a = var < n_ ? priced(var, 1) : yr(var - n_, 1);
+        const bool at_lower = value_[var] == lo_[var];
+        if ((at_lower && d > dtol) || (!at_lower && d < -dtol)) {
+          const double to = at_lower ? hi_[var] : lo_[var];
+          if (var < n_) moved += (to - value_[var]) * lp_.A.col(var);
+          else moved(var - n_) += to - value_[var];
+          value_[var] = to;
+          ++corrected;
+          continue;
+        }
+        const double s = sigma * a;
+        if (at_lower ? s > ptol : s < -ptol) breaks.push_back({std::max(at_lower ? -d : d, 0.0) / std::fabs(s), -std::fabs(s), static_cast<double>(var)});
+      }
+      if (corrected > 0) {
+        const Eigen::VectorXd shift = binv_ * moved;
+        for (int i = 0; i < m_; ++i) value_[basis_[static_cast<std::size_t>(i)]] -= shift(i);
+        flips_since_refactor_ += corrected;
+        r.iterations += corrected;
+        continue;
+      }
+      if (breaks.empty()) break;  // no column can restore the row: infeasible (the primal method proves it)
+      // In increasing θ (ties: the larger |α|, then the lower index), flip while the violation left
+      // stays positive; the column where it would not enters.
+      const auto later = [](const std::array<double, 3>& a, const std::array<double, 3>& b) { return a > b; };
+      std::make_heap(breaks.begin(), breaks.end(), later);
+      double slope = worst;
+      int enter = -1;
+      moved.setZero();
+      int flipped = 0;
+      while (!breaks.empty()) {
+        std::pop_heap(breaks.begin(), breaks.end(), later);
+        const std::array<double, 3> b = breaks.back();
+        breaks.pop_back();
+        const int var = static_cast<int>(b[2]);
+        const double range = hi_[var] - lo_[var], next = slope + b[1] * range;
+        if (next <= 0.0) {
+          enter = var;
+          break;
+        }
+        slope = next;
+        const double to = value_[var] == lo_[var] ? hi_[var] : lo_[var];
+        if (var < n_) moved += (to - value_[var]) * lp_.A.col(var);
+        else moved(var - n_) += to - value_[var];
+        value_[var] = to;
+        ++flipped;
+      }
+      if (flipped > 0) {
+        const Eigen::VectorXd shift = binv_ * moved;
+        for (int i = 0; i < m_; ++i) value_[basis_[static_cast<std::size_t>(i)]] -= shift(i);
+        flips_since_refactor_ += flipped;
+        r.iterations += flipped;
+      }
+      if (enter < 0) break;  // every breakpoint flipped and the row still violated: infeasible
+      const Eigen::VectorXd alpha = binv_column(enter);
+      if (std::fabs(alpha(row)) <= ptol) break;
+      const double target = below ? lo_[leaving] : hi_[leaving];
+      const double step = (value_[leaving] - target) / alpha(row);
+      for (int i = 0; i < m_; ++i) value_[basis_[static_cast<std::size_t>(i)]] -= step * alpha(i);
+      value_[enter] += step;
+      value_[leaving] = target;
+      exchange(enter, row, alpha);
+      ++pivots;
+      ++r.iterations;
+      ++r.pricing_passes;
+      if (pivots_since_refactor_ >= o_.refactor_every && !refactor()) break;
+    }
+    restore();
+    return false;
+  }
+
   // Harris's two-pass ratio test; returns the step and the leaving row (−1: nothing blocks).
   double ratio_test(const Eigen::VectorXd& alpha, double dir, bool bland, int& leave) const {
     const double ftol = o_.feasibility_tolerance, ptol = o_.pivot_tolerance;
@@ -271,6 +436,12 @@ class Simplex {
     const int leaving = basis_[static_cast<std::size_t>(row)];
     // The leaving column rests on the bound it reached.
     value_[leaving] = -dir * alpha(row) < 0.0 ? lo_[leaving] : hi_[leaving];
+    exchange(enter, row, alpha);
+  }
+
+  // The basis exchange and B⁻¹'s rank-one update; values are the caller's.
+  void exchange(int enter, int row, const Eigen::VectorXd& alpha) {
+    const int leaving = basis_[static_cast<std::size_t>(row)];
     position_[static_cast<std::size_t>(leaving)] = -1;
     set_basic(row, enter);
     const double p = alpha(row);
@@ -339,6 +510,19 @@ LpResult bounded_simplex(const LinearProgram& lp, const BoundedSimplexOptions& o
     r.x = Eigen::VectorXd::Zero(n);
     r.y = Eigen::VectorXd::Zero(m);
     return r;
+  }
+  if (options.dual) {
+    LpResult dual;
+    Simplex first(lp, options);
+    if (first.solve_from_dual(dual, start)) return dual;
+    // Given up: the primal method from the start, with what is left of the iteration cap.
+    BoundedSimplexOptions rest = options;
+    rest.max_iterations = std::max(1, options.max_iterations - dual.iterations);
+    Simplex simplex(lp, rest);
+    LpResult primal = simplex.solve(start);
+    primal.iterations += dual.iterations;
+    primal.pricing_passes += dual.pricing_passes;
+    return primal;
   }
   Simplex simplex(lp, options);
   return simplex.solve(start);

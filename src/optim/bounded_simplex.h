@@ -52,6 +52,10 @@ struct BoundedSimplexOptions {
   double optimality_tolerance = 1e-9;   // absolute, on reduced costs
   double pivot_tolerance = 1e-9;        // smallest |α| a ratio test may pivot on
   int degenerate_before_bland = 30;
+  // Try the dual simplex with bound flips first (from the slack basis, every column on the bound
+  // its cost favours), then confirm with the primal phase 2; the primal method from `start` when
+  // it gives up. Far fewer passes when the optimum moves many columns between their bounds.
+  bool dual = false;
 
   static BoundedSimplexOptions defaults() { return BoundedSimplexOptions(); }
   // Empty when valid, else what is wrong.

@@ -140,9 +140,11 @@ QuadricVoid write_quadric_void(const QuadricVoidInput& input) {
   const Vector10d outer = integrals_in_frame(volume_integrals(*input.outer, input.origin).values, s);
   Vector10d c = to_frame(input.start, s, input.origin);
   Vector10d predicted = Vector10d::Zero();
+  std::shared_ptr<ContourReuse> reuse;  // what the rounds' contours share (the outer surface's part)
   for (int round = 0; round <= input.max_rounds; ++round) {
     out.quadric = to_input_units(c, s, input.origin);
-    const ContourCavity contoured = contour_cavity(*input.outer, *input.outer_bvh, out.quadric.about_zero(), input.contour);
+    const ContourCavity contoured =
+        contour_cavity(*input.outer, *input.outer_bvh, out.quadric.about_zero(), input.contour, &reuse);
     if (!contoured.ok) {
       out.message = "the quadric void could not be contoured: " + contoured.message;
       break;

@@ -256,6 +256,38 @@ TEST_CASE("the quadric cavity is the same for any thread count") {
   CHECK(one.cavity.F == three.cavity.F);
 }
 
+TEST_CASE("quadric cavities contoured one after another with what they share kept: the same as each alone") {
+  // Ellipsoids that reach past the wall (the wall binds on part of them, the quadric on the rest),
+  // moved a little from one to the next as the quadric void's rounds move them, then a ball, then
+  // another wall (another grid: nothing kept applies).
+  const SphereInSphere spheres;
+  Vector10d wide = Vector10d::Zero();
+  wide << -1.0, 0.05, 0.0, -0.02, 1.0 / 100, 1.0 / 64, 1.0 / 36, 0.004, 0.004, 0.004;
+  Vector10d moved = wide;
+  moved(0) -= 0.03;
+  moved(3) += 0.01;
+  const Vector10d ball = ball_quadric(Eigen::Vector3d(0.4, -0.3, 0.25), 6.0);
+  std::shared_ptr<ContourReuse> reuse;
+  int compared = 0;
+  for (const auto& [q, wall] : std::vector<std::pair<Vector10d, double>>{{wide, 0.9}, {moved, 0.9}, {moved, 0.9}, {ball, 0.9}, {wide, 1.1}}) {
+    ContourCavityOptions options;
+    options.wall = wall;
+    const ContourCavity alone = contour_cavity(spheres.outer, spheres.outer_bvh, q, options);
+    const ContourCavity kept = contour_cavity(spheres.outer, spheres.outer_bvh, q, options, &reuse);
+    REQUIRE(alone.ok);
+    REQUIRE(kept.ok);
+    REQUIRE(alone.cavity.V.rows() == kept.cavity.V.rows());
+    REQUIRE(alone.cavity.F.rows() == kept.cavity.F.rows());
+    CHECK(alone.cavity.V == kept.cavity.V);
+    CHECK(alone.cavity.F == kept.cavity.F);
+    CHECK(alone.distance_nodes == kept.distance_nodes);
+    CHECK(alone.vertices_moved_for_wall == kept.vertices_moved_for_wall);
+    CHECK(alone.faces_lifted == kept.faces_lifted);
+    compared += alone.vertices_moved_for_wall > 0;
+  }
+  CHECK(compared >= 3);  // the wall bound where it matters
+}
+
 TEST_CASE("a quadric with a non-finite coefficient is refused, not contoured") {
   const SphereInSphere spheres;
   Vector10d q = ball_quadric(Eigen::Vector3d::Zero(), 5.0);

@@ -275,3 +275,63 @@ TEST_CASE("bounded simplex: options are checked, and the iteration cap returns t
   CHECK(r.status == LpStatus::iteration_cap);
   CHECK(r.x.size() == 400);
 }
+
+TEST_CASE("bounded simplex, dual method first: brute force, duality conditions, free columns and certificates") {
+  BoundedSimplexOptions dual;
+  dual.dual = true;
+  Rng rng(20261126);
+  int optimal = 0, infeasible = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 1 + static_cast<int>(rng.below(4)), m = 1 + static_cast<int>(rng.below(3));
+    const LinearProgram lp = random_lp(rng, m, n, trial % 2 == 1);
+    const double expected = brute_force_optimum(lp);
+    const LpResult r = bounded_simplex(lp, dual);
+    if (expected == -kInf) {
+      REQUIRE(r.status == LpStatus::infeasible);
+      CHECK(farkas_gap(lp, r.y) > 0.0);
+      ++infeasible;
+    } else {
+      REQUIRE(r.status == LpStatus::optimal);
+      CHECK(r.objective == doctest::Approx(expected).epsilon(1e-9).scale(1.0));
+      check_optimality(lp, r, 1e-8);
+      ++optimal;
+    }
+  }
+  CHECK(optimal > 100);
+  CHECK(infeasible > 10);
+  // Many columns and a free one (the reach programme's margin z: max z s.t. rows − z ≥ b): the
+  // same optimum as the primal method, in fewer iterations when the optimum moves most columns.
+  for (int trial = 0; trial < 3; ++trial) {
+    const int m = 4 + 2 * trial, n = 4000 + 3000 * trial;
+    LinearProgram lp = random_lp(rng, m, n, false);
+    lp.A.conservativeResize(Eigen::NoChange, n + 1);
+    lp.A.col(n).setConstant(-1.0);
+    lp.sense.assign(static_cast<std::size_t>(m), RowSense::greater_equal);
+    lp.c = VectorXd::Zero(n + 1);
+    lp.c(n) = 1.0;
+    lp.lower.conservativeResize(n + 1);
+    lp.upper.conservativeResize(n + 1);
+    lp.lower(n) = -kInf;
+    lp.upper(n) = kInf;
+    const LpResult primal = bounded_simplex(lp);
+    const LpResult r = bounded_simplex(lp, dual);
+    REQUIRE(primal.status == LpStatus::optimal);
+    REQUIRE(r.status == LpStatus::optimal);
+    // Feasible, and as good as the primal method's optimum (whose conditions the tests above check).
+    const VectorXd row = lp.A * r.x - lp.b;
+    CHECK(row.minCoeff() >= -1e-9);
+    for (int j = 0; j < n; ++j) CHECK((r.x(j) >= lp.lower(j) - 1e-12 && r.x(j) <= lp.upper(j) + 1e-12));
+    CHECK(r.objective == doctest::Approx(primal.objective).epsilon(1e-9));
+    CHECK(r.iterations < primal.iterations);
+  }
+  // A free column that only raises the objective: unbounded, through the primal method.
+  LinearProgram open;
+  open.A.resize(1, 2);
+  open.A << 1, 0;
+  open.b = VectorXd::Constant(1, 1.0);
+  open.sense = {RowSense::less_equal};
+  open.c = Eigen::Vector2d(1, 1);
+  open.lower = Eigen::Vector2d(0, -kInf);
+  open.upper = Eigen::Vector2d(2, kInf);
+  CHECK(bounded_simplex(open, dual).status == LpStatus::unbounded);
+}
