@@ -24,6 +24,7 @@ double quadric_at(const Quadric& q, const Eigen::Vector3d& p) {
 struct Candidate {
   double cost;
   int from, to;  // collapse `from` into `to`
+  int half_edge;  // 3 f + c: the edge from corner c of face f to the next corner
 };
 
 // The cheapest first; ties by vertex indices (a total order: the edges are distinct).
@@ -48,6 +49,7 @@ class Decimator {
     quadric_.assign(n, Quadric{});
     blocked_.assign(n, 0);
     mark_.assign(n, 0);
+    refused_.assign(3 * faces_.size(), 0);
     alive_vertex_.assign(n, 1);
     locked_.assign(n, 0);
     for (std::size_t f = 0; f < faces_.size(); ++f) {
@@ -94,7 +96,7 @@ class Decimator {
       for (int f : live_faces)
         for (int c = 0; c < 3; ++c) {
           const int a = faces_[static_cast<std::size_t>(f)][c], b = faces_[static_cast<std::size_t>(f)][(c + 1) % 3];
-          if (a < b) add_edge(a, b, edges);
+          if (a < b) add_edge(a, b, 3 * f + c, edges);
         }
       if (edges.empty()) break;
       const std::size_t walked = walk_all ? edges.size() : std::max<std::size_t>(1, edges.size() / kWalkedShare);
@@ -109,6 +111,7 @@ class Decimator {
         } else if (allowed(c.to, c.from)) {
           collapse(c.to, c.from, round);
         } else {
+          refused_[static_cast<std::size_t>(c.half_edge)] = round;
           continue;
         }
         ++taken;
@@ -168,13 +171,17 @@ class Decimator {
     return quadric_at(sum, V_.row(to).transpose());
   }
 
-  // The cheaper direction of the edge a-b (the other is tried when it is refused).
-  void add_edge(int a, int b, std::vector<Candidate>& edges) const {
+  // The cheaper direction of the edge a-b. An edge refused in both directions in round r is left
+  // out until a collapse changes the ring of one of its ends (blocked_ then reaches r): allowed()
+  // reads nothing else, and at 10^6 vertices re-testing them was 5.5 tests per collapse.
+  void add_edge(int a, int b, int half_edge, std::vector<Candidate>& edges) const {
     if (locked_[static_cast<std::size_t>(a)] && locked_[static_cast<std::size_t>(b)]) return;
+    const unsigned refused = refused_[static_cast<std::size_t>(half_edge)];
+    if (refused != 0 && blocked_[static_cast<std::size_t>(a)] < refused && blocked_[static_cast<std::size_t>(b)] < refused) return;
     const double ab = locked_[static_cast<std::size_t>(a)] ? HUGE_VAL : cost(a, b);
     const double ba = locked_[static_cast<std::size_t>(b)] ? HUGE_VAL : cost(b, a);
     const bool forward = ab < ba || (ab == ba && a < b);
-    edges.push_back({forward ? ab : ba, forward ? a : b, forward ? b : a});
+    edges.push_back({forward ? ab : ba, forward ? a : b, forward ? b : a, half_edge});
   }
 
   // The alive faces of v.
@@ -294,6 +301,7 @@ class Decimator {
   std::vector<std::vector<int>> faces_of_;
   std::vector<Quadric> quadric_;
   std::vector<unsigned> blocked_;  // the round in which a collapse last changed the vertex's ring
+  std::vector<unsigned> refused_;  // per half-edge: the round its edge was last refused, or 0
   std::vector<char> alive_vertex_, locked_;
   int alive_count_ = 0;
   std::vector<int> from_faces_, to_faces_;
