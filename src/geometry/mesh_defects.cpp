@@ -39,9 +39,8 @@ bool same_position(const Vertices& V, int a, int b) {
   return V(a, 0) == V(b, 0) && V(a, 1) == V(b, 1) && V(a, 2) == V(b, 2);
 }
 
-// The smallest vertex index at each vertex's position.
-std::vector<int> canonical_vertices(const Vertices& V) {
-  const std::vector<int> order = by_position(V);
+// The smallest vertex index at each vertex's position, from by_position's order.
+std::vector<int> canonical_vertices(const Vertices& V, const std::vector<int>& order) {
   std::vector<int> canonical(order.size());
   for (std::size_t i = 0; i < order.size();) {
     std::size_t j = i + 1;
@@ -65,7 +64,7 @@ constexpr std::size_t kMaxPinchGroup = 256;  // vertices at one position checked
 
 class PairRule {
  public:
-  explicit PairRule(const Mesh& mesh) : mesh_(mesh), canonical_(canonical_vertices(mesh.V)) {
+  explicit PairRule(const Mesh& mesh) : mesh_(mesh), canonical_(canonical_vertices(mesh.V, by_position(mesh.V))) {
     const Eigen::Index nf = mesh.F.rows();
     corners_.resize(static_cast<std::size_t>(nf));
     collinear_.assign(static_cast<std::size_t>(nf), 0);
@@ -267,7 +266,9 @@ PinchReport find_pinches(const Mesh& mesh) {
   std::vector<char> referenced(static_cast<std::size_t>(nv), 0);
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     for (int k = 0; k < 3; ++k) referenced[static_cast<std::size_t>(mesh.F(f, k))] = 1;
-  const std::vector<int> canonical = canonical_vertices(mesh.V);
+  // One sort by position serves both the canonical vertices and the groups below.
+  const std::vector<int> order = by_position(mesh.V);
+  const std::vector<int> canonical = canonical_vertices(mesh.V, order);
   // Edges joining two vertices at one position (zero length): such a pair is not a pinch.
   std::vector<std::pair<int, int>> joined;
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
@@ -277,7 +278,6 @@ PinchReport find_pinches(const Mesh& mesh) {
         joined.emplace_back(std::min(u, w), std::max(u, w));
     }
   std::sort(joined.begin(), joined.end());
-  const std::vector<int> order = by_position(mesh.V);
   std::pair<int, int> first{-1, -1};
   std::vector<int> group;
   for (std::size_t i = 0; i < order.size();) {

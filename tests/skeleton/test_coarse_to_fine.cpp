@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 #include <utility>
+#include <vector>
 
 #include "mesh/primitives.h"
 #include "skeleton/coarse_copy.h"
@@ -44,7 +45,74 @@ bool closed_and_oriented(const Faces& F) {
   return true;
 }
 
+// Every vertex's faces form one fan: following "next corner -> previous corner" around the vertex
+// visits all of its faces in one cycle (no pinched vertex, which closed_and_oriented misses).
+bool one_fan_per_vertex(const Faces& F, Eigen::Index vertices) {
+  std::vector<std::map<int, int>> turn(static_cast<std::size_t>(vertices));
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      auto& around = turn[static_cast<std::size_t>(F(f, c))];
+      if (!around.emplace(F(f, (c + 1) % 3), F(f, (c + 2) % 3)).second) return false;
+    }
+  for (const auto& around : turn) {
+    if (around.size() < 3) return false;
+    int at = around.begin()->first;
+    std::size_t steps = 0;
+    do {
+      const auto next = around.find(at);
+      if (next == around.end()) return false;
+      at = next->second;
+      ++steps;
+    } while (at != around.begin()->first && steps <= around.size());
+    if (steps != around.size()) return false;
+  }
+  return true;
+}
+
+// A bottle-like solid: flat caps with sharp rims (costly collapses next to free ones), a long
+// smooth body, and a radial wobble so that no two edges cost the same.
+Mesh wobbly_cylinder() {
+  Mesh m = make_cylinder(1.0, 0.0, 4.0, 96, 80, 12);
+  for (Eigen::Index i = 0; i < m.V.rows(); ++i) {
+    const double scale = 1.0 + 0.05 * std::sin(7.0 * m.V(i, 2) + 3.0 * std::atan2(m.V(i, 1), m.V(i, 0)));
+    m.V(i, 0) *= scale;
+    m.V(i, 1) *= scale;
+  }
+  return m;
+}
+
+void check_invariants(const Mesh& input, const DecimatedMesh& d, Eigen::Index expected_vertices, int genus) {
+  CHECK(d.mesh.V.rows() == expected_vertices);
+  CHECK(d.mesh.F.rows() == 2 * d.mesh.V.rows() - 4 + 4 * genus);  // Euler characteristic kept
+  CHECK(closed_and_oriented(d.mesh.F));
+  CHECK(one_fan_per_vertex(d.mesh.F, d.mesh.V.rows()));
+  REQUIRE(d.coarse_vertex.size() == static_cast<std::size_t>(input.V.rows()));
+  Eigen::Index kept = 0;
+  for (int c : d.coarse_vertex) kept += c >= 0 ? 1 : 0;
+  CHECK(kept == d.mesh.V.rows());
+  for (std::size_t k = 0; k < d.input_vertex.size(); ++k) {
+    CHECK(d.coarse_vertex[static_cast<std::size_t>(d.input_vertex[k])] == static_cast<int>(k));
+    CHECK((d.mesh.V.row(static_cast<Eigen::Index>(k)) - input.V.row(d.input_vertex[k])).norm() == 0.0);
+  }
+}
+
 }  // namespace
+
+TEST_CASE("decimate_mesh's rounds keep a closed 2-manifold of input vertices, of the count asked, on a solid with rims") {
+  const Mesh m = wobbly_cylinder();
+  for (const int target : {4000, 1500, 300}) {
+    CAPTURE(target);
+    const DecimatedMesh d = decimate_mesh(m.V, m.F, target);
+    check_invariants(m, d, target, 0);
+    CHECK(signed_volume(d.mesh.V, d.mesh.F) > 0.0);
+  }
+  // Asked for fewer than any allowed collapse can reach: it stops at a closed manifold of at least 4.
+  const Mesh box = make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 3));
+  const DecimatedMesh small = decimate_mesh(box.V, box.F, 1);
+  CHECK(small.mesh.V.rows() >= 4);
+  CHECK(closed_and_oriented(small.mesh.F));
+  CHECK(one_fan_per_vertex(small.mesh.F, small.mesh.V.rows()));
+}
 
 TEST_CASE("decimate_mesh keeps a closed oriented manifold of input vertices near the surface") {
   const double R = 2.0;
@@ -73,6 +141,7 @@ TEST_CASE("decimate_mesh keeps the genus of a torus") {
   CHECK(d.mesh.V.rows() == 600);
   CHECK(d.mesh.F.rows() == 2 * d.mesh.V.rows());  // V - E + F = 0
   CHECK(closed_and_oriented(d.mesh.F));
+  check_invariants(m, d, 600, 1);
 }
 
 TEST_CASE("coarse-to-fine contraction: a torus reaches its core circle, close to the full contraction") {
