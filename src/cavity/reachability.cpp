@@ -515,6 +515,7 @@ std::vector<Form> ratio_rows_at(const GoalRows& rows, double t) {
 
 struct MarginSearch {
   bool feasible = false;
+  bool converged = false;          // the iterations met (best is the reading's optimum, not a value below it)
   double best = -kInf;             // normalised
   int binding = -1;                // ratio row index, or −(plain row + 2) when infeasible
   std::vector<double> u;           // per group at the best
@@ -563,7 +564,10 @@ MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, con
       s.binding = arg;
       s.u = run.u;
     }
-    if (run.z <= 1e-12 || t_new - t <= 1e-11) break;
+    if (run.z <= 1e-12 || t_new - t <= 1e-11) {
+      s.converged = true;
+      break;
+    }
     t = t_new;
   }
   return s;
@@ -862,7 +866,12 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
                                      band ? cells->skin_outer : std::vector<std::int64_t>{}, f, options.block);
   const GoalRows loose = goal_rows(goal, f, tau_out, 1e-3, 0.0, -1.0);
   const MarginSearch upper = best_margin(solver, outer, loose, f, options.max_dinkelbach);
-  if (upper.feasible) out.best_margin_upper = upper.best / f.scale;
+  // An upper bound only when it is one: Dinkelbach's margins rise to the optimum, so a search
+  // stopped short of it bounds nothing from above, and the generous reading holds every void of
+  // the mid one, so a figure below the mid reading's best is not its optimum either (the
+  // calibration cube's roly-poly: -62.9 against -61.9).
+  if (upper.feasible) out.outer_margin_found = upper.best / f.scale;
+  if (upper.feasible && upper.converged && (!s.feasible || upper.best >= s.best)) out.best_margin_upper = upper.best / f.scale;
   std::vector<double> warm(outer.groups.size(), 0.0);
   const LpRun at_margin = solver.solve(outer, ratio_rows_at(loose, margin), static_cast<int>(loose.numerators.size()), true,
                                        nullptr, warm);

@@ -117,7 +117,10 @@ struct Reachability {
   bool reachable = false;            // on the inner reading: a void the tool can write meets the goal
   bool decided = false;              // reachable, or unreachable with a certificate that proves it
   std::optional<double> best_margin;        // inner reading, input units (none: spin, volume)
-  std::optional<double> best_margin_upper;  // outer reading (computed when not reachable)
+  std::optional<double> best_margin_upper;  // outer reading (computed when not reachable), when it bounds every void
+  // The outer reading's margin as found, even when it is not a bound (a search stopped short, or
+  // below the mid reading's best): it ranks the remedies and names the ones that may reach.
+  std::optional<double> outer_margin_found;
   std::string binding;               // the row that limits the best margin ("support edge 3")
   std::optional<double> lowest_cz;   // over the ground, input units, goal met at the user's margin
   // The void of that lowest centre of mass: {q < 0} ∩ the inner cells (all but a few fractional

@@ -36,21 +36,26 @@ ReachabilityOptions options_for(const ReachabilityStageInput& in, bool outer) {
 std::string shortfall(const GoalSpec& goal, const Reachability& r) {
   const std::string binding = r.binding.empty() ? "the goal's rows" : r.binding;
   if (!r.best_margin && !r.best_margin_upper) return "no void meets " + binding;
-  const double best = r.best_margin_upper ? *r.best_margin_upper : *r.best_margin;
+  // With the generous reading's optimum, a bound on every void; else the best void of mid cells
+  // found, which some void reaches (the shortfall is at most that).
+  const bool bound = r.best_margin_upper.has_value();
+  const double best = bound ? *r.best_margin_upper : *r.best_margin;
+  const std::string who = bound ? "the best any void reaches" : "the best void of cells a wall deep";
+  const std::string how_far = bound ? " at least " : " ";
   const std::string required = goal.kind == GoalKind::stand || goal.kind == GoalKind::stand_filled
                                    ? format_double(goal.margin)
                                    : format_double(goal.epsilon);
   switch (goal.kind) {
     case GoalKind::stand:
     case GoalKind::stand_filled:
-      return best < 0.0 ? "the best any void reaches leaves the centre of mass at least " + format_double(-best) + " outside " + binding
-                        : "the best any void reaches keeps the centre of mass only " + format_double(best) + " inside " +
-                              binding + ", less than the margin " + required;
+      return best < 0.0 ? who + " leaves the centre of mass" + how_far + format_double(-best) + " outside " + binding
+                        : who + " keeps the centre of mass only " + format_double(best) + " inside " + binding +
+                              ", less than the margin " + required;
     case GoalKind::roly_poly:
     case GoalKind::floating: {
       const std::string centre = goal.kind == GoalKind::roly_poly ? "the sphere centre" : "the centre of buoyancy";
-      return best < 0.0 ? "the best any void reaches leaves the centre of mass at least " + format_double(-best) + " above " + centre
-                        : "the best any void reaches puts the centre of mass only " + format_double(best) + " below " + centre +
+      return best < 0.0 ? who + " leaves the centre of mass" + how_far + format_double(-best) + " above " + centre
+                        : who + " puts the centre of mass only " + format_double(best) + " below " + centre +
                               ", less than the margin " + required;
     }
     default: return "no void meets " + binding;
@@ -92,7 +97,7 @@ ReachabilityRemedy remedy_from(const std::string& option, const Reachability& r)
   ReachabilityRemedy remedy;
   remedy.option = option;
   remedy.reachable = r.reachable;
-  remedy.best_margin = r.reachable ? r.best_margin : r.best_margin_upper;
+  remedy.best_margin = r.reachable ? r.best_margin : r.outer_margin_found;
   return remedy;
 }
 
