@@ -24,6 +24,7 @@ Prints one TSV row per case and a summary line; writes nothing else. Skips when 
 import argparse
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -142,8 +143,9 @@ def main():
             out = subprocess.run(cmd, capture_output=True, text=True)
             carve_s = time.time() - start
             if out.returncode != 0:
-                print(f'{mesh}\t{goal}\t{code}\t{verdict}\t-\tcarve.py failed: '
-                      f'{out.stderr.strip().splitlines()[-1:]}', flush=True)
+                why = ' '.join(out.stderr.strip().splitlines()[-1:])
+                print(f'{mesh}\t{goal}\t{code}\t{verdict}\t-\t-\t-\t-\tcarve failed: {why}\t-\t{tool_s:.1f}\t-',
+                      flush=True)
                 counts['carve failed'] = counts.get('carve failed', 0) + 1
                 continue
             carve = json.loads(out.stdout.strip().splitlines()[-1])
@@ -172,6 +174,7 @@ def main():
             counts[row] = counts.get(row, 0) + 1
             print(f'{mesh}\t{goal}\t{code}\t{verdict}\t{tool_margin}\t' + '\t'.join(cells) +
                   f'\t{row}\t{fraction}\t{tool_s:.1f}\t{carve_s:.1f}', flush=True)
+    shutil.rmtree(work, ignore_errors=True)
     summary = ', '.join(f'{k} {v}' for k, v in sorted(counts.items()))
     print(f'compare_carve: {sum(counts.values())} cases; {summary}')
     if fractions:
