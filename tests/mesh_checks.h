@@ -22,4 +22,14 @@ inline bool closed_and_oriented(const Mesh& mesh) {
   return true;
 }
 
+// a and b as one mesh (b's vertices after a's): the shells of a solid with a cavity, or two parts.
+inline Mesh join(const Mesh& a, const Mesh& b) {
+  Mesh m;
+  m.V.resize(a.V.rows() + b.V.rows(), 3);
+  m.V << a.V, b.V;
+  m.F.resize(a.F.rows() + b.F.rows(), 3);
+  m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
+  return m;
+}
+
 }  // namespace offsetopt::test

@@ -7,7 +7,6 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <deque>
 #include <vector>
 
 #include "cavity/open_cavity.h"
@@ -19,6 +18,7 @@
 #include "mass/volume_integrals.h"
 #include "mesh/primitives.h"
 #include "../mesh_checks.h"
+#include "../outside_cells.h"
 
 using namespace offsetopt;
 
@@ -29,15 +29,6 @@ Mesh translated(Mesh m, const Eigen::Vector3d& by) {
   return m;
 }
 
-Mesh join(const Mesh& a, const Mesh& b) {
-  Mesh m;
-  m.V.resize(a.V.rows() + b.V.rows(), 3);
-  m.V << a.V, b.V;
-  m.F.resize(a.F.rows() + b.F.rows(), 3);
-  m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
-  return m;
-}
-
 double volume(const Mesh& m) { return volume_integrals(m).values(0); }
 
 long long self_pairs(const Mesh& m) {
@@ -45,36 +36,10 @@ long long self_pairs(const Mesh& m) {
   return static_cast<long long>(self_intersections(bvh, 1000).pairs.size());
 }
 
-// Grid cells outside the material connected to the grid's border (the outside) by a 6-connected
-// flood fill, and whether a given point's cell is among them.
+// Whether the cell of `probe` is reached from the outside by a flood fill of cells of spacing h.
 bool void_reaches_outside(const Mesh& solid, const Eigen::Vector3d& probe, double h) {
-  const TriangleBvh bvh(solid.V, solid.F);
-  const Eigen::Vector3d lo = solid.V.colwise().minCoeff().transpose() - Eigen::Vector3d::Constant(2 * h);
-  const Eigen::Vector3d hi = solid.V.colwise().maxCoeff().transpose() + Eigen::Vector3d::Constant(2 * h);
-  const Eigen::Vector3i n = ((hi - lo) / h).array().ceil().cast<int>();
-  auto at = [&](int i, int j, int k) -> Eigen::Vector3d { return lo + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5); };
-  std::vector<char> material(static_cast<std::size_t>(n.prod()), 0), seen(material.size(), 0);
-  auto index = [&](int i, int j, int k) { return (static_cast<std::size_t>(k) * n.y() + j) * n.x() + i; };
-  for (int k = 0; k < n.z(); ++k)
-    for (int j = 0; j < n.y(); ++j)
-      for (int i = 0; i < n.x(); ++i) material[index(i, j, k)] = point_in_solid(bvh, at(i, j, k)) ? 1 : 0;
-  std::deque<Eigen::Vector3i> queue{Eigen::Vector3i(0, 0, 0)};
-  seen[index(0, 0, 0)] = 1;
-  while (!queue.empty()) {
-    const Eigen::Vector3i c = queue.front();
-    queue.pop_front();
-    for (int d = 0; d < 6; ++d) {
-      Eigen::Vector3i m = c;
-      m(d / 2) += d % 2 ? 1 : -1;
-      if ((m.array() < 0).any() || (m.array() >= n.array()).any()) continue;
-      const std::size_t id = index(m.x(), m.y(), m.z());
-      if (seen[id] || material[id]) continue;
-      seen[id] = 1;
-      queue.push_back(m);
-    }
-  }
-  const Eigen::Vector3i p = ((probe - lo) / h).array().floor().cast<int>();
-  return seen[index(p.x(), p.y(), p.z())] != 0;
+  const test::OutsideCells cells = test::outside_cells(solid, h);
+  return cells.outside[cells.index_of(probe)] != 0;
 }
 
 }  // namespace
@@ -108,7 +73,7 @@ TEST_CASE("open_cavity: automatic drain holes, one per cavity shell, at its lowe
   const Mesh outer = make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(6, 3, 3));
   const Mesh first = translated(make_icosphere(1.0, 3), Eigen::Vector3d(1.5, 1.5, 1.4));
   const Mesh second = translated(make_icosphere(0.8, 3), Eigen::Vector3d(4.3, 1.4, 1.7));
-  const Mesh cavity = join(first, second);
+  const Mesh cavity = test::join(first, second);
   OpenCavityOptions options;
   options.wall = 0.3;
   options.auto_holes = true;

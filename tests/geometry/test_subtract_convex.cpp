@@ -34,15 +34,6 @@ Mesh reversed(Mesh m) {
   return m;
 }
 
-Mesh join(const Mesh& a, const Mesh& b) {
-  Mesh m;
-  m.V.resize(a.V.rows() + b.V.rows(), 3);
-  m.V << a.V, b.V;
-  m.F.resize(a.F.rows() + b.F.rows(), 3);
-  m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
-  return m;
-}
-
 }  // namespace
 
 TEST_CASE("subtract_convex: a prism through a cube removes its polygon's area times the cube's height") {
@@ -88,7 +79,7 @@ TEST_CASE("subtract_convex: a tilted blind hole removes area times depth, and th
 TEST_CASE("subtract_convex: a drain hole into a cavity joins the two shells into one") {
   const Mesh outer = make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1));
   const Mesh inner = reversed(make_box(Eigen::Vector3d(0.2, 0.2, 0.2), Eigen::Vector3d(0.8, 0.8, 0.8)));
-  const Mesh solid = join(outer, inner);
+  const Mesh solid = test::join(outer, inner);
   REQUIRE(mesh_shells(solid, Eigen::Vector3d(0.5, 0.5, 0.5)).count == 2);
   const double r = 0.1;
   const int sides = 32;

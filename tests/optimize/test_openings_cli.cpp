@@ -7,7 +7,6 @@
 #include <doctest/doctest.h>
 
 #include <cstdlib>
-#include <deque>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -15,6 +14,7 @@
 
 #include "../mass/geometry_checks.h"
 #include "../mesh_checks.h"
+#include "../outside_cells.h"
 #include "../temp_dir.h"
 #include "geometry/bvh.h"
 #include "geometry/mesh_shells.h"
@@ -47,33 +47,9 @@ int run(const std::string& arguments) {
 
 // Cells of spacing h outside `solid` that the flood fill from the border does not reach.
 long long enclosed_void_cells(const Mesh& solid, double h) {
-  const TriangleBvh bvh(solid.V, solid.F);
-  const Eigen::Vector3d lo = solid.V.colwise().minCoeff().transpose() - Eigen::Vector3d::Constant(2 * h);
-  const Eigen::Vector3d hi = solid.V.colwise().maxCoeff().transpose() + Eigen::Vector3d::Constant(2 * h);
-  const Eigen::Vector3i n = ((hi - lo) / h).array().ceil().cast<int>();
-  auto index = [&](int i, int j, int k) { return (static_cast<std::size_t>(k) * n.y() + j) * n.x() + i; };
-  std::vector<char> material(static_cast<std::size_t>(n.prod())), seen(material.size(), 0);
-  for (int k = 0; k < n.z(); ++k)
-    for (int j = 0; j < n.y(); ++j)
-      for (int i = 0; i < n.x(); ++i)
-        material[index(i, j, k)] = point_in_solid(bvh, Eigen::Vector3d(lo + h * Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5))) ? 1 : 0;
-  std::deque<Eigen::Vector3i> queue{Eigen::Vector3i(0, 0, 0)};
-  seen[0] = 1;
-  while (!queue.empty()) {
-    const Eigen::Vector3i c = queue.front();
-    queue.pop_front();
-    for (int d = 0; d < 6; ++d) {
-      Eigen::Vector3i m = c;
-      m(d / 2) += d % 2 ? 1 : -1;
-      if ((m.array() < 0).any() || (m.array() >= n.array()).any()) continue;
-      const std::size_t id = index(m.x(), m.y(), m.z());
-      if (seen[id] || material[id]) continue;
-      seen[id] = 1;
-      queue.push_back(m);
-    }
-  }
+  const test::OutsideCells cells = test::outside_cells(solid, h);
   long long enclosed = 0;
-  for (std::size_t i = 0; i < material.size(); ++i) enclosed += !material[i] && !seen[i] ? 1 : 0;
+  for (std::size_t i = 0; i < cells.material.size(); ++i) enclosed += !cells.material[i] && !cells.outside[i] ? 1 : 0;
   return enclosed;
 }
 
