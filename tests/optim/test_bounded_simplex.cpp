@@ -117,19 +117,19 @@ void check_optimality(const LinearProgram& lp, const LpResult& r, double tol) {
   CHECK(dual == doctest::Approx(r.objective).epsilon(1e-7));
 }
 
-}  // namespace
-
-TEST_CASE("bounded simplex: small random LPs match the brute-force vertex enumeration") {
-  Rng rng(20261125);
+// 300 random LPs (drawn from rng) of at most 3 rows and 4 columns (every other one with free columns) solved with
+// `options`: each optimum equals the brute-force vertex enumeration's and meets the duality
+// conditions, each infeasible one comes with a Farkas certificate; both kinds occur.
+void random_lps_match_brute_force(const BoundedSimplexOptions& options, Rng& rng) {
   int optimal = 0, infeasible = 0;
   for (int trial = 0; trial < 300; ++trial) {
     const int n = 1 + static_cast<int>(rng.below(4)), m = 1 + static_cast<int>(rng.below(3));
     const LinearProgram lp = random_lp(rng, m, n, trial % 2 == 1);
     const double expected = brute_force_optimum(lp);
-    const LpResult r = bounded_simplex(lp);
+    const LpResult r = bounded_simplex(lp, options);
     if (expected == -kInf) {
-      CHECK(r.status == LpStatus::infeasible);
-      if (r.status == LpStatus::infeasible) CHECK(farkas_gap(lp, r.y) > 0.0);
+      REQUIRE(r.status == LpStatus::infeasible);
+      CHECK(farkas_gap(lp, r.y) > 0.0);
       ++infeasible;
     } else {
       REQUIRE(r.status == LpStatus::optimal);
@@ -140,6 +140,13 @@ TEST_CASE("bounded simplex: small random LPs match the brute-force vertex enumer
   }
   CHECK(optimal > 100);
   CHECK(infeasible > 10);
+}
+
+}  // namespace
+
+TEST_CASE("bounded simplex: small random LPs match the brute-force vertex enumeration") {
+  Rng rng(20261125);
+  random_lps_match_brute_force(BoundedSimplexOptions::defaults(), rng);
 }
 
 TEST_CASE("bounded simplex: many columns, few rows, warm start: the duality conditions hold") {
@@ -280,25 +287,7 @@ TEST_CASE("bounded simplex, dual method first: brute force, duality conditions, 
   BoundedSimplexOptions dual;
   dual.dual = true;
   Rng rng(20261126);
-  int optimal = 0, infeasible = 0;
-  for (int trial = 0; trial < 300; ++trial) {
-    const int n = 1 + static_cast<int>(rng.below(4)), m = 1 + static_cast<int>(rng.below(3));
-    const LinearProgram lp = random_lp(rng, m, n, trial % 2 == 1);
-    const double expected = brute_force_optimum(lp);
-    const LpResult r = bounded_simplex(lp, dual);
-    if (expected == -kInf) {
-      REQUIRE(r.status == LpStatus::infeasible);
-      CHECK(farkas_gap(lp, r.y) > 0.0);
-      ++infeasible;
-    } else {
-      REQUIRE(r.status == LpStatus::optimal);
-      CHECK(r.objective == doctest::Approx(expected).epsilon(1e-9).scale(1.0));
-      check_optimality(lp, r, 1e-8);
-      ++optimal;
-    }
-  }
-  CHECK(optimal > 100);
-  CHECK(infeasible > 10);
+  random_lps_match_brute_force(dual, rng);
   // Many columns and a free one (the reach programme's margin z: max z s.t. rows − z ≥ b): the
   // same optimum as the primal method, in fewer iterations when the optimum moves most columns.
   for (int trial = 0; trial < 3; ++trial) {
