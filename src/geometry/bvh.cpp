@@ -29,49 +29,59 @@ TriangleBvh::TriangleBvh(const Vertices& V, const Faces& F, const BvhOptions& op
   face_boxes_.resize(static_cast<std::size_t>(face_count));
   for (int f = 0; f < face_count; ++f)
     for (int k = 0; k < 3; ++k) face_boxes_[static_cast<std::size_t>(f)].extend(corner(f, k));
-  std::vector<int> order(static_cast<std::size_t>(face_count));
-  std::vector<Eigen::Vector3d> centroids(static_cast<std::size_t>(face_count));
+  std::vector<BuildItem> items(static_cast<std::size_t>(face_count));
   for (int f = 0; f < face_count; ++f) {
-    order[static_cast<std::size_t>(f)] = f;
-    centroids[static_cast<std::size_t>(f)] = (corner(f, 0) + corner(f, 1) + corner(f, 2)) / 3.0;
+    const Eigen::Vector3d c = (corner(f, 0) + corner(f, 1) + corner(f, 2)) / 3.0;
+    items[static_cast<std::size_t>(f)] = {{c.x(), c.y(), c.z()}, f};
   }
   nodes_.reserve(static_cast<std::size_t>(2 * (face_count / leaf_size_ + 1)));
   leaf_faces_.reserve(static_cast<std::size_t>(face_count));
-  build(order, centroids, 0, face_count, 0);
+  Aabb bounds;
+  build(items, 0, face_count, 0, bounds);
 }
 
-int TriangleBvh::build(std::vector<int>& order, std::vector<Eigen::Vector3d>& centroids, int begin, int end, int depth) {
+int TriangleBvh::build(std::vector<BuildItem>& items, int begin, int end, int depth, Aabb& bounds) {
   const int index = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
-  Aabb box, centroid_box;
-  for (int k = begin; k < end; ++k) {
-    const int f = order[static_cast<std::size_t>(k)];
-    box.extend(face_boxes_[static_cast<std::size_t>(f)]);
-    centroid_box.extend(centroids[static_cast<std::size_t>(f)]);
-  }
-  nodes_[static_cast<std::size_t>(index)].box = box.inflated(box_margin());
   // The traversal stack holds 128 entries; a median split reaches depth log2(#F) < 40, the cap
   // only matters for pathological input and then makes a larger leaf.
   if (end - begin <= leaf_size_ || depth >= 60) {
-    std::sort(order.begin() + begin, order.begin() + end);
+    std::sort(items.begin() + begin, items.begin() + end, [](const BuildItem& a, const BuildItem& b) { return a.face < b.face; });
     BvhNode& leaf = nodes_[static_cast<std::size_t>(index)];
     leaf.first = static_cast<int>(leaf_faces_.size());
     leaf.count = end - begin;
-    for (int k = begin; k < end; ++k) leaf_faces_.push_back(order[static_cast<std::size_t>(k)]);
+    bounds = Aabb();
+    for (int k = begin; k < end; ++k) {
+      const int f = items[static_cast<std::size_t>(k)].face;
+      bounds.extend(face_boxes_[static_cast<std::size_t>(f)]);
+      leaf_faces_.push_back(f);
+    }
+    leaf.box = bounds.inflated(box_margin());
     return index;
+  }
+  Aabb centroid_box;
+  for (int k = begin; k < end; ++k) {
+    const double* c = items[static_cast<std::size_t>(k)].centroid;
+    centroid_box.extend(Eigen::Vector3d(c[0], c[1], c[2]));
   }
   const int axis = centroid_box.longest_axis();
   const int middle = begin + (end - begin) / 2;
   // Strict total order (coordinate, then face index): the two halves are the same sets whatever
-  // the nth_element implementation does.
-  std::nth_element(order.begin() + begin, order.begin() + middle, order.begin() + end, [&](int a, int b) {
-    const double ca = centroids[static_cast<std::size_t>(a)][axis], cb = centroids[static_cast<std::size_t>(b)][axis];
-    return ca < cb || (ca == cb && a < b);
+  // the nth_element implementation does, so the tree is too.
+  std::nth_element(items.begin() + begin, items.begin() + middle, items.begin() + end, [axis](const BuildItem& a, const BuildItem& b) {
+    return a.centroid[axis] < b.centroid[axis] || (a.centroid[axis] == b.centroid[axis] && a.face < b.face);
   });
-  const int left = build(order, centroids, begin, middle, depth + 1);
-  const int right = build(order, centroids, middle, end, depth + 1);
-  nodes_[static_cast<std::size_t>(index)].left = left;
-  nodes_[static_cast<std::size_t>(index)].right = right;
+  // A node's box is the union of its faces' boxes, inflated: the union of its children's (min
+  // and max are exact, and rounding the inflation is monotone, so it is the same box).
+  Aabb left_bounds, right_bounds;
+  const int left = build(items, begin, middle, depth + 1, left_bounds);
+  const int right = build(items, middle, end, depth + 1, right_bounds);
+  bounds = left_bounds;
+  bounds.extend(right_bounds);
+  BvhNode& node = nodes_[static_cast<std::size_t>(index)];
+  node.box = bounds.inflated(box_margin());
+  node.left = left;
+  node.right = right;
   return index;
 }
 

@@ -83,7 +83,13 @@ class TriangleBvh {
   }
 
  private:
-  int build(std::vector<int>& order, std::vector<Eigen::Vector3d>& centroids, int begin, int end, int depth);
+  // A face's centroid beside its index, so the median splits read memory in order.
+  struct BuildItem {
+    double centroid[3];
+    int face;
+  };
+  // The node over items [begin, end) (its index), and `bounds` the union of their face boxes.
+  int build(std::vector<BuildItem>& items, int begin, int end, int depth, Aabb& bounds);
 
   Vertices V_;
   Faces F_;
