@@ -225,14 +225,15 @@ bool segment_meets_triangle_exact(const Vec3& a, const Vec3& b, int side_a, int 
 }
 
 bool triangles_meet_exact(const Vec3 a[3], const Vec3 b[3]) {
-  int side_a[3], side_b[3];
-  const PlaneSide plane_a(a[0], a[1], a[2]), plane_b(b[0], b[1], b[2]);
-  for (int k = 0; k < 3; ++k) {
-    side_a[k] = plane_b(a[k]);
-    side_b[k] = plane_a(b[k]);
-  }
   auto one_side = [](const int s[3]) { return (s[0] > 0 && s[1] > 0 && s[2] > 0) || (s[0] < 0 && s[1] < 0 && s[2] < 0); };
-  if (one_side(side_a) || one_side(side_b)) return false;
+  // One plane at a time: most pairs a search tests are apart, and the first plane usually shows it.
+  int side_a[3], side_b[3];
+  const PlaneSide plane_b(b[0], b[1], b[2]);
+  for (int k = 0; k < 3; ++k) side_a[k] = plane_b(a[k]);
+  if (one_side(side_a)) return false;
+  const PlaneSide plane_a(a[0], a[1], a[2]);
+  for (int k = 0; k < 3; ++k) side_b[k] = plane_a(b[k]);
+  if (one_side(side_b)) return false;
   // Two closed triangles meet iff an edge of one meets the other: where their planes cross, the
   // common part ends on an edge of one of them; where they are coplanar, edges cross or one
   // triangle holds the other, whose edges then lie in it.
