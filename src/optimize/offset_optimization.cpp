@@ -448,6 +448,30 @@ class OffsetSolve {
   // Start the first solve from another solve's end (the coarse copy's, coarse_solve).
   void warm_start(AlResult from) { warm_ = std::move(from); }
 
+  // What the corrections change, kept before a contour that may turn out unwanted
+  // (make_offset_cavity) and put back then: the first solve's end, without any correction's shift.
+  struct State {
+    AlResult solved;
+    ReducedProblem::Evaluation eval;
+    Mesh inner, outer;
+    Eigen::VectorXd x;
+    int total_evaluations = 0, last_round_met = -1;
+    bool constraints_met = false;
+  };
+  State state() const { return {solved, eval, inner, outer, x_, total_evaluations, last_round_met, constraints_met}; }
+  void restore_uncorrected(State s) {
+    solved = std::move(s.solved);
+    eval = std::move(s.eval);
+    inner = std::move(s.inner);
+    outer = std::move(s.outer);
+    x_ = std::move(s.x);
+    total_evaluations = s.total_evaluations;
+    last_round_met = s.last_round_met;
+    constraints_met = s.constraints_met;
+    problem_->set_inner_integral_shift(Vector10d::Zero());
+    problem_->set_goal_margins(f_.goal.margin, f_.goal.epsilon);
+  }
+
   AlResult solved;
   ReducedProblem::Evaluation eval;
   Mesh inner, outer;                // the offset surfaces at the last solve, input units
@@ -592,18 +616,44 @@ bool wants_channel(const OptimizeOptions& options, const Band& b) {
   return b.fixed_count > 0 && options.fix.kind == FixRegion::Kind::half_space;
 }
 
-// `opening_void`: the integrals (frame) the openings cut beyond the cavity, added to every
-// correction's Δ (the openings stage solves again with them, optimize_offsets).
-Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
-                          StageTimings& timings, const Progress& say, const Vector10d& opening_void = Vector10d::Zero()) {
-  auto stage_start = Clock::now();
-  Cavity c;
+// Inputs large enough for the coarse copy, with two or more threads: there the stages after the
+// solve take seconds, and work started before it is known to be wanted pays for itself (the
+// quadric void beside the skeleton, the offset surfaces' verification beside the contour). The
+// results are the same either way.
+bool work_ahead(const OptimizeOptions& options, Eigen::Index n) {
+  const ContractionOptions defaults;
+  return options.threads > 1 && defaults.coarse_above > 0 && n > defaults.coarse_above;
+}
+
+// The verification of the offset surfaces and the goal's inputs they share with the contour's.
+VerifyInput offset_verify_input(const OptimizeOptions& options, const Frame& f, const Band& b, const Mesh& outer,
+                                const Mesh& inner, double bound_violation) {
   VerifyInput verify_input = verify_input_for(options, f);
-  verify_input.outer = &solve.outer;
-  verify_input.inner = &solve.inner;
+  verify_input.outer = &outer;
+  verify_input.inner = &inner;
   verify_input.fixed = b.band.fixed;
-  verify_input.bound_violation = solve.bound_violation();
+  verify_input.bound_violation = bound_violation;
   if (options.outer) verify_input.outer_own_pairs = &b.input_pairs;
+  return verify_input;
+}
+
+// Whether the offset path contours a cavity once the offset surfaces' verification is known.
+bool wants_offset_contour(const OptimizeOptions& options, const Cavity& c) {
+  const bool offset_verified = c.verification.goal_met && c.verification.valid;
+  return options.cavity == CavityMode::contour ||
+         (options.cavity == CavityMode::automatic && (!offset_verified || options.wants_drain_holes()));
+}
+
+void contour_offset_void(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
+                         StageTimings& timings, const Progress& say, const Vector10d& opening_void, Cavity& c);
+
+// The offset surfaces `outer` and `inner` verified as they are and, where they pass, as rounded
+// for the output: the cavity they make, its summary's offset fields, and the seconds it took.
+Cavity verify_offset_surfaces(const OptimizeOptions& options, const Frame& f, const Band& b, const Mesh& outer,
+                              const Mesh& inner, double bound_violation, double& seconds) {
+  const auto start = Clock::now();
+  Cavity c;
+  VerifyInput verify_input = offset_verify_input(options, f, b, outer, inner, bound_violation);
   const auto& tick = options.on_stage_progress;
   if (tick) tick("verify", -1.0);
   c.verification = verify_offsets(verify_input);
@@ -611,16 +661,16 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
   // on real meshes the offset surface rarely verifies even unrounded).
   RoundedForOutput offset_written;
   if (options.output_precision != StoredPrecision::exact && c.verification.goal_met && c.verification.valid) {
-    offset_written = round_for_output(solve.outer, solve.inner, b.band.fixed, options.output_precision);
+    offset_written = round_for_output(outer, inner, b.band.fixed, options.output_precision);
     verify_input.outer = &offset_written.outer;
     verify_input.inner = &offset_written.inner;
     verify_input.rounding = &offset_written;
     c.verification = verify_offsets(verify_input);
   } else {
-    offset_written.outer = solve.outer;
-    offset_written.inner = solve.inner;
+    offset_written.outer = outer;
+    offset_written.inner = inner;
   }
-  timings.verify = seconds_since(stage_start);
+  seconds = seconds_since(start);
   if (tick) tick("verify", 1.0);
   c.summary.mode = options.cavity;
   c.summary.offset_goal_met = c.verification.goal_met;
@@ -628,16 +678,71 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
   c.summary.offset_failures = c.verification.failures;
   c.outer = offset_written.outer;
   c.written = offset_written.inner;
-  const bool offset_verified = c.verification.goal_met && c.verification.valid;
-  const bool want_contour = options.cavity == CavityMode::contour ||
-                            (options.cavity == CavityMode::automatic && (!offset_verified || options.wants_drain_holes()));
+  return c;
+}
+
+// `opening_void`: the integrals (frame) the openings cut beyond the cavity, added to every
+// correction's Δ (the openings stage solves again with them, optimize_offsets).
+// `contour`: false leaves the contour to the caller (contour_offset_void), which may not need it.
+// `alongside`: the offset surfaces are verified on another thread while the contour is made (on
+// large inputs they almost never verify; when they do, the contour is dropped): the same result.
+Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
+                          StageTimings& timings, const Progress& say, const Vector10d& opening_void = Vector10d::Zero(),
+                          bool contour = true, bool alongside = false) {
+  if (!contour || !alongside || b.fixed_count > 0 || options.outer || options.cavity == CavityMode::offset) {
+    Cavity c = verify_offset_surfaces(options, f, b, solve.outer, solve.inner, solve.bound_violation(), timings.verify);
+    if (contour) contour_offset_void(options, f, b, solve, timings, say, opening_void, c);
+    return c;
+  }
+  // The contour's corrections solve again and move solve's surfaces: the task verifies copies,
+  // and the first solve is kept to be put back if the contour is not wanted.
+  OffsetSolve::State first = solve.state();
+  const double bound_violation = solve.bound_violation();
+  double verify_seconds = 0.0;
+  std::future<Cavity> verified = start_task(true, [&options, &f, &b, &first, bound_violation, &verify_seconds]() {
+    return verify_offset_surfaces(options, f, b, first.outer, first.inner, bound_violation, verify_seconds);
+  });
+  Cavity contoured;  // verification.goal_met false: the contour is wanted
+  std::vector<std::string> lines;  // its progress, said once it is known to be wanted
+  contour_offset_void(options, f, b, solve, timings, [&lines](const std::string& line) { lines.push_back(line); },
+                      opening_void, contoured);
+  Cavity c = verified.get();
+  timings.verify = verify_seconds;
+  if (!wants_offset_contour(options, c)) {
+    timings.contour.reset();
+    timings.correct.reset();
+    solve.restore_uncorrected(std::move(first));
+    return c;
+  }
+  for (const std::string& line : lines) say(line);
+  // A contour that failed before its first round reads the offset surfaces' verification: made
+  // again in order (nothing was corrected yet).
+  if (!contoured.summary.rounds || contoured.summary.rounds->empty()) {
+    contour_offset_void(options, f, b, solve, timings, say, opening_void, c);
+    return c;
+  }
+  c.verification = std::move(contoured.verification);
+  c.outer = std::move(contoured.outer);
+  c.written = std::move(contoured.written);
+  c.summary.rounds = std::move(contoured.summary.rounds);
+  c.summary.written = contoured.summary.written;
+  return c;
+}
+
+// The contoured cavity of the offset path, where the offset surfaces did not verify (or it is asked
+// for): corrected until the written solid verifies. `c` holds the offset surfaces' verification.
+void contour_offset_void(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
+                         StageTimings& timings, const Progress& say, const Vector10d& opening_void, Cavity& c) {
+  const VerifyInput verify_input = offset_verify_input(options, f, b, solve.outer, solve.inner, solve.bound_violation());
+  const auto& tick = options.on_stage_progress;
+  const bool want_contour = wants_offset_contour(options, c);
   std::string problem;
   if (want_contour && b.fixed_count > 0 && !wants_channel(options, b)) {
     problem = options.cavity == CavityMode::contour
                   ? "a contoured cavity cannot have an opening (--fix) yet; the offset surfaces were written"
                   : "with an opening (--fix) only the offset surfaces can be written, and they do not verify";
   } else if (want_contour) {
-    stage_start = Clock::now();
+    const auto stage_start = Clock::now();
     ContourCavityOptions cavity_options;
     // The wall survives the rounding of both surfaces to the output's precision.
     cavity_options.wall =
@@ -701,7 +806,6 @@ Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const 
     c.verification.valid = false;
     c.verification.failures.insert(c.verification.failures.begin(), problem);
   }
-  return c;
 }
 
 // The goals the quadric void is written for: those that lower the centre of mass.
@@ -738,6 +842,19 @@ std::optional<Optimality> optimality(const Frame& f, const Reachability& reach, 
   return o;
 }
 
+// The fraction of the possible lowering the offset model's solution predicts (its integrals, before
+// any contour): for stand and the other centre-lowering goals except float, whose depth needs the
+// written solid.
+std::optional<double> predicted_fraction(const Frame& f, const Reachability& reach, const ReducedProblem::Evaluation& e) {
+  if (f.goal.kind == GoalKind::floating || !reach.lowest_cz) return std::nullopt;
+  const double shell_volume = e.outer_integrals(kIntVolume) - e.inner_integrals(kIntVolume);
+  if (!(shell_volume > 0.0)) return std::nullopt;
+  const double cz = (e.outer_integrals(kIntZ) - e.inner_integrals(kIntZ)) / shell_volume / f.scale + f.origin.z() - f.zmin;
+  const double before = f.before(kCz) - f.zmin, best = *reach.lowest_cz;
+  if (!(before - best > 0.0)) return std::nullopt;
+  return (before - cz) / (before - best);
+}
+
 // "97%": a fraction for a one-line reason.
 std::string percent(double fraction) {
   char text[32];
@@ -745,67 +862,87 @@ std::string percent(double fraction) {
   return text;
 }
 
-// Stages "cavity" and "verify" with the quadric void: the offset path first (make_offset_cavity),
-// then the quadric void where the offset void misses a goal some void reaches or falls short of the
-// best by more than options.quadric_below_fraction; the quadric void is written when it verifies
-// and beats the offset void's score by more than options.quadric_tie, or when asked for.
-Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
-                   const ReachabilitySummary& reach, StageTimings& timings, const Progress& say) {
-  Cavity c = make_offset_cavity(options, f, b, solve, timings, say);
+// The quadric void and, where it is thin, the one contoured twice as fine: what make_cavity writes
+// when the offset void falls short. It reads the input (the outer surface: no --outer), its tree,
+// the frame and the programme, nothing the skeleton or the solve make, so it can be computed
+// alongside them (QuadricAhead).
+struct QuadricAttempt {
+  QuadricVoid q;
+  std::optional<Optimality> optimality;
+  double seconds = 0.0;
+};
+
+QuadricAttempt attempt_quadric(const OptimizeOptions& options, const Frame& f, const Mesh& outer, const TriangleBvh& outer_bvh,
+                               const Reachability& programme) {
+  const auto start = Clock::now();
+  QuadricVoidInput in;
+  in.outer = &outer;
+  in.outer_bvh = &outer_bvh;
+  in.start = *programme.optimum;
+  in.goal_in_frame = f.goal;
+  in.origin = f.origin;
+  in.diagonal = f.diag;
+  // The wall survives the rounding of both surfaces to the output's precision.
+  in.contour.wall = f.wall + rounding_wall_margin(outer.V.size() ? outer.V.cwiseAbs().maxCoeff() : 0.0, options.output_precision);
+  in.contour.cells_per_wall = options.cavity_cells_per_wall;
+  in.contour.margin_cells = options.cavity_margin_cells;
+  in.contour.threads = options.threads;
+  in.verify = verify_input_for(options, f);
+  in.verify.outer = &outer;
+  in.max_rounds = options.max_correction_rounds;
+  in.headroom = kCorrectionHeadroom;
+  QuadricAttempt a;
+  a.q = write_quadric_void(in);
+  a.optimality = optimality(f, programme, a.q.verification);
+  // Where the void is thin (blades, plates), a contour a wall / 1.5 fine loses much of the
+  // lowering the programme's cells reach (cgal-data_turbine: 84% of it; 97% on a grid twice as fine).
+  if (a.optimality && a.optimality->fraction < options.quadric_below_fraction &&
+      2.0 * in.contour.cells_per_wall <= kFinestQuadricCellsPerWall) {
+    in.contour.cells_per_wall *= 2.0;
+    QuadricVoid finer = write_quadric_void(in);
+    const std::optional<Optimality> finer_optimality = optimality(f, programme, finer.verification);
+    if (finer_optimality && finer_optimality->fraction > a.optimality->fraction) {
+      a.q = std::move(finer);
+      a.optimality = finer_optimality;
+    }
+  }
+  a.seconds = seconds_since(start);
+  return a;
+}
+
+// The quadric void started before it is known to be wanted (optimize_offsets); make_cavity takes
+// it when it wants the quadric void, and otherwise its result is dropped: the same bits either way.
+using QuadricAhead = std::future<QuadricAttempt>;
+
+QuadricAttempt take_quadric(const OptimizeOptions& options, const Frame& f, const Band& b, const OffsetSolve& solve,
+                            const Reachability& programme, QuadricAhead* ahead) {
+  if (ahead && ahead->valid()) return ahead->get();
+  return attempt_quadric(options, f, solve.outer, b.bvh, programme);
+}
+
+// The offset path's cavity `c` against the quadric void: the quadric void is made where the offset
+// void misses a goal some void reaches or falls short of the best by more than
+// options.quadric_below_fraction, and written when it verifies and lowers the centre more or beats
+// the offset void's score by more than options.quadric_tie, or when asked for. `attempt`: the
+// quadric void when already made.
+Cavity choose_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, const OffsetSolve& solve,
+                     const Reachability& programme, Cavity c, std::optional<QuadricAttempt> attempt, StageTimings& timings,
+                     const Progress& say, QuadricAhead* ahead) {
   const bool forced = options.cavity == CavityMode::quadric;
   auto refuse = [&](const std::string& why) {
     c.verification.valid = false;
     c.verification.failures.insert(c.verification.failures.begin(), why);
   };
-  const bool writable = lowers_centre(options.goal) && !options.outer && b.fixed_count == 0;
-  const bool wanted = options.cavity == CavityMode::automatic || forced;
-  if (!wanted || !writable || !reach.programme || !reach.programme->reachable || !reach.programme->optimum) {
-    if (forced)
-      refuse(!writable ? "--cavity quadric needs a goal that lowers the centre of mass, without --outer or --fix"
-             : !reach.programme ? "no quadric void: the reachability programme could not be set up"
-                                : "no quadric void: no void the programme knows reaches the goal");
-    return c;
-  }
-  const Reachability& programme = *reach.programme;
   const bool offset_verified = !forced && c.verification.goal_met && c.verification.valid;
   if (offset_verified) c.summary.offset_objective = written_score(f, solve.outer, c.written, c.verification);
   const std::optional<Optimality> offset_optimality = optimality(f, programme, c.verification);
   const bool short_of_best = !offset_optimality || offset_optimality->fraction < options.quadric_below_fraction;
   if (!forced && !(options.cavity == CavityMode::automatic && (!offset_verified || short_of_best))) return c;
 
-  const auto start = Clock::now();
-  QuadricVoidInput in;
-  in.outer = &solve.outer;
-  in.outer_bvh = &b.bvh;
-  in.start = *programme.optimum;
-  in.goal_in_frame = f.goal;
-  in.origin = f.origin;
-  in.diagonal = f.diag;
-  // The wall survives the rounding of both surfaces to the output's precision.
-  in.contour.wall =
-      f.wall + rounding_wall_margin(solve.outer.V.size() ? solve.outer.V.cwiseAbs().maxCoeff() : 0.0, options.output_precision);
-  in.contour.cells_per_wall = options.cavity_cells_per_wall;
-  in.contour.margin_cells = options.cavity_margin_cells;
-  in.contour.threads = options.threads;
-  in.verify = verify_input_for(options, f);
-  in.verify.outer = &solve.outer;
-  in.max_rounds = options.max_correction_rounds;
-  in.headroom = kCorrectionHeadroom;
-  QuadricVoid q = write_quadric_void(in);
-  std::optional<Optimality> quadric_optimality = optimality(f, programme, q.verification);
-  // Where the void is thin (blades, plates), a contour a wall / 1.5 fine loses much of the
-  // lowering the programme's cells reach (cgal-data_turbine: 84% of it; 97% on a grid twice as fine).
-  if (quadric_optimality && quadric_optimality->fraction < options.quadric_below_fraction &&
-      2.0 * in.contour.cells_per_wall <= kFinestQuadricCellsPerWall) {
-    in.contour.cells_per_wall *= 2.0;
-    QuadricVoid finer = write_quadric_void(in);
-    const std::optional<Optimality> finer_optimality = optimality(f, programme, finer.verification);
-    if (finer_optimality && finer_optimality->fraction > quadric_optimality->fraction) {
-      q = std::move(finer);
-      quadric_optimality = finer_optimality;
-    }
-  }
-  timings.quadric = seconds_since(start);
+  if (!attempt) attempt = take_quadric(options, f, b, solve, programme, ahead);
+  const QuadricVoid& q = attempt->q;
+  const std::optional<Optimality>& quadric_optimality = attempt->optimality;
+  timings.quadric = attempt->seconds;
   c.summary.quadric_rounds = q.rounds;
   const bool quadric_verified = q.verification.goal_met && q.verification.valid;
   say(std::string("quadric void: ") + std::to_string(q.rounds.size()) + " contours, " +
@@ -845,6 +982,60 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
                                                      "% of the quadric void's objective";
   }
   return c;
+}
+
+// Stages "cavity" and "verify" with the quadric void: the offset path (make_offset_cavity), then
+// the choice against the quadric void (choose_cavity). When the offset model's own integrals
+// already predict less than options.quadric_first_below of the possible lowering, the quadric void
+// is made first and the offset surfaces, if they do not verify, are contoured only when the quadric
+// void does not verify either (a contour lowers the centre less than its model: on the census the
+// models predict 0.97 to 1.05 where their contours reach 0.83 to 0.95).
+Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
+                   const ReachabilitySummary& reach, StageTimings& timings, const Progress& say, QuadricAhead* ahead) {
+  const bool forced = options.cavity == CavityMode::quadric;
+  const bool writable = lowers_centre(options.goal) && !options.outer && b.fixed_count == 0;
+  const bool wanted = options.cavity == CavityMode::automatic || forced;
+  const bool possible = wanted && writable && reach.programme && reach.programme->reachable && reach.programme->optimum;
+  double predicted = std::numeric_limits<double>::infinity();  // none: the offset path as always
+  if (possible && options.cavity == CavityMode::automatic && !options.wants_drain_holes())
+    predicted = predicted_fraction(f, *reach.programme, solve.eval).value_or(predicted);
+  const bool quadric_first = predicted < options.quadric_first_below;
+  Cavity c = make_offset_cavity(options, f, b, solve, timings, say, Vector10d::Zero(), !quadric_first,
+                                work_ahead(options, solve.outer.V.rows()));
+  if (!possible) {
+    if (forced) {
+      c.verification.valid = false;
+      c.verification.failures.insert(
+          c.verification.failures.begin(),
+          !writable           ? "--cavity quadric needs a goal that lowers the centre of mass, without --outer or --fix"
+          : !reach.programme ? "no quadric void: the reachability programme could not be set up"
+                             : "no quadric void: no void the programme knows reaches the goal");
+    }
+    return c;
+  }
+  const Reachability& programme = *reach.programme;
+  // Offset surfaces that verify need no contour: they are judged as always.
+  if (!quadric_first || !wants_offset_contour(options, c))
+    return choose_cavity(options, f, b, solve, programme, std::move(c), std::nullopt, timings, say, ahead);
+  QuadricAttempt attempt = take_quadric(options, f, b, solve, programme, ahead);
+  const QuadricVoid& q = attempt.q;
+  // Written without the offset contour only where it beats the offset model's own prediction.
+  if (q.verification.goal_met && q.verification.valid && attempt.optimality && attempt.optimality->fraction > predicted) {
+    timings.quadric = attempt.seconds;
+    say("quadric void: " + std::to_string(q.rounds.size()) + " contours, verified, the offset void not contoured");
+    c.summary.quadric_rounds = q.rounds;
+    c.summary.quadric_objective = written_score(f, solve.outer, q.written, q.verification);
+    c.outer = q.outer;
+    c.written = q.written;
+    c.verification = q.verification;
+    c.summary.written = WrittenCavity::quadric;
+    c.summary.choice = (solve.constraints_met ? "the offset model predicts " + percent(predicted) + " of the possible lowering"
+                                              : std::string("the offset model misses the goal")) +
+                       ", the quadric void reaches " + percent(attempt.optimality->fraction) + "; the offset void was not contoured";
+    return c;
+  }
+  contour_offset_void(options, f, b, solve, timings, say, Vector10d::Zero(), c);
+  return choose_cavity(options, f, b, solve, programme, std::move(c), std::move(attempt), timings, say, ahead);
 }
 
 // Stage "openings": drain holes and the channel cut through the written cavity and verified on the
@@ -1103,6 +1294,20 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   if (tick) tick("reachability", 1.0);
   if (reach.decided && !reach.reachable) return refuse_unreachable(input, options, f, std::move(reach), timings, total_start);
 
+  // The quadric void reads the input, the frame and the programme alone: on inputs large enough
+  // for the coarse copy, with two or more threads, it is started now, beside the skeleton and the
+  // basis, where the offset void's stages would otherwise run before it (make_cavity takes it if it
+  // wants it; its tree of the input is the band's, built again).
+  QuadricAhead quadric_ahead;
+  const bool quadric_possible = (options.cavity == CavityMode::automatic || options.cavity == CavityMode::quadric) &&
+                                lowers_centre(options.goal) && !options.outer && options.fix.kind == FixRegion::Kind::none &&
+                                reach.programme && reach.programme->reachable && reach.programme->optimum;
+  if (work_ahead(options, n) && quadric_possible)
+    quadric_ahead = start_task(true, [&input, &options, &f, programme = reach.programme]() {
+      const TriangleBvh bvh(input.V, input.F);
+      return attempt_quadric(options, f, input, bvh, *programme);
+    });
+
   BandOutcome band_outcome = band_future.get();
   const std::optional<CoarseCopy>& coarse = coarse_future.get().copy;
   const Mesh& basis_mesh = coarse_future.get().mesh;
@@ -1157,7 +1362,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   timings.solve = seconds_since(stage_start);
   if (tick) tick("solve", 1.0);
 
-  Cavity cavity = make_cavity(options, f, b, solve, reach, timings, say);
+  Cavity cavity = make_cavity(options, f, b, solve, reach, timings, say, quadric_ahead.valid() ? &quadric_ahead : nullptr);
   std::optional<OpeningsSummary> openings;
   std::optional<Mesh> opened_solid;
   if ((options.wants_drain_holes() || wants_channel(options, b)) && cavity.summary.contoured())

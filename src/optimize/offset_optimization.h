@@ -78,6 +78,10 @@ struct OptimizeOptions {
   // shape are worth a little). At 0.95 the demo goals, whose offset voids reach 0.98, pay no second
   // contour; real meshes, at 0.68 to 0.91, get the quadric void.
   double quadric_below_fraction = 0.95;
+  // When the offset model's own integrals (before any contour) predict less than this fraction of
+  // the possible lowering, the quadric void is made first and the offset void contoured only if
+  // the quadric void does not verify (a contour reaches less than its model predicts).
+  double quadric_first_below = 0.95;
   double quadric_tie = 0.01;
   // The contoured cavity: grid spacing wall / cavity_cells_per_wall, the wall-bound part at
   // wall + cavity_margin_cells · h (0: at the requested wall; cavity/contour_cavity.h); at most
