@@ -48,8 +48,12 @@ class Decimator {
     faces_of_.resize(n);
     quadric_.assign(n, Quadric{});
     blocked_.assign(n, 0);
+    merged_.assign(n, 0);
     mark_.assign(n, 0);
     refused_.assign(3 * faces_.size(), 0);
+    edge_cost_.assign(3 * faces_.size(), 0.0);
+    cost_round_.assign(3 * faces_.size(), 0);
+    forward_.assign(3 * faces_.size(), 0);
     alive_vertex_.assign(n, 1);
     locked_.assign(n, 0);
     for (std::size_t f = 0; f < faces_.size(); ++f) {
@@ -96,7 +100,7 @@ class Decimator {
       for (int f : live_faces)
         for (int c = 0; c < 3; ++c) {
           const int a = faces_[static_cast<std::size_t>(f)][c], b = faces_[static_cast<std::size_t>(f)][(c + 1) % 3];
-          if (a < b) add_edge(a, b, 3 * f + c, edges);
+          if (a < b) add_edge(a, b, 3 * f + c, round, edges);
         }
       if (edges.empty()) break;
       const std::size_t walked = walk_all ? edges.size() : std::max<std::size_t>(1, edges.size() / kWalkedShare);
@@ -173,15 +177,28 @@ class Decimator {
 
   // The cheaper direction of the edge a-b. An edge refused in both directions in round r is left
   // out until a collapse changes the ring of one of its ends (blocked_ then reaches r): allowed()
-  // reads nothing else, and at 10^6 vertices re-testing them was 5.5 tests per collapse.
-  void add_edge(int a, int b, int half_edge, std::vector<Candidate>& edges) const {
+  // reads nothing else, and at 10^6 vertices re-testing them was 5.5 tests per collapse. Its cost
+  // is kept from the round it was computed in until a collapse merges into one of its ends (the
+  // only way their quadrics change; a half-edge whose corner was the removed vertex now ends at
+  // the target): reading two quadrics and two positions of scattered vertices for every edge in
+  // every round was most of the decimation on a scan whose vertex numbers follow no order (the
+  // refined armadillo at 10^6 vertices).
+  void add_edge(int a, int b, int half_edge, unsigned round, std::vector<Candidate>& edges) {
+    const std::size_t he = static_cast<std::size_t>(half_edge);
     if (locked_[static_cast<std::size_t>(a)] && locked_[static_cast<std::size_t>(b)]) return;
-    const unsigned refused = refused_[static_cast<std::size_t>(half_edge)];
+    const unsigned refused = refused_[he];
     if (refused != 0 && blocked_[static_cast<std::size_t>(a)] < refused && blocked_[static_cast<std::size_t>(b)] < refused) return;
-    const double ab = locked_[static_cast<std::size_t>(a)] ? HUGE_VAL : cost(a, b);
-    const double ba = locked_[static_cast<std::size_t>(b)] ? HUGE_VAL : cost(b, a);
-    const bool forward = ab < ba || (ab == ba && a < b);
-    edges.push_back({forward ? ab : ba, forward ? a : b, forward ? b : a, half_edge});
+    const unsigned known = cost_round_[he];
+    if (known == 0 || merged_[static_cast<std::size_t>(a)] >= known || merged_[static_cast<std::size_t>(b)] >= known) {
+      const double ab = locked_[static_cast<std::size_t>(a)] ? HUGE_VAL : cost(a, b);
+      const double ba = locked_[static_cast<std::size_t>(b)] ? HUGE_VAL : cost(b, a);
+      const bool forward = ab < ba || (ab == ba && a < b);
+      edge_cost_[he] = forward ? ab : ba;
+      forward_[he] = forward;
+      cost_round_[he] = round;
+    }
+    const bool forward = forward_[he] != 0;
+    edges.push_back({edge_cost_[he], forward ? a : b, forward ? b : a, half_edge});
   }
 
   // The alive faces of v.
@@ -290,6 +307,7 @@ class Decimator {
     --alive_count_;
     for (std::size_t k = 0; k < 10; ++k) quadric_[v][k] += quadric_[u][k];
     blocked_[u] = round;
+    merged_[v] = round;
     for (int f : faces_of_[v])
       for (int w : faces_[static_cast<std::size_t>(f)]) blocked_[static_cast<std::size_t>(w)] = round;
   }
@@ -301,7 +319,11 @@ class Decimator {
   std::vector<std::vector<int>> faces_of_;
   std::vector<Quadric> quadric_;
   std::vector<unsigned> blocked_;  // the round in which a collapse last changed the vertex's ring
+  std::vector<unsigned> merged_;   // the round in which a collapse last merged into the vertex
   std::vector<unsigned> refused_;  // per half-edge: the round its edge was last refused, or 0
+  std::vector<double> edge_cost_;  // per half-edge: its edge's cost in the cheaper direction ...
+  std::vector<unsigned> cost_round_;  // ... computed at the start of this round (0: not yet) ...
+  std::vector<char> forward_;      // ... which is from its first end to its second
   std::vector<char> alive_vertex_, locked_;
   int alive_count_ = 0;
   std::vector<int> from_faces_, to_faces_;
