@@ -873,7 +873,7 @@ struct QuadricAttempt {
 };
 
 QuadricAttempt attempt_quadric(const OptimizeOptions& options, const Frame& f, const Mesh& outer, const TriangleBvh& outer_bvh,
-                               const Reachability& programme) {
+                               const Reachability& programme, int threads) {
   const auto start = Clock::now();
   QuadricVoidInput in;
   in.outer = &outer;
@@ -886,8 +886,9 @@ QuadricAttempt attempt_quadric(const OptimizeOptions& options, const Frame& f, c
   in.contour.wall = f.wall + rounding_wall_margin(outer.V.size() ? outer.V.cwiseAbs().maxCoeff() : 0.0, options.output_precision);
   in.contour.cells_per_wall = options.cavity_cells_per_wall;
   in.contour.margin_cells = options.cavity_margin_cells;
-  in.contour.threads = options.threads;
+  in.contour.threads = threads;
   in.verify = verify_input_for(options, f);
+  in.verify.threads = threads;
   in.verify.outer = &outer;
   in.max_rounds = options.max_correction_rounds;
   in.headroom = kCorrectionHeadroom;
@@ -917,7 +918,7 @@ using QuadricAhead = std::future<QuadricAttempt>;
 QuadricAttempt take_quadric(const OptimizeOptions& options, const Frame& f, const Band& b, const OffsetSolve& solve,
                             const Reachability& programme, QuadricAhead* ahead) {
   if (ahead && ahead->valid()) return ahead->get();
-  return attempt_quadric(options, f, solve.outer, b.bvh, programme);
+  return attempt_quadric(options, f, solve.outer, b.bvh, programme, options.threads);
 }
 
 // The offset path's cavity `c` against the quadric void: the quadric void is made where the offset
@@ -1297,7 +1298,8 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   // The quadric void reads the input, the frame and the programme alone: on inputs large enough
   // for the coarse copy, with two or more threads, it is started now, beside the skeleton and the
   // basis, where the offset void's stages would otherwise run before it (make_cavity takes it if it
-  // wants it; its tree of the input is the band's, built again).
+  // wants it; its tree of the input is the band's, built again). One thread: the copy, the skeleton
+  // and the basis keep the others, and the result is the same on any number.
   QuadricAhead quadric_ahead;
   const bool quadric_possible = (options.cavity == CavityMode::automatic || options.cavity == CavityMode::quadric) &&
                                 lowers_centre(options.goal) && !options.outer && options.fix.kind == FixRegion::Kind::none &&
@@ -1305,7 +1307,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   if (work_ahead(options, n) && quadric_possible)
     quadric_ahead = start_task(true, [&input, &options, &f, programme = reach.programme]() {
       const TriangleBvh bvh(input.V, input.F);
-      return attempt_quadric(options, f, input, bvh, *programme);
+      return attempt_quadric(options, f, input, bvh, *programme, 1);
     });
 
   BandOutcome band_outcome = band_future.get();
