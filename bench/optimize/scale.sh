@@ -10,7 +10,9 @@
 #
 # usage: bench/optimize/scale.sh [BINARY] [DETAIL...]   (default details: 1.8 3.2 5.8 10 17.2)
 #   THREADS=1 to run single-threaded; CALLGRIND=1 to add the instruction count of each run under
-#   valgrind --tool=callgrind (slow: about 50 times the run; use it on one size at a time).
+#   valgrind --tool=callgrind (slow: about 50 times the run; use it on one size at a time);
+#   KEEP=DIR to keep each written solid and report as DIR/bottleD.stl and .json (for an
+#   independent check such as ../shared/tools/validity).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 binary=${1:-$root/build/offsetopt}
@@ -32,6 +34,11 @@ for d in "${details[@]}"; do
     -o "$out/solid.stl" --report "$out/r.json" --quiet 2>/dev/null
   code=$?
   set -e
+  if [[ -n ${KEEP:-} ]]; then
+    mkdir -p "$KEEP"
+    cp "$out/solid.stl" "$KEEP/bottle$d.stl" 2>/dev/null || true
+    cp "$out/r.json" "$KEEP/bottle$d.json" 2>/dev/null || true
+  fi
   instructions=""
   if [[ ${CALLGRIND:-0} == 1 ]]; then
     valgrind --tool=callgrind --callgrind-out-file="$out/cg" "$binary" optimize "$mesh" --goal stand \

@@ -272,7 +272,7 @@ std::string make_frame(const Mesh& input, const OptimizeOptions& options, Frame&
 // Stage "band": the meso-skeleton, the offset field and the per-vertex band the offsets move in.
 struct Band {
   ContractionResult contraction;
-  TriangleBvh bvh;                 // of the input
+  std::shared_ptr<const TriangleBvh> bvh;  // of the input, shared with the reachability and the quadric void
   SelfIntersectionReport input_self;  // the input's own self-intersections (as `check` counts them)
   std::vector<std::pair<int, int>> input_pairs;  // with --outer: the pairs the outer surface may keep
   OuterOffsetLimit outer;          // with --outer: how far each vertex may thicken, input units
@@ -308,7 +308,8 @@ SelfIntersectionReport input_self_intersections(const Mesh& input, const Optimiz
   return known;
 }
 
-std::string make_band(const Mesh& input, const OptimizeOptions& options, const Frame& f, const CoarseCopy* coarse, Band& b) {
+std::string make_band(const Mesh& input, const std::shared_ptr<const TriangleBvh>& input_bvh, const OptimizeOptions& options,
+                      const Frame& f, const CoarseCopy* coarse, Band& b) {
   const Eigen::Index n = input.V.rows();
   const auto& tick = options.on_stage_progress;
   ContractionOptions contraction_options;
@@ -316,13 +317,13 @@ std::string make_band(const Mesh& input, const OptimizeOptions& options, const F
   if (tick) contraction_options.on_progress = [&tick](double fraction) { tick("skeleton", 0.7 * fraction); };
   b.contraction = coarse ? laplacian_contraction_of_copy(*coarse, contraction_options)
                          : laplacian_contraction(input.V, input.F, contraction_options);
-  b.bvh = TriangleBvh(input.V, input.F);
+  b.bvh = input_bvh;
   b.input_self = input_self_intersections(input, options);
   OffsetFieldOptions field_options;
   field_options.wall = f.wall;
   field_options.threads = options.threads;
   if (tick) tick("skeleton", 0.75);
-  b.field = offset_field(input, b.contraction.V, b.bvh, field_options);
+  b.field = offset_field(input, b.contraction.V, *b.bvh, field_options);
   OffsetBand& band = b.band;
   band.inner_direction = b.field.inner;
   band.outer_direction = b.field.outer;
@@ -333,7 +334,7 @@ std::string make_band(const Mesh& input, const OptimizeOptions& options, const F
   if (options.fix.kind != FixRegion::Kind::none && b.fixed_count == 0)
     return "--fix " + options.fix.text + " selects no vertex";
   if (options.outer) {
-    b.input_pairs = self_intersections(b.bvh, 100000).pairs;
+    b.input_pairs = self_intersections(*b.bvh, 100000).pairs;
     // The base stays where it is: no outer offset at or below b = zmin + 2 ground_tol, and above it
     // a vertex may drop (|w_z| times its offset, either sign) at most 0.9 of its height above b, so
     // it stays above b: the contact set and the pose are kept (half its height cost the horse's
@@ -350,7 +351,7 @@ std::string make_band(const Mesh& input, const OptimizeOptions& options, const F
     // Each vertex thickens at most as far as the surface cannot fold there (shape/outer_offset_limit.h).
     OuterOffsetLimitOptions limit_options;
     limit_options.threads = options.threads;
-    b.outer = outer_offset_limit(input, b.bvh, b.field.outer, b.field.normals, requested, limit_options);
+    b.outer = outer_offset_limit(input, *b.bvh, b.field.outer, b.field.normals, requested, limit_options);
     band.outer_limit = b.outer.limit * f.scale;
     b.outer_summary = {b.outer.free_limited, b.outer.focal_limited, b.outer.nearest_limited, 0.0, 0};
     int away = 0;
@@ -758,7 +759,7 @@ void contour_offset_void(const OptimizeOptions& options, const Frame& f, const B
       const auto contour_start = Clock::now();
       const TriangleBvh outer_offset_bvh = options.outer ? TriangleBvh(solve.outer.V, solve.outer.F) : TriangleBvh();
       const ContourCavity contoured =
-          contour_cavity(solve.outer, options.outer ? outer_offset_bvh : b.bvh, solve.inner, cavity_options);
+          contour_cavity(solve.outer, options.outer ? outer_offset_bvh : *b.bvh, solve.inner, cavity_options);
       contour_seconds += seconds_since(contour_start);
       if (!contoured.ok) {
         problem = "the cavity could not be contoured: " + contoured.message;
@@ -918,7 +919,7 @@ using QuadricAhead = std::future<QuadricAttempt>;
 QuadricAttempt take_quadric(const OptimizeOptions& options, const Frame& f, const Band& b, const OffsetSolve& solve,
                             const Reachability& programme, QuadricAhead* ahead) {
   if (ahead && ahead->valid()) return ahead->get();
-  return attempt_quadric(options, f, solve.outer, b.bvh, programme, options.threads);
+  return attempt_quadric(options, f, solve.outer, *b.bvh, programme, options.threads);
 }
 
 // The offset path's cavity `c` against the quadric void: the quadric void is made where the offset
@@ -1269,12 +1270,15 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     std::string problem;
     double seconds = 0.0;
   };
-  const auto compute_band = [&input, &options, &f, coarse_future, &tick]() {
+  // The input's tree, once: the skeleton's field, the reachability programme and the quadric void
+  // read it (10^6 vertices: about 0.6 s a tree).
+  const auto input_bvh = std::make_shared<const TriangleBvh>(input.V, input.F);
+  const auto compute_band = [&input, &input_bvh, &options, &f, coarse_future, &tick]() {
     const std::optional<CoarseCopy>& coarse = coarse_future.get().copy;
     const auto start = Clock::now();
     BandOutcome outcome;
     if (tick) tick("skeleton", 0.0);
-    outcome.problem = make_band(input, options, f, coarse ? &*coarse : nullptr, outcome.band);
+    outcome.problem = make_band(input, input_bvh, options, f, coarse ? &*coarse : nullptr, outcome.band);
     outcome.seconds = seconds_since(start);
     if (tick) tick("skeleton", 1.0);
     return outcome;
@@ -1289,7 +1293,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   stage_start = Clock::now();
   const ReachabilityStageInput reach_input{&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
                                            options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
-                                           options.threads, options.flatten};
+                                           options.threads, options.flatten, input_bvh.get()};
   ReachabilitySummary reach = reachability_stage(reach_input);
   timings.reach = seconds_since(stage_start);
   if (tick) tick("reachability", 1.0);
@@ -1298,16 +1302,15 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   // The quadric void reads the input, the frame and the programme alone: on inputs large enough
   // for the coarse copy, with two or more threads, it is started now, beside the skeleton and the
   // basis, where the offset void's stages would otherwise run before it (make_cavity takes it if it
-  // wants it; its tree of the input is the band's, built again). One thread: the copy, the skeleton
+  // wants it). One thread: the copy, the skeleton
   // and the basis keep the others, and the result is the same on any number.
   QuadricAhead quadric_ahead;
   const bool quadric_possible = (options.cavity == CavityMode::automatic || options.cavity == CavityMode::quadric) &&
                                 lowers_centre(options.goal) && !options.outer && options.fix.kind == FixRegion::Kind::none &&
                                 reach.programme && reach.programme->reachable && reach.programme->optimum;
   if (work_ahead(options, n) && quadric_possible)
-    quadric_ahead = start_task(true, [&input, &options, &f, programme = reach.programme]() {
-      const TriangleBvh bvh(input.V, input.F);
-      return attempt_quadric(options, f, input, bvh, *programme, 1);
+    quadric_ahead = start_task(true, [&input, &options, &f, input_bvh, programme = reach.programme]() {
+      return attempt_quadric(options, f, input, *input_bvh, *programme, 1);
     });
 
   BandOutcome band_outcome = band_future.get();

@@ -169,7 +169,8 @@ std::optional<ReachabilityRemedy> smallest_flatten(const ReachabilityStageInput&
 
 ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
   ReachabilitySummary s;
-  const TriangleBvh bvh(in.input->V, in.input->F);
+  std::optional<TriangleBvh> own;
+  const TriangleBvh& bvh = in.input_bvh ? *in.input_bvh : own.emplace(in.input->V, in.input->F);
   s.options = options_for(in, in.outer);
   const auto programme = std::make_shared<const Reachability>(reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, s.options));
   const Reachability& r = *programme;
@@ -204,7 +205,8 @@ void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& s) {
   const Reachability& r = *s.programme;
   const bool band_helps = in.goal.kind != GoalKind::floating && in.goal.kind != GoalKind::volume;
   if (!in.outer && band_helps) {
-    const TriangleBvh bvh(in.input->V, in.input->F);
+    std::optional<TriangleBvh> own;
+    const TriangleBvh& bvh = in.input_bvh ? *in.input_bvh : own.emplace(in.input->V, in.input->F);
     const Reachability with_band = reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, options_for(in, true));
     if (with_band.ok) s.remedies.push_back(remedy_from("--outer", with_band));
   }

@@ -21,6 +21,7 @@
 #include <Eigen/Core>
 
 #include "cavity/reachability.h"
+#include "geometry/bvh.h"
 #include "mesh/mesh.h"
 #include "shape/goal.h"
 
@@ -62,6 +63,7 @@ struct ReachabilityStageInput {
   double cavity_cells_per_wall = 1.5, cavity_margin_cells = 0.0;
   int threads = 2;
   double flatten = 0.0;              // the --flatten height the input was already cut at (0: none)
+  const TriangleBvh* input_bvh = nullptr;  // the input's tree when built already (else built here)
 };
 
 ReachabilitySummary reachability_stage(const ReachabilityStageInput& in);
