@@ -244,6 +244,7 @@ int run_optimize(const Args& args) {
   const auto load_start = std::chrono::steady_clock::now();
   LoadOptions load_options;
   load_options.single_component = true;  // one solid: one skeleton, one constant mode
+  load_options.threads = options.threads;
   const InputMesh loaded = load_input(mesh_path, load_options);
   print_warnings(loaded.warnings, quiet);
   if (!unit_given && !loaded.unit.empty()) unit = loaded.unit;  // a 3MF input's unit carries over

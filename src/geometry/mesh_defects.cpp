@@ -4,12 +4,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <future>
 #include <utility>
 #include <vector>
 
 #include "geometry/bvh.h"
 #include "geometry/exact_triangle_intersection.h"
 #include "geometry/faces_intersect_exact.h"
+#include "util/parallel.h"
 
 namespace offsetopt {
 
@@ -224,16 +226,15 @@ class PairRule {
 
 }  // namespace
 
-SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap) {
+namespace {
+
+// The search below the node pairs `start`: the pairs found (counted up to `cap`), the smallest
+// pair, and the candidates visited (up to max_candidates, then stopped).
+SelfIntersectionReport search_pairs(const TriangleBvh& bvh, const PairRule& rule, std::vector<std::pair<int, int>> start,
+                                    std::size_t cap, long long max_candidates) {
   SelfIntersectionReport out;
-  if (mesh.F.rows() == 0 || cap == 0 || !usable(mesh)) return out;
-  const PairRule rule(mesh);
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) out.collinear_faces += rule.collinear(static_cast<int>(f)) ? 1 : 0;
-  const TriangleBvh bvh(mesh.V, mesh.F);
   std::pair<int, int> first{-1, -1};
   long long candidates = 0;
-  const long long max_candidates =
-      std::max(kMinSelfIntersectionCandidates, kSelfIntersectionCandidatesPerFace * static_cast<long long>(mesh.F.rows()));
   auto visit = [&](int f, int g) {
     if (++candidates > max_candidates) {
       out.work_cap_reached = true;
@@ -252,10 +253,49 @@ SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap
     }
     return true;
   };
-  traverse_face_pairs(bvh, bvh, true, {{0, 0}}, visit);
+  traverse_face_pairs(bvh, bvh, true, std::move(start), visit);
   out.first_face = first.first;
   out.second_face = first.second;
   out.candidate_pairs = std::min(candidates, max_candidates);
+  return out;
+}
+
+}  // namespace
+
+SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap, int threads) {
+  SelfIntersectionReport out;
+  if (mesh.F.rows() == 0 || cap == 0 || !usable(mesh)) return out;
+  const PairRule rule(mesh);
+  long long collinear_faces = 0;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) collinear_faces += rule.collinear(static_cast<int>(f)) ? 1 : 0;
+  const TriangleBvh bvh(mesh.V, mesh.F);
+  const long long max_candidates =
+      std::max(kMinSelfIntersectionCandidates, kSelfIntersectionCandidatesPerFace * static_cast<long long>(mesh.F.rows()));
+  // Two threads: the root's right subtree against itself on one, the rest on the other. The caps
+  // count over the whole search, so when the two parts together reach one, the search is made
+  // again in one piece, where it stops where it always did.
+  const BvhNode& root = bvh.nodes().front();
+  if (threads > 1 && !root.is_leaf()) {
+    std::future<SelfIntersectionReport> right = start_task(true, [&bvh, &rule, &root, cap, max_candidates]() {
+      return search_pairs(bvh, rule, {{root.right, root.right}}, cap, max_candidates);
+    });
+    const SelfIntersectionReport left = search_pairs(bvh, rule, {{root.left, root.right}, {root.left, root.left}}, cap, max_candidates);
+    const SelfIntersectionReport other = right.get();
+    if (!left.truncated && !other.truncated && left.candidate_pairs + other.candidate_pairs <= max_candidates &&
+        static_cast<std::size_t>(left.pairs + other.pairs) < cap) {
+      out.pairs = left.pairs + other.pairs;
+      out.candidate_pairs = left.candidate_pairs + other.candidate_pairs;
+      const bool take_other =
+          other.pairs > 0 && (left.pairs == 0 || std::make_pair(other.first_face, other.second_face) <
+                                                     std::make_pair(left.first_face, left.second_face));
+      out.first_face = take_other ? other.first_face : left.first_face;
+      out.second_face = take_other ? other.second_face : left.second_face;
+      out.collinear_faces = collinear_faces;
+      return out;
+    }
+  }
+  out = search_pairs(bvh, rule, {{0, 0}}, cap, max_candidates);
+  out.collinear_faces = collinear_faces;
   return out;
 }
 

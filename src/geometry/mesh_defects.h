@@ -49,7 +49,9 @@ struct SelfIntersectionReport {
   long long collinear_faces = 0;  // faces with collinear corners, not tested
 };
 
-SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap = 1000000);
+// `threads` > 1: the search in two parts at once when neither part reaches a cap (else in one
+// piece): the same report on any count.
+SelfIntersectionReport find_self_intersections(const Mesh& mesh, std::size_t cap = 1000000, int threads = 1);
 
 struct PinchReport {
   long long pairs = 0;  // vertex pairs at one position

@@ -37,7 +37,7 @@ std::string describe_pinches(const PinchReport& report, const std::vector<long l
 InputMesh load_input(const std::string& path, const LoadOptions& options) {
   InputMesh loaded;
   static_cast<LoadedMesh&>(loaded) = load_mesh(path, options);
-  loaded.self_intersections = find_self_intersections(loaded.mesh);
+  loaded.self_intersections = find_self_intersections(loaded.mesh, 1000000, options.threads);
   const SelfIntersectionReport& crossings = loaded.self_intersections;
   if (crossings.pairs > 0)
     loaded.warnings.push_back(describe_self_intersections(crossings, loaded.face_origin, loaded.face_line) +

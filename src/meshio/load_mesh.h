@@ -34,6 +34,9 @@ struct LoadOptions {
   // default: such a mesh is accepted with a warning when every shell is closed and nested with
   // the right orientation (see the policy table in meshio/validate_mesh.h).
   bool single_component = false;
+  // Threads for load_input's self-intersection search (meshio/load_input.h); the same result on
+  // any count.
+  int threads = 1;
 
   // Empty when valid, else what is wrong: every combination of these flags is valid, so always
   // empty (kept for the one convention of options structs).

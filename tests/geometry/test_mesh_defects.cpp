@@ -11,7 +11,9 @@
 #include "geometry/exact_triangle_intersection.h"
 #include "geometry/mesh_defects.h"
 #include "geometry/triangle_triangle.h"
+#include "geometry/faces_intersect_exact.h"
 #include "mesh/demo_meshes.h"
+#include "mesh/primitives.h"
 
 using namespace offsetopt;
 using V3 = Eigen::Vector3d;
@@ -111,4 +113,47 @@ TEST_CASE("check's pair rule on hand-built pairs: touching along an edge or at a
   CHECK(pairs_of({V3(0, 0, 0), V3(4, 0, 0), V3(0, 4, 0), V3(1, 1, -1), V3(1, 1.5, 2), V3(1.5, 1, 2)}, {{0, 1, 2}, {3, 4, 5}}) == 1);
   // Corners at one position are one corner: two faces meeting at a welded corner only.
   CHECK(pairs_of({V3(0, 0, 0), V3(2, 1, 0), V3(2, -1, 0), V3(0, 0, 0), V3(-2, 1, 1), V3(-2, -1, 1)}, {{0, 1, 2}, {3, 4, 5}}) == 0);
+}
+
+TEST_CASE("find_self_intersections on two threads: the report of one thread, and every pair an all-pairs loop finds") {
+  // Two overlapping icospheres as one mesh (no shared vertices): their crossing faces are pairs.
+  const Mesh one = make_icosphere(1.0, 2);
+  Mesh both;
+  both.V.resize(2 * one.V.rows(), 3);
+  both.F.resize(2 * one.F.rows(), 3);
+  both.V << one.V, (one.V.rowwise() + Eigen::RowVector3d(0.9, 0.13, 0.07));
+  both.F << one.F, (one.F.array() + static_cast<int>(one.V.rows())).matrix();
+  long long all_pairs = 0;
+  std::pair<int, int> first{-1, -1};
+  for (Eigen::Index f = 0; f < both.F.rows(); ++f)
+    for (Eigen::Index g = f + 1; g < both.F.rows(); ++g) {
+      V3 a[3], b[3];
+      int ia[3], ib[3];
+      for (int k = 0; k < 3; ++k) {
+        ia[k] = both.F(f, k);
+        ib[k] = both.F(g, k);
+        a[k] = both.V.row(ia[k]).transpose();
+        b[k] = both.V.row(ib[k]).transpose();
+      }
+      if (!faces_intersect_exact(a, ia, b, ib)) continue;
+      if (all_pairs++ == 0) first = {static_cast<int>(f), static_cast<int>(g)};
+    }
+  REQUIRE(all_pairs > 0);
+  const SelfIntersectionReport serial = find_self_intersections(both, 1000000, 1);
+  const SelfIntersectionReport parallel = find_self_intersections(both, 1000000, 2);
+  CHECK(serial.pairs == all_pairs);
+  CHECK(std::make_pair(serial.first_face, serial.second_face) == first);
+  CHECK(parallel.pairs == serial.pairs);
+  CHECK(parallel.first_face == serial.first_face);
+  CHECK(parallel.second_face == serial.second_face);
+  CHECK(parallel.candidate_pairs == serial.candidate_pairs);
+  CHECK(!parallel.truncated);
+  // A cap below the count: the search stops where the one-thread search stops.
+  const SelfIntersectionReport capped1 = find_self_intersections(both, 7, 1), capped2 = find_self_intersections(both, 7, 2);
+  CHECK(capped1.truncated);
+  CHECK(capped2.truncated);
+  CHECK(capped2.pairs == capped1.pairs);
+  CHECK(capped2.first_face == capped1.first_face);
+  CHECK(capped2.second_face == capped1.second_face);
+  CHECK(capped2.candidate_pairs == capped1.candidate_pairs);
 }
