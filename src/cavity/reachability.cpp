@@ -379,7 +379,7 @@ class Solver {
       }
       for (int g = 0; g < G; ++g) {
         const Group& grp = p.groups[static_cast<std::size_t>(g)];
-        lp.A.col(g) = (grp.sign == -1 ? cv : cb).transpose() * grp.integrals;
+        lp.A.col(g).noalias() = (grp.sign == -1 ? cv : cb).transpose() * grp.integrals;  // no temporary per column
         if (grp.sign == -2) lp.A.col(g) = -lp.A.col(g);
         if (objective) lp.c(g) = form_on(*objective, grp.integrals, grp.sign) / V0;
       }
@@ -950,12 +950,18 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
   // calibration cube's roly-poly: -62.9 against -61.9).
   if (upper.feasible) out.outer_margin_found = upper.best / f.scale;
   if (upper.feasible && upper.converged && (!s.feasible || upper.best >= s.best)) out.best_margin_upper = upper.best / f.scale;
-  std::vector<double> warm(outer.groups.size(), 0.0);
-  const LpRun at_margin = solver.solve(outer, ratio_rows_at(loose, margin), static_cast<int>(loose.numerators.size()), true,
-                                       nullptr, warm);
-  if (at_margin.status == LpStatus::infeasible || (at_margin.status == LpStatus::optimal && at_margin.z < 0.0)) {
-    out.certificate = certify(at_margin, outer, f);
-    out.decided = out.certificate.proves;
+  // The programme at the user's margin can only prove the goal out of reach. When the generous
+  // reading already has a void whose every ratio row clears the margin, that void meets it with
+  // z >= (best - margin) min_j D_j > 0, so no certificate can come of it (LP tolerances are 1e-11).
+  const bool margin_met = upper.feasible && upper.best >= margin + 1e-9;
+  if (!margin_met) {
+    std::vector<double> warm(outer.groups.size(), 0.0);
+    const LpRun at_margin = solver.solve(outer, ratio_rows_at(loose, margin), static_cast<int>(loose.numerators.size()), true,
+                                         nullptr, warm);
+    if (at_margin.status == LpStatus::infeasible || (at_margin.status == LpStatus::optimal && at_margin.z < 0.0)) {
+      out.certificate = certify(at_margin, outer, f);
+      out.decided = out.certificate.proves;
+    }
   }
   if (out.binding.empty() && upper.feasible) out.binding = binding_name(loose, upper.binding);
   return out;
