@@ -935,8 +935,11 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
         out.optimum = quadric_in_input_units(-void_reduced, f);
       }
     }
-    out.occupancy = per_cell(inner, u, -1, writable.size());
-    out.band_occupancy = per_cell(inner, u, 1, cells->band_inner.size());
+    // The best iterate's groups, unless a later step split blocks (then it is not known per cell).
+    if (u.size() == inner.groups.size()) {
+      out.occupancy = per_cell(inner, u, -1, writable.size());
+      out.band_occupancy = per_cell(inner, u, 1, cells->band_inner.size());
+    }
     return out;
   }
   // Not reached on the inner reading: the outer reading's best, and a certificate at the user's margin.
