@@ -778,6 +778,7 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
   in.outer = &solve.outer;
   in.outer_bvh = &b.bvh;
   in.start = *programme.optimum;
+  in.programme = &programme;
   in.goal_in_frame = f.goal;
   in.origin = f.origin;
   in.diagonal = f.diag;
