@@ -321,6 +321,15 @@ class Solver {
     if (warm.size() != p.groups.size()) warm.assign(p.groups.size(), 0.0);
     for (int k = ratio_rows; k < m; ++k) active[static_cast<std::size_t>(k)] = 1;  // few, and often equalities
     add_lowest(values_at(warm), 0.0, 6, kInf);
+    // The rows the last programme on this partition ended with (a Dinkelbach step moves t, not
+    // which rows bind): its basis names them, and re-adding them one violation at a time costs
+    // a dual pass each.
+    if (active_partition_ == &p && last_active_.size() == active.size())
+      for (std::size_t k = 0; k < active.size(); ++k) active[k] = active[k] || last_active_[k];
+    auto keep_active = [&] {
+      active_partition_ = &p;
+      last_active_ = active;
+    };
     for (int pass = 0;; ++pass) {
       std::vector<int> index;
       for (int k = 0; k < m; ++k)
@@ -330,7 +339,7 @@ class Solver {
         if (active[static_cast<std::size_t>(k)]) index.push_back(k);
       std::vector<Form> subset;
       for (int k : index) subset.push_back(rows[static_cast<std::size_t>(k)]);
-      LpRun run = solve_rows(p, subset, active_ratio, with_z, objective, warm);
+      LpRun run = solve_rows(p, subset, index, active_ratio, with_z, objective, warm);
       // Back to every row: the inactive ones weigh nothing.
       Eigen::VectorXd weights = Eigen::VectorXd::Zero(m);
       for (std::size_t i = 0; i < index.size() && static_cast<Eigen::Index>(i) < run.weights.size(); ++i)
@@ -338,13 +347,16 @@ class Solver {
       run.weights = weights;
       run.rows = rows;
       run.ratio_rows = ratio_rows;
+      keep_active();
       if (run.status != LpStatus::optimal || pass >= 100) return run;
       if (add_lowest(values_at(run.u), with_z && active_ratio > 0 ? run.z : 0.0, 8, -1e-12) == 0) return run;
     }
   }
 
-  LpRun solve_rows(Partition& p, const std::vector<Form>& rows, int ratio_rows, bool with_z, const Form* objective,
-                   std::vector<double>& warm) {
+  // `row_ids` names each row in the caller's full list (rows keep their names across Dinkelbach
+  // steps and row generation), so that the last optimal basis can start the next programme.
+  LpRun solve_rows(Partition& p, const std::vector<Form>& rows, const std::vector<int>& row_ids, int ratio_rows, bool with_z,
+                   const Form* objective, std::vector<double>& warm) {
     LpRun run;
     run.rows = rows;
     run.ratio_rows = ratio_rows;
@@ -367,7 +379,7 @@ class Solver {
       }
       for (int g = 0; g < G; ++g) {
         const Group& grp = p.groups[static_cast<std::size_t>(g)];
-        lp.A.col(g) = (grp.sign == -1 ? cv : cb).transpose() * grp.integrals;
+        lp.A.col(g).noalias() = (grp.sign == -1 ? cv : cb).transpose() * grp.integrals;  // no temporary per column
         if (grp.sign == -2) lp.A.col(g) = -lp.A.col(g);
         if (objective) lp.c(g) = form_on(*objective, grp.integrals, grp.sign) / V0;
       }
@@ -380,7 +392,9 @@ class Solver {
       }
       std::vector<std::int8_t> start(static_cast<std::size_t>(lp.A.cols()), 0);
       for (int g = 0; g < G; ++g) start[static_cast<std::size_t>(g)] = warm[static_cast<std::size_t>(g)] > 0.5;
-      const LpResult r = bounded_simplex(lp, o_.lp, &start);
+      const std::vector<int> start_basis = basis_for(p, row_ids, with_z);
+      const LpResult r = bounded_simplex(lp, o_.lp, &start, start_basis.empty() ? nullptr : &start_basis);
+      keep_basis(p, row_ids, r);
       ++out_.lps;
       out_.lp_iterations += r.iterations;
       out_.pricing_passes += r.pricing_passes;
@@ -499,6 +513,70 @@ class Solver {
     const double spread = grad.norm() * rho + 0.5 * hessian * rho * rho;
     const double slack = 1e-9 * (magnitude + spread + std::fabs(shift)) + 1e-300;
     return {v * (q + shift - spread - slack), v * (q + shift + spread + slack)};
+  }
+
+  // The last optimal basis by name: a group of cells by its range in the partition's order (a
+  // group left whole keeps it through block splits), a slack by its row's name, and the margin
+  // column. Kept per partition.
+  struct BasisEntry {
+    int kind = 0;  // 0 group, 1 slack, 2 the margin column z
+    int a = 0, b = 0;
+  };
+  const Partition* basis_partition_ = nullptr;
+  const Partition* active_partition_ = nullptr;
+  std::vector<char> last_active_;
+  std::vector<BasisEntry> basis_;
+
+  void keep_basis(const Partition& p, const std::vector<int>& row_ids, const LpResult& r) {
+    basis_.clear();
+    basis_partition_ = nullptr;
+    if (r.status != LpStatus::optimal) return;
+    const int G = static_cast<int>(p.groups.size()), n = static_cast<int>(r.x.size());
+    for (int var : r.basis) {
+      BasisEntry e;
+      if (var < G) {
+        e.a = p.groups[static_cast<std::size_t>(var)].begin;
+        e.b = p.groups[static_cast<std::size_t>(var)].end;
+      } else if (var < n) {
+        e.kind = 2;
+      } else {
+        e.kind = 1;
+        e.a = row_ids[static_cast<std::size_t>(var - n)];
+      }
+      basis_.push_back(e);
+    }
+    basis_partition_ = &p;
+  }
+
+  // The kept basis in this programme's numbering, completed by slacks of the rows it does not
+  // name; empty when there is none (or it names more than the rows).
+  std::vector<int> basis_for(const Partition& p, const std::vector<int>& row_ids, bool with_z) const {
+    std::vector<int> out;
+    if (basis_partition_ != &p || basis_.empty()) return out;
+    const int G = static_cast<int>(p.groups.size()), m = static_cast<int>(row_ids.size());
+    const int n = G + (with_z ? 1 : 0);
+    std::vector<char> used(static_cast<std::size_t>(n + m), 0);
+    auto take = [&](int var) {
+      if (var < 0 || used[static_cast<std::size_t>(var)]) return;
+      used[static_cast<std::size_t>(var)] = 1;
+      out.push_back(var);
+    };
+    for (const BasisEntry& e : basis_) {
+      if (e.kind == 2) {
+        if (with_z) take(G);
+      } else if (e.kind == 1) {
+        const auto it = std::find(row_ids.begin(), row_ids.end(), e.a);
+        if (it != row_ids.end()) take(n + static_cast<int>(it - row_ids.begin()));
+      } else {
+        // Groups are in increasing `begin` (splits replace a group by its octants in place).
+        const auto it = std::lower_bound(p.groups.begin(), p.groups.end(), e.a,
+                                         [](const Group& g, int begin) { return g.begin < begin; });
+        if (it != p.groups.end() && it->begin == e.a && it->end == e.b) take(static_cast<int>(it - p.groups.begin()));
+      }
+    }
+    for (int i = 0; i < m && static_cast<int>(out.size()) < m; ++i) take(n + i);
+    if (static_cast<int>(out.size()) != m) out.clear();
+    return out;
   }
 
   const Frame& f_;
@@ -857,8 +935,11 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
         out.optimum = quadric_in_input_units(-void_reduced, f);
       }
     }
-    out.occupancy = per_cell(inner, u, -1, writable.size());
-    out.band_occupancy = per_cell(inner, u, 1, cells->band_inner.size());
+    // The best iterate's groups, unless a later step split blocks (then it is not known per cell).
+    if (u.size() == inner.groups.size()) {
+      out.occupancy = per_cell(inner, u, -1, writable.size());
+      out.band_occupancy = per_cell(inner, u, 1, cells->band_inner.size());
+    }
     return out;
   }
   // Not reached on the inner reading: the outer reading's best, and a certificate at the user's margin.
@@ -872,12 +953,18 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
   // calibration cube's roly-poly: -62.9 against -61.9).
   if (upper.feasible) out.outer_margin_found = upper.best / f.scale;
   if (upper.feasible && upper.converged && (!s.feasible || upper.best >= s.best)) out.best_margin_upper = upper.best / f.scale;
-  std::vector<double> warm(outer.groups.size(), 0.0);
-  const LpRun at_margin = solver.solve(outer, ratio_rows_at(loose, margin), static_cast<int>(loose.numerators.size()), true,
-                                       nullptr, warm);
-  if (at_margin.status == LpStatus::infeasible || (at_margin.status == LpStatus::optimal && at_margin.z < 0.0)) {
-    out.certificate = certify(at_margin, outer, f);
-    out.decided = out.certificate.proves;
+  // The programme at the user's margin can only prove the goal out of reach. When the generous
+  // reading already has a void whose every ratio row clears the margin, that void meets it with
+  // z >= (best - margin) min_j D_j > 0, so no certificate can come of it (LP tolerances are 1e-11).
+  const bool margin_met = upper.feasible && upper.best >= margin + 1e-9;
+  if (!margin_met) {
+    std::vector<double> warm(outer.groups.size(), 0.0);
+    const LpRun at_margin = solver.solve(outer, ratio_rows_at(loose, margin), static_cast<int>(loose.numerators.size()), true,
+                                         nullptr, warm);
+    if (at_margin.status == LpStatus::infeasible || (at_margin.status == LpStatus::optimal && at_margin.z < 0.0)) {
+      out.certificate = certify(at_margin, outer, f);
+      out.decided = out.certificate.proves;
+    }
   }
   if (out.binding.empty() && upper.feasible) out.binding = binding_name(loose, upper.binding);
   return out;

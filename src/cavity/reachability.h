@@ -128,7 +128,8 @@ struct Reachability {
   std::optional<Quadric> optimum;
   ReachCertificate certificate;      // unreachable: the proof; reachable: the optimum's quadric
   std::shared_ptr<const CarvableCells> cells;
-  std::vector<double> occupancy;     // per cells->inner (or ->mid): the LP's optimal void (lowest cz if computed)
+  std::vector<double> occupancy;     // per cells->inner (or ->mid): the LP's optimal void (lowest cz if computed);
+                                     // empty when blocks were split after the best iterate
   std::vector<double> band_occupancy;  // per cells->band_inner
   double carvable_volume = 0.0, carvable_volume_outer = 0.0, band_volume = 0.0;
   int lps = 0;

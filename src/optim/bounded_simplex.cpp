@@ -43,8 +43,8 @@ class Simplex {
 
   // The dual method, then the primal phase 2 from its basis; false when the dual method gave up
   // (r keeps its iteration counts).
-  bool solve_from_dual(LpResult& r, const std::vector<std::int8_t>* start) {
-    if (!solve_dual(r, start)) return false;
+  bool solve_from_dual(LpResult& r, const std::vector<std::int8_t>* start, const std::vector<int>* start_basis) {
+    if (!solve_dual(r, start, start_basis)) return false;
     r.phase1_iterations = r.iterations;
     if (!refactor()) return false;
     const LpStatus s = run(r);
@@ -252,7 +252,7 @@ class Simplex {
   // Infinite bounds are replaced by ±kArtificialBound while it runs. It ends primal feasible and
   // hands over to the primal method's phase 2 (which confirms optimality on a fresh
   // factorisation), or returns false: infeasible, stalled, or stopped on an artificial bound.
-  bool solve_dual(LpResult& r, const std::vector<std::int8_t>* start) {
+  bool solve_dual(LpResult& r, const std::vector<std::int8_t>* start, const std::vector<int>* start_basis) {
     constexpr double kArtificialBound = 1e3;
     const std::vector<double> lo_saved = lo_, hi_saved = hi_;
     const auto restore = [&] {
@@ -269,11 +269,53 @@ class Simplex {
       const bool up = cost_[j] > dtol || (cost_[j] >= -dtol && start && (*start)[static_cast<std::size_t>(j)] == 1);
       value_[j] = up ? hi_[j] : lo_[j];
     }
-    basis_.assign(static_cast<std::size_t>(m_), -1);
-    for (int i = 0; i < m_; ++i) set_basic(i, n_ + i);
-    if (!refactor()) {
-      restore();
-      return false;
+    // The given basis when it is one (m distinct columns or slacks whose matrix is regular), else
+    // the slack basis. Nonbasic slacks rest at 0, a bound of every row's slack.
+    bool started = false;
+    if (start_basis && static_cast<int>(start_basis->size()) == m_) {
+      std::vector<char> seen(static_cast<std::size_t>(n_ + m_), 0);
+      bool valid = true;
+      for (int var : *start_basis) {
+        valid = valid && var >= 0 && var < n_ + m_ && !seen[static_cast<std::size_t>(var)];
+        if (valid) seen[static_cast<std::size_t>(var)] = 1;
+      }
+      if (valid) {
+        const std::vector<double> placed = value_;
+        basis_.assign(static_cast<std::size_t>(m_), -1);
+        for (int i = 0; i < m_; ++i) set_basic(i, (*start_basis)[static_cast<std::size_t>(i)]);
+        started = refactor();
+        if (!started) {
+          for (int i = 0; i < m_; ++i) position_[static_cast<std::size_t>((*start_basis)[static_cast<std::size_t>(i)])] = -1;
+          value_ = placed;
+        }
+      }
+    }
+    if (!started) {
+      basis_.assign(static_cast<std::size_t>(m_), -1);
+      for (int i = 0; i < m_; ++i) set_basic(i, n_ + i);
+      if (!refactor()) {
+        restore();
+        return false;
+      }
+    } else {
+      // Dual feasible first: every nonbasic variable on the bound its reduced cost favours (the
+      // loop below does this only when some row is violated; a basis that is already primal
+      // feasible would otherwise go to the primal method as it is).
+      const Eigen::VectorXd y = duals();
+      const Eigen::VectorXd priced_y = lp_.A.transpose() * y;
+      bool moved_any = false;
+      for (int var = 0; var < n_ + m_; ++var) {
+        if (position_[static_cast<std::size_t>(var)] >= 0 || lo_[var] == hi_[var]) continue;
+        const double d = cost_[var] - (var < n_ ? priced_y(var) : y(var - n_));
+        const double to = d > dtol ? hi_[var] : d < -dtol ? lo_[var] : value_[var];
+        if (to == value_[var]) continue;
+        value_[var] = to;
+        moved_any = true;
+      }
+      if (moved_any && !refactor()) {
+        restore();
+        return false;
+      }
     }
     const int max_pivots = 20 * m_ + 200;
     int pivots = 0;
@@ -458,6 +500,8 @@ class Simplex {
     for (int j = 0; j < n_; ++j) r.x(j) = value_[j];
     r.objective = lp_.c.size() == n_ ? lp_.c.dot(r.x) : 0.0;
     if (set_y && r.y.size() != m_) r.y = binv_.rows() == m_ ? duals() : Eigen::VectorXd::Zero(m_);
+    r.basis.clear();
+    if (status == LpStatus::optimal) r.basis = basis_;
     return r;
   }
 
@@ -494,7 +538,8 @@ std::string BoundedSimplexOptions::check() const {
   return "";
 }
 
-LpResult bounded_simplex(const LinearProgram& lp, const BoundedSimplexOptions& options, const std::vector<std::int8_t>* start) {
+LpResult bounded_simplex(const LinearProgram& lp, const BoundedSimplexOptions& options, const std::vector<std::int8_t>* start,
+                         const std::vector<int>* start_basis) {
   LpResult r;
   const Eigen::Index m = lp.A.rows(), n = lp.A.cols();
   std::string problem = options.check();
@@ -514,7 +559,7 @@ LpResult bounded_simplex(const LinearProgram& lp, const BoundedSimplexOptions& o
   if (options.dual) {
     LpResult dual;
     Simplex first(lp, options);
-    if (first.solve_from_dual(dual, start)) return dual;
+    if (first.solve_from_dual(dual, start, start_basis)) return dual;
     // Given up: the primal method from the start, with what is left of the iteration cap.
     BoundedSimplexOptions rest = options;
     rest.max_iterations = std::max(1, options.max_iterations - dual.iterations);

@@ -71,12 +71,21 @@ struct LpResult {
   int phase1_iterations = 0;
   int pricing_passes = 0;
   std::string message;        // what went wrong, when not optimal
+  // The final basis, one variable per row (optimal only, else empty): j < n a column, n + i the
+  // slack of row i. Handed to the next, neighbouring programme as `start_basis`.
+  std::vector<int> basis;
 };
 
 // `start` (optional, n entries): 1 starts a column at its upper bound, 0 at its lower bound (a
 // warm start from a neighbouring programme); free columns start at 0 whatever it says.
+// `start_basis` (optional, m distinct variables as LpResult::basis numbers them; dual method
+// only): the dual method starts from this basis instead of the slack basis, every nonbasic column
+// put on the bound its reduced cost favours (`start` breaks ties). A programme whose data moved a
+// little from the one that ended on that basis (a Dinkelbach step, a block split) is then a few
+// pivots from its optimum, where from the slack basis the duals start at 0 and every column is
+// flipped on the way. A singular or malformed basis falls back to the slack basis.
 LpResult bounded_simplex(const LinearProgram& lp, const BoundedSimplexOptions& options = {},
-                         const std::vector<std::int8_t>* start = nullptr);
+                         const std::vector<std::int8_t>* start = nullptr, const std::vector<int>* start_basis = nullptr);
 
 // min over the box of (Aᵀy)ᵀx − yᵀb, with y's signs checked (−inf when a sign is wrong or Aᵀy
 // is non-zero on an unbounded side): positive proves the rows infeasible.

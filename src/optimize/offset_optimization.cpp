@@ -883,6 +883,7 @@ QuadricAttempt attempt_quadric(const OptimizeOptions& options, const Frame& f, c
   in.outer = &outer;
   in.outer_bvh = &outer_bvh;
   in.start = *programme.optimum;
+  in.programme = &programme;
   in.goal_in_frame = f.goal;
   in.origin = f.origin;
   in.diagonal = f.diag;

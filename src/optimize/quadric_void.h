@@ -31,6 +31,9 @@ struct QuadricVoidInput {
   const Mesh* outer = nullptr;            // the outer surface (the input: no outer offsets)
   const TriangleBvh* outer_bvh = nullptr;
   Quadric start;                          // the programme's optimum (Reachability::optimum)
+  // The programme it came from (its cells and occupancy), optional: the start is moved by a
+  // constant so that its void holds the occupancy's volume on those cells (see the .cpp).
+  const Reachability* programme = nullptr;
   GoalSpec goal_in_frame;                 // the goal in the normalised frame, the user's margins
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // of the normalised frame, input units
   double diagonal = 1.0;                  // its scale is 1 / diagonal
