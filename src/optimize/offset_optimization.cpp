@@ -624,10 +624,12 @@ bool wants_channel(const OptimizeOptions& options, const Band& b) {
 // solve take seconds, and work started before it is known to be wanted pays for itself (the
 // quadric void beside the skeleton, the offset surfaces' verification beside the contour). The
 // results are the same either way.
-bool work_ahead(const OptimizeOptions& options, Eigen::Index n) {
+bool large_input(Eigen::Index n) {
   const ContractionOptions defaults;
-  return options.threads > 1 && defaults.coarse_above > 0 && n > defaults.coarse_above;
+  return defaults.coarse_above > 0 && n > defaults.coarse_above;
 }
+
+bool work_ahead(const OptimizeOptions& options, Eigen::Index n) { return options.threads > 1 && large_input(n); }
 
 // The verification of the offset surfaces and the goal's inputs they share with the contour's.
 VerifyInput offset_verify_input(const OptimizeOptions& options, const Frame& f, const Band& b, const Mesh& outer,
@@ -1005,14 +1007,15 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
   double predicted = std::numeric_limits<double>::infinity();  // none: the offset path as always
   if (possible && options.cavity == CavityMode::automatic && !options.wants_drain_holes())
     predicted = predicted_fraction(f, *reach.programme, solve.eval).value_or(predicted);
-  // The quadric void first: where the model predicts the offset void short of the best, or where
-  // it was started ahead anyway (large inputs). Its contour is then left out when the quadric void
+  // The quadric void first: where the model predicts the offset void short of the best, or on a
+  // large input (where it is started ahead with two or more threads; on one it is made here, so the
+  // report is the same). The offset void's contour is then left out when the quadric void
   // verifies, beats the prediction, and the offset void could not be written instead: it would
   // reach less than quadric_below_fraction, or the model's own objective (which its contour does
   // not beat) is already worse than the quadric void's by more than quadric_tie.
   std::optional<QuadricAttempt> early;
   std::string skipped_because;
-  if (std::isfinite(predicted) && (predicted < options.quadric_first_below || (ahead && ahead->valid()))) {
+  if (std::isfinite(predicted) && (predicted < options.quadric_first_below || large_input(solve.outer.V.rows()))) {
     early = take_quadric(options, f, b, solve, *reach.programme, ahead);
     const QuadricVoid& q = early->q;
     if (q.verification.goal_met && q.verification.valid && early->optimality && early->optimality->fraction > predicted) {
