@@ -195,7 +195,7 @@ Json cavity_json(const CavitySummary& cavity) {
   Json j = Json::object();
   j["mode"] = to_string(cavity.mode);
   j["offset_goal_met"] = cavity.offset_goal_met;
-  j["offset_valid"] = cavity.offset_valid;
+  j["offset_valid"] = cavity.offset_valid ? Json(*cavity.offset_valid) : Json();
   j["offset_failures"] = strings(cavity.offset_failures);
   if (cavity.rounds) {
     Json rounds = Json::array();

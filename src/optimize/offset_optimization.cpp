@@ -656,10 +656,11 @@ void contour_offset_void(const OptimizeOptions& options, const Frame& f, const B
 // The offset surfaces `outer` and `inner` verified as they are and, where they pass, as rounded
 // for the output: the cavity they make, its summary's offset fields, and the seconds it took.
 Cavity verify_offset_surfaces(const OptimizeOptions& options, const Frame& f, const Band& b, const Mesh& outer,
-                              const Mesh& inner, double bound_violation, double& seconds) {
+                              const Mesh& inner, double bound_violation, double& seconds, bool goal_only = false) {
   const auto start = Clock::now();
   Cavity c;
   VerifyInput verify_input = offset_verify_input(options, f, b, outer, inner, bound_violation);
+  verify_input.goal_only = goal_only;
   const auto& tick = options.on_stage_progress;
   if (tick) tick("verify", -1.0);
   c.verification = verify_offsets(verify_input);
@@ -680,7 +681,7 @@ Cavity verify_offset_surfaces(const OptimizeOptions& options, const Frame& f, co
   if (tick) tick("verify", 1.0);
   c.summary.mode = options.cavity;
   c.summary.offset_goal_met = c.verification.goal_met;
-  c.summary.offset_valid = c.verification.valid;
+  if (!goal_only) c.summary.offset_valid = c.verification.valid;
   c.summary.offset_failures = c.verification.failures;
   c.outer = offset_written.outer;
   c.written = offset_written.inner;
@@ -689,14 +690,17 @@ Cavity verify_offset_surfaces(const OptimizeOptions& options, const Frame& f, co
 
 // `opening_void`: the integrals (frame) the openings cut beyond the cavity, added to every
 // correction's Δ (the openings stage solves again with them, optimize_offsets).
-// `contour`: false leaves the contour to the caller (contour_offset_void), which may not need it.
+// `contour`: false leaves the contour to the caller (contour_offset_void), which may not need it,
+// and then `goal_only` checks the offset surfaces' goal alone (their validity cannot change the
+// choice, make_cavity).
 // `alongside`: the offset surfaces are verified on another thread while the contour is made (on
 // large inputs they almost never verify; when they do, the contour is dropped): the same result.
 Cavity make_offset_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
                           StageTimings& timings, const Progress& say, const Vector10d& opening_void = Vector10d::Zero(),
-                          bool contour = true, bool alongside = false) {
+                          bool contour = true, bool alongside = false, bool goal_only = false) {
   if (!contour || !alongside || b.fixed_count > 0 || options.outer || options.cavity == CavityMode::offset) {
-    Cavity c = verify_offset_surfaces(options, f, b, solve.outer, solve.inner, solve.bound_violation(), timings.verify);
+    Cavity c = verify_offset_surfaces(options, f, b, solve.outer, solve.inner, solve.bound_violation(), timings.verify,
+                                      goal_only && !contour);
     if (contour) contour_offset_void(options, f, b, solve, timings, say, opening_void, c);
     return c;
   }
@@ -1018,7 +1022,9 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
   if (std::isfinite(predicted) && (predicted < options.quadric_first_below || large_input(solve.outer.V.rows()))) {
     early = take_quadric(options, f, b, solve, *reach.programme, ahead);
     const QuadricVoid& q = early->q;
-    if (q.verification.goal_met && q.verification.valid && early->optimality && early->optimality->fraction > predicted) {
+    // A margin over the prediction: offset surfaces that verified would reach it up to their rounding.
+    if (q.verification.goal_met && q.verification.valid && early->optimality &&
+        early->optimality->fraction > predicted + kContourBelowModel) {
       const double quadric_objective = written_score(f, solve.outer, q.written, q.verification);
       const std::string reaches = ", the quadric void reaches " + percent(early->optimality->fraction);
       if (predicted < options.quadric_first_below)
@@ -1029,8 +1035,11 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
                           format_double(options.quadric_tie * 100.0) + "%" + reaches;
     }
   }
+  // Where the contour is left out, the offset surfaces' validity cannot change the choice either
+  // (were they valid, they would reach the prediction and the model's objective): their goal alone
+  // is checked, and the report says their validity was not searched.
   Cavity c = make_offset_cavity(options, f, b, solve, timings, say, Vector10d::Zero(), skipped_because.empty(),
-                                work_ahead(options, solve.outer.V.rows()));
+                                work_ahead(options, solve.outer.V.rows()), !skipped_because.empty());
   if (!possible) {
     if (forced) {
       c.verification.valid = false;

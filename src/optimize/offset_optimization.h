@@ -269,7 +269,8 @@ ContourRound contour_round(const ContourCavity& contoured, const Verification& v
 // Objectives are the goal's (shape/goal.h, normalised frame) on the solid as written.
 struct CavitySummary {
   CavityMode mode = CavityMode::automatic;
-  bool offset_goal_met = false, offset_valid = false;
+  bool offset_goal_met = false;
+  std::optional<bool> offset_valid;  // absent when only the goal was checked (the quadric void decided first)
   std::vector<std::string> offset_failures;
   std::optional<std::vector<ContourRound>> rounds;  // present when a contour was attempted
   std::optional<std::vector<ContourRound>> quadric_rounds;  // present when the quadric void was attempted
