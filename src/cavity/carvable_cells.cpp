@@ -18,10 +18,46 @@ constexpr int kBlock = 4;  // points per block side in the distance passes
 constexpr int kParts = 2;  // every parallel loop is cut into this many fixed parts
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+double squared_box_distance(const Aabb& box, const Eigen::Vector3d& p) {
+  double d = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double excess = p[a] < box.lo[a] ? box.lo[a] - p[a] : (p[a] > box.hi[a] ? p[a] - box.hi[a] : 0.0);
+    d += excess * excess;
+  }
+  return d;
+}
+
+// The faces whose own box lies within `radius` of p (a superset of those within radius).
+void faces_near(const TriangleBvh& bvh, const Eigen::Vector3d& p, double radius, std::vector<int>& out) {
+  out.clear();
+  const double limit = radius * radius;
+  bvh.traverse([&](const Aabb& box) { return squared_box_distance(box, p) <= limit; },
+               [&](int face) {
+                 if (squared_box_distance(bvh.face_box(face), p) <= limit) out.push_back(face);
+                 return true;
+               });
+}
+
+// The distance from p to the nearest of `faces`, +inf when there is none.
+double nearest_of(const TriangleBvh& bvh, const std::vector<int>& faces, const Eigen::Vector3d& p) {
+  double best = kInf;
+  for (int face : faces) {
+    if (squared_box_distance(bvh.face_box(face), p) > best) continue;
+    const Eigen::Vector3d q = closest_point_on_triangle(p, bvh.corner(face, 0), bvh.corner(face, 1), bvh.corner(face, 2));
+    best = std::min(best, (q - p).squaredNorm());
+  }
+  return std::sqrt(best);
+}
+
 // Per point of `g` where mask != 0: how many of the ascending `thresholds` its unsigned distance to
-// the surface reaches (d >= t). One capped query per block of 4³ points, its centre's distance
-// bounding every point's by the Lipschitz bound; exact queries only where a threshold lies within
-// that bound (widened by rounding).
+// the surface reaches (d >= t, as face_within decides it). One capped query per block of 4³ points:
+// its centre's distance D and closest point q bound every point's distance, d(p) >= D − |p − c| and
+// d(p) <= min(D + |p − c|, |p − q|), which settle most points (all of a block no threshold comes
+// near). A 2³ sub-block with points left open gathers the faces that can be nearest to any of its
+// points (within u + 2 r2 of its centre c2, u bounding d(c2), r2 its half diagonal; or within
+// top + r2 when that is less: a point with no face that near reaches every threshold), and each
+// open point's distance is the least over them. Every margin is `rounding`, far above the
+// computed distances' errors; a distance within it of a threshold is decided by face_within itself.
 std::vector<std::int8_t> distance_band(const NodeGrid& g, const std::vector<std::int8_t>& mask, const TriangleBvh& bvh,
                                        const std::vector<double>& thresholds, int threads, std::int64_t& queries) {
   std::vector<std::int8_t> band(static_cast<std::size_t>(g.node_count()), 0);
@@ -38,6 +74,7 @@ std::vector<std::int8_t> distance_band(const NodeGrid& g, const std::vector<std:
   std::int64_t per_part[kParts] = {0, 0};
   WorkerPool pool(std::max(1, std::min(threads, kParts)));
   pool.run_parts(kParts, [&](int part) {
+    std::vector<int> candidates;
     for (std::int64_t kb = split_point(bz, kParts, part); kb < split_point(bz, kParts, part + 1); ++kb)
       for (std::int64_t jb = 0; jb < by; ++jb)
         for (std::int64_t ib = 0; ib < bx; ++ib) {
@@ -53,16 +90,24 @@ std::vector<std::int8_t> distance_band(const NodeGrid& g, const std::vector<std:
           const double half_diagonal = 0.5 * (hi - lo).norm();
           const ClosestPoint c = closest_point(bvh, mid, top + half_diagonal + g.spacing);
           const double D = c.found ? c.distance : kInf;
-          // Points the block's bound leaves open are bounded again from the centre of their 2³
-          // sub-block (one nearest-face search there, when any point needs it), and only those
-          // still open are decided one by one.
+          const std::int8_t block_low = count_below(D - half_diagonal - rounding);
+          if (block_low == count_below(D + half_diagonal + rounding)) {
+            for (std::int64_t kk = k0; kk < k1; ++kk)
+              for (std::int64_t j = j0; j < j1; ++j)
+                for (std::int64_t i = i0; i < i1; ++i) {
+                  const std::size_t v = static_cast<std::size_t>(g.index(i, j, kk));
+                  if (mask[v]) band[v] = block_low;
+                }
+            continue;
+          }
           for (std::int64_t sk = k0; sk < k1; sk += 2)
             for (std::int64_t sj = j0; sj < j1; sj += 2)
               for (std::int64_t si = i0; si < i1; si += 2) {
                 const std::int64_t si1 = std::min(si + 2, i1), sj1 = std::min(sj + 2, j1), sk1 = std::min(sk + 2, k1);
                 const Eigen::Vector3d sub_lo(g.x(si), g.y(sj), g.z(sk)), sub_hi(g.x(si1 - 1), g.y(sj1 - 1), g.z(sk1 - 1));
                 const Eigen::Vector3d sub_mid = 0.5 * (sub_lo + sub_hi);
-                double D2 = -1.0;  // not searched yet
+                const double sub_half_diagonal = 0.5 * (sub_hi - sub_lo).norm();
+                bool gathered = false;
                 for (std::int64_t kk = sk; kk < sk1; ++kk)
                   for (std::int64_t j = sj; j < sj1; ++j)
                     for (std::int64_t i = si; i < si1; ++i) {
@@ -70,25 +115,31 @@ std::vector<std::int8_t> distance_band(const NodeGrid& g, const std::vector<std:
                       if (!mask[v]) continue;
                       const Eigen::Vector3d p(g.x(i), g.y(j), g.z(kk));
                       const double r = (p - mid).norm();
-                      std::int8_t low = count_below(D - r - rounding), high = count_below(D + r + rounding);
-                      if (low < high) {
-                        if (D2 < 0.0) {
-                          const ClosestPoint c2 = closest_point(bvh, sub_mid, top + 0.5 * (sub_hi - sub_lo).norm() + g.spacing);
-                          D2 = c2.found ? c2.distance : kInf;
-                        }
-                        const double r2 = (p - sub_mid).norm();
-                        low = std::max(low, count_below(D2 - r2 - rounding));
-                        high = std::min(high, count_below(D2 + r2 + rounding));
-                      }
+                      double upper = D + r;
+                      if (c.found) upper = std::min(upper, (p - c.point).norm());
+                      const std::int8_t low = count_below(D - r - rounding), high = count_below(upper + rounding);
                       if (low >= high) {
                         band[v] = low;
                         continue;
                       }
-                      // Only the thresholds in [low, high) are open: a decision each, lowest
-                      // first (d >= t for a threshold implies it for the lower ones).
+                      if (!gathered) {
+                        double centre_upper = D + (sub_mid - mid).norm();
+                        if (c.found) centre_upper = std::min(centre_upper, (sub_mid - c.point).norm());
+                        const double reach = std::min(centre_upper + sub_half_diagonal, top) + rounding;
+                        faces_near(bvh, sub_mid, reach + sub_half_diagonal + rounding, candidates);
+                        gathered = true;
+                      }
+                      // Only the thresholds in [low, high) are open, lowest first (d >= t for a
+                      // threshold implies it for the lower ones).
                       ++per_part[part];
+                      const double d = nearest_of(bvh, candidates, p);
                       std::int8_t reached = low;
-                      while (reached < high && !face_within(bvh, p, thresholds[static_cast<std::size_t>(reached)], true)) ++reached;
+                      while (reached < high) {
+                        const double t = thresholds[static_cast<std::size_t>(reached)];
+                        if (d < t - rounding) break;
+                        if (d <= t + rounding && face_within(bvh, p, t, true)) break;
+                        ++reached;
+                      }
                       band[v] = reached;
                     }
               }
@@ -189,10 +240,14 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
   const std::vector<std::int8_t> centre_band =
       distance_band(centres, centre_mask, outer_bvh, thresholds, options.threads, out.distance_queries);
   // d >= t for one of the thresholds (by its position in the sorted list).
-  auto reaches = [&](std::size_t v, double t) {
-    const auto at = std::lower_bound(thresholds.begin(), thresholds.end(), t) - thresholds.begin();
-    return centre_band[v] > at;
+  // Positions looked up once (a threshold not in the list is never asked about).
+  auto position = [&](double t) {
+    return static_cast<std::int8_t>(std::lower_bound(thresholds.begin(), thresholds.end(), t) - thresholds.begin());
   };
+  const std::int8_t at_level = position(level), at_minus_level = position(-level), at_wall = position(wall),
+                    at_r = position(r), at_outer = position(options.outer_max), at_outer_r = position(options.outer_max + r);
+  auto reaches = [&](std::size_t v, std::int8_t at) { return centre_band[v] > at; };
+  const bool outside_listed = options.band || level < 0.0 || options.strict;
 
   const double base = options.ground_z + 2.0 * options.outer_max + options.ground_tol;
   std::vector<std::int64_t> lists[kParts][6];
@@ -202,23 +257,24 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
     for (std::int64_t k = split_point(centres.nz, kParts, part); k < split_point(centres.nz, kParts, part + 1); ++k)
       for (std::int64_t j = 0; j < centres.ny; ++j)
         for (std::int64_t i = 0; i < centres.nx; ++i) {
-          const std::int64_t cell = grid.index(i, j, k);
           const std::size_t c = static_cast<std::size_t>(centres.index(i, j, k));
+          const bool inside = centre_winding[c] >= 1;
+          if (!inside && !outside_listed) continue;
+          const std::int64_t cell = grid.index(i, j, k);
           bool whole = options.strict;
           for (int corner = 0; corner < 8 && whole; ++corner)
             whole = deep[static_cast<std::size_t>(cell + (corner & 1) + ((corner >> 1) & 1) * grid.nx + ((corner >> 2) & 1) * nxy)] > 0;
-          const bool inside = centre_winding[c] >= 1;
-          const bool may = whole || (inside ? (level <= 0.0 || reaches(c, level)) : (level < 0.0 && !reaches(c, -level)));
+          const bool may = whole || (inside ? (level <= 0.0 || reaches(c, at_level)) : (level < 0.0 && !reaches(c, at_minus_level)));
           if (whole) lists[part][0].push_back(cell);
           if (may) lists[part][1].push_back(cell);
-          if (inside && reaches(c, wall)) lists[part][5].push_back(cell);
+          if (inside && reaches(c, at_wall)) lists[part][5].push_back(cell);
           if (!options.band) continue;
           const double z = centres.z(k);
-          if (!inside && !reaches(c, options.outer_max) && z - 0.5 * h >= base)
+          if (!inside && !reaches(c, at_outer) && z - 0.5 * h >= base)
             lists[part][2].push_back(cell);
           const bool above_contacts = z + 0.5 * h > options.ground_z + options.ground_tol;
-          if ((inside ? !reaches(c, r) : !reaches(c, options.outer_max + r)) && above_contacts) lists[part][3].push_back(cell);
-          if (inside && !reaches(c, options.outer_max + r) && above_contacts) lists[part][4].push_back(cell);
+          if ((inside ? !reaches(c, at_r) : !reaches(c, at_outer_r)) && above_contacts) lists[part][3].push_back(cell);
+          if (inside && !reaches(c, at_outer_r) && above_contacts) lists[part][4].push_back(cell);
         }
   });
   std::vector<std::int64_t>* targets[6] = {&out.inner, &out.outer, &out.band_inner, &out.band_outer, &out.skin_outer, &out.mid};

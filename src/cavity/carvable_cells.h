@@ -22,8 +22,10 @@
 // node's index (NodeGrid::index); lists are ascending. Input units throughout.
 //
 // Signs from grid winding numbers (geometry/grid_winding.h) at the nodes and at the cell centres;
-// distances from the BVH only where a block of 4³ points has a threshold within the Lipschitz
-// bound of its centre's distance (most of the interior needs one query per block).
+// one nearest-face query per block of 4³ points, whose distance and closest point bound every
+// point's (most of the interior needs nothing more); a point those bounds leave open takes its
+// distance from the faces gathered once for its 2³ sub-block, and face_within decides the rare
+// distance within rounding of a threshold.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -71,7 +73,7 @@ struct CarvableCells {
   std::vector<std::int64_t> mid;
   std::vector<std::int64_t> band_inner, band_outer;  // --outer: cells that add material
   std::vector<std::int64_t> skin_outer;              // --outer: cells that may lose material
-  std::int64_t distance_queries = 0;                 // exact point queries (blocks not counted)
+  std::int64_t distance_queries = 0;                 // points whose distance was computed (blocks not counted)
 
   Eigen::Vector3d centre(std::int64_t cell) const;
   double cell_volume() const { return grid.spacing * grid.spacing * grid.spacing; }
