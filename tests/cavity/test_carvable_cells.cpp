@@ -14,6 +14,8 @@
 #include "cavity/contour_cavity.h"
 #include "geometry/aabb.h"
 #include "geometry/bvh.h"
+#include "geometry/closest_point.h"
+#include "geometry/grid_winding.h"
 #include "mesh/primitives.h"
 
 using namespace offsetopt;
@@ -32,7 +34,104 @@ bool contains(const std::vector<std::int64_t>& list, std::int64_t cell) {
   return std::binary_search(list.begin(), list.end(), cell);
 }
 
+// The six lists by the header's definitions, every distance an unbounded nearest-face query at the
+// point itself (no block, bound or gathered faces): what the block passes must reproduce exactly.
+struct CellLists {
+  std::vector<std::int64_t> inner, outer, mid, band_inner, band_outer, skin_outer;
+};
+
+CellLists brute_force_cells(const Mesh& mesh, const TriangleBvh& bvh, const CarvableCellsOptions& o, const CarvableCells& cells) {
+  const NodeGrid& g = cells.grid;
+  const double h = g.spacing, r = 0.5 * std::sqrt(3.0) * h;
+  NodeGrid centres = g;
+  centres.origin = g.origin + Eigen::Vector3d::Constant(0.5 * h);
+  const std::vector<std::int8_t> node_winding = grid_winding(mesh, g, 1), centre_winding = grid_winding(mesh, centres, 1);
+  std::vector<char> deep(static_cast<std::size_t>(g.node_count()), 0);
+  if (o.strict)
+    for (std::int64_t v = 0; v < g.node_count(); ++v)
+      deep[static_cast<std::size_t>(v)] = node_winding[static_cast<std::size_t>(v)] >= 1 &&
+                                          closest_point(bvh, g.position(v)).distance >= o.wall + cells.margin;
+  const double level = o.wall - r - (o.band ? o.outer_max : 0.0);
+  const double base = o.ground_z + 2.0 * o.outer_max + o.ground_tol;
+  CellLists out;
+  for (std::int64_t k = 0; k + 1 < g.nz; ++k)
+    for (std::int64_t j = 0; j + 1 < g.ny; ++j)
+      for (std::int64_t i = 0; i + 1 < g.nx; ++i) {
+        const std::int64_t cell = g.index(i, j, k);
+        bool whole = o.strict;
+        for (int c = 0; c < 8 && whole; ++c) whole = deep[static_cast<std::size_t>(g.index(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)))];
+        const bool inside = centre_winding[static_cast<std::size_t>(cell)] >= 1;
+        const Eigen::Vector3d p = cells.centre(cell);
+        const double d = closest_point(bvh, p).distance;
+        if (whole) out.inner.push_back(cell);
+        if (whole || (inside ? d >= level : (level < 0.0 && d < -level))) out.outer.push_back(cell);
+        if (inside && d >= o.wall) out.mid.push_back(cell);
+        if (!o.band) continue;
+        if (!inside && d < o.outer_max && p.z() - 0.5 * h >= base) out.band_inner.push_back(cell);
+        const bool above_contacts = p.z() + 0.5 * h > o.ground_z + o.ground_tol;
+        if ((inside ? d < r : d < o.outer_max + r) && above_contacts) out.band_outer.push_back(cell);
+        if (inside && d < o.outer_max + r && above_contacts) out.skin_outer.push_back(cell);
+      }
+  return out;
+}
+
+void check_against_brute_force(const Mesh& mesh, CarvableCellsOptions o) {
+  const TriangleBvh bvh(mesh.V, mesh.F);
+  const CarvableCells cells = carvable_cells(mesh, bvh, o);
+  REQUIRE(cells.ok);
+  const CellLists expected = brute_force_cells(mesh, bvh, o, cells);
+  CHECK(cells.inner == expected.inner);
+  CHECK(cells.outer == expected.outer);
+  CHECK(cells.mid == expected.mid);
+  CHECK(cells.band_inner == expected.band_inner);
+  CHECK(cells.band_outer == expected.band_outer);
+  CHECK(cells.skin_outer == expected.skin_outer);
+  CHECK(!expected.outer.empty());
+  CHECK(!expected.mid.empty());
+  if (o.strict) CHECK(!expected.inner.empty());
+  if (o.band) CHECK(!expected.band_inner.empty());
+  o.threads = 1;
+  const CarvableCells serial = carvable_cells(mesh, bvh, o);
+  CHECK(serial.outer == cells.outer);
+  CHECK(serial.mid == cells.mid);
+  CHECK(serial.band_outer == cells.band_outer);
+}
+
 }  // namespace
+
+TEST_CASE("carvable cells: every list equals the per-point nearest-face reading on curved meshes") {
+  CarvableCellsOptions o;
+  SUBCASE("a coarse icosphere (edges and vertices nearest), strict") {
+    o.wall = 1.0;
+    check_against_brute_force(make_icosphere(8.0, 2), o);
+  }
+  SUBCASE("a torus, strict, with the band and a margin") {
+    const Mesh torus = make_torus(7.0, 2.5, 40, 20);
+    o.wall = 0.7;
+    o.margin_cells = 0.5;
+    o.band = true;
+    o.outer_max = 0.6;
+    o.ground_z = torus.V.col(2).minCoeff();
+    o.ground_tol = 0.01;
+    check_against_brute_force(torus, o);
+  }
+  SUBCASE("a capsule, the mid reading on a finer grid") {
+    o.wall = 0.8;
+    o.cells_per_wall = 3.0;
+    o.strict = false;
+    check_against_brute_force(make_capsule(4.0, 5.0, 24, 6, 8), o);
+  }
+  SUBCASE("a fine icosphere with an outer band wider than the wall (outside cells matter)") {
+    const Mesh sphere = make_icosphere(6.0, 4);
+    o.wall = 0.5;
+    o.cells_per_wall = 2.0;
+    o.band = true;
+    o.outer_max = 1.2;
+    o.ground_z = sphere.V.col(2).minCoeff();
+    o.ground_tol = 0.05;
+    check_against_brute_force(sphere, o);
+  }
+}
 
 TEST_CASE("carvable cells: a box's inner and outer sets match its distance field cell by cell") {
   const Eigen::Vector3d lo(0.3, -0.2, 0.0), hi(10.3, 6.8, 4.0);
