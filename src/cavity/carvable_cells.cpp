@@ -38,14 +38,29 @@ void faces_near(const TriangleBvh& bvh, const Eigen::Vector3d& p, double radius,
                });
 }
 
-// The distance from p to the nearest of `faces`, +inf when there is none.
-double nearest_of(const TriangleBvh& bvh, const std::vector<int>& faces, const Eigen::Vector3d& p) {
-  double best = kInf;
-  for (int face : faces) {
-    if (squared_box_distance(bvh.face_box(face), p) > best) continue;
+// The distance from p to the nearest of `faces`, +inf when there is none; or, as soon as one face
+// is nearer than `enough`, that face's distance (all the caller needs to know then). `hint` (a face
+// near p, or -1) is measured first, and faces whose box lies beyond the best so far, or beyond
+// `bound` (an upper bound on the answer), are skipped unseen; should none lie within the bound
+// after all, the search runs again unbounded.
+double nearest_of(const TriangleBvh& bvh, const std::vector<int>& faces, const Eigen::Vector3d& p, double bound, double enough,
+                  int hint) {
+  double best = bound * bound;
+  const double enough_squared = enough > 0.0 ? enough * enough : -1.0;
+  bool found = false;
+  auto measure = [&](int face) {
+    if (squared_box_distance(bvh.face_box(face), p) > best) return;
     const Eigen::Vector3d q = closest_point_on_triangle(p, bvh.corner(face, 0), bvh.corner(face, 1), bvh.corner(face, 2));
-    best = std::min(best, (q - p).squaredNorm());
-  }
+    const double squared = (q - p).squaredNorm();
+    if (squared < best) {
+      best = squared;
+      found = true;
+    }
+  };
+  if (hint >= 0) measure(hint);
+  for (std::size_t f = 0; f < faces.size() && !(best < enough_squared); ++f)
+    if (faces[f] != hint) measure(faces[f]);
+  if (!found) return bound == kInf ? kInf : nearest_of(bvh, faces, p, kInf, enough, -1);
   return std::sqrt(best);
 }
 
@@ -132,7 +147,7 @@ std::vector<std::int8_t> distance_band(const NodeGrid& g, const std::vector<std:
                       // Only the thresholds in [low, high) are open, lowest first (d >= t for a
                       // threshold implies it for the lower ones).
                       ++per_part[part];
-                      const double d = nearest_of(bvh, candidates, p);
+                      const double d = nearest_of(bvh, candidates, p, upper + rounding, thresholds[static_cast<std::size_t>(low)] - rounding, c.face);
                       std::int8_t reached = low;
                       while (reached < high) {
                         const double t = thresholds[static_cast<std::size_t>(reached)];
