@@ -293,8 +293,10 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
         }
   });
   std::vector<std::int64_t>* targets[6] = {&out.inner, &out.outer, &out.band_inner, &out.band_outer, &out.skin_outer, &out.mid};
-  for (int l = 0; l < 6; ++l)
-    for (int part = 0; part < kParts; ++part) targets[l]->insert(targets[l]->end(), lists[part][l].begin(), lists[part][l].end());
+  for (int l = 0; l < 6; ++l) {
+    targets[l]->swap(lists[0][l]);
+    for (int part = 1; part < kParts; ++part) targets[l]->insert(targets[l]->end(), lists[part][l].begin(), lists[part][l].end());
+  }
   out.ok = true;
   return out;
 }
