@@ -18,22 +18,13 @@ constexpr int kBlock = 4;  // points per block side in the distance passes
 constexpr int kParts = 2;  // every parallel loop is cut into this many fixed parts
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double squared_box_distance(const Aabb& box, const Eigen::Vector3d& p) {
-  double d = 0.0;
-  for (int a = 0; a < 3; ++a) {
-    const double excess = p[a] < box.lo[a] ? box.lo[a] - p[a] : (p[a] > box.hi[a] ? p[a] - box.hi[a] : 0.0);
-    d += excess * excess;
-  }
-  return d;
-}
-
 // The faces whose own box lies within `radius` of p (a superset of those within radius).
 void faces_near(const TriangleBvh& bvh, const Eigen::Vector3d& p, double radius, std::vector<int>& out) {
   out.clear();
   const double limit = radius * radius;
-  bvh.traverse([&](const Aabb& box) { return squared_box_distance(box, p) <= limit; },
+  bvh.traverse([&](const Aabb& box) { return box.squared_distance(p) <= limit; },
                [&](int face) {
-                 if (squared_box_distance(bvh.face_box(face), p) <= limit) out.push_back(face);
+                 if (bvh.face_box(face).squared_distance(p) <= limit) out.push_back(face);
                  return true;
                });
 }
@@ -49,7 +40,7 @@ double nearest_of(const TriangleBvh& bvh, const std::vector<int>& faces, const E
   const double enough_squared = enough > 0.0 ? enough * enough : -1.0;
   bool found = false;
   auto measure = [&](int face) {
-    if (squared_box_distance(bvh.face_box(face), p) > best) return;
+    if (bvh.face_box(face).squared_distance(p) > best) return;
     const Eigen::Vector3d q = closest_point_on_triangle(p, bvh.corner(face, 0), bvh.corner(face, 1), bvh.corner(face, 2));
     const double squared = (q - p).squaredNorm();
     if (squared < best) {

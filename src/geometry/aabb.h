@@ -29,6 +29,15 @@ struct Aabb {
            p.z() <= hi.z();
   }
   Eigen::Vector3d center() const { return 0.5 * (lo + hi); }
+  // Squared distance from p to the box (0 inside): the bound of a nearest-face walk.
+  double squared_distance(const Eigen::Vector3d& p) const {
+    double d = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const double excess = p[a] < lo[a] ? lo[a] - p[a] : (p[a] > hi[a] ? p[a] - hi[a] : 0.0);
+      d += excess * excess;
+    }
+    return d;
+  }
   // Index of the longest side (the lowest index on ties, so splits are reproducible).
   int longest_axis() const {
     const Eigen::Vector3d e = hi - lo;

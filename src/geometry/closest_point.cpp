@@ -33,15 +33,6 @@ Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen:
 
 namespace {
 
-double squared_box_distance(const Aabb& box, const Eigen::Vector3d& p) {
-  double d = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    const double excess = p[k] < box.lo[k] ? box.lo[k] - p[k] : (p[k] > box.hi[k] ? p[k] - box.hi[k] : 0.0);
-    d += excess * excess;
-  }
-  return d;
-}
-
 // The one walk both queries make: depth first, nearer child first (it tightens the bound
 // soonest), skipping a node whose box is farther than `prune_squared` from p, and a face whose own
 // box clearly is (the factor covers the rounding of both distances). A node's box distance is
@@ -54,7 +45,7 @@ template <class Visit>
   const auto& nodes = bvh.nodes();
   std::pair<int, double> stack[128];
   int top = 0;
-  stack[top++] = {0, squared_box_distance(nodes.front().box, p)};
+  stack[top++] = {0, nodes.front().box.squared_distance(p)};
   while (top > 0) {
     const auto [index, box_squared] = stack[--top];
     if (box_squared > prune_squared) continue;
@@ -62,13 +53,13 @@ template <class Visit>
     if (node.is_leaf()) {
       for (int k = node.first; k < node.first + node.count; ++k) {
         const int face = bvh.leaf_faces()[static_cast<std::size_t>(k)];
-        if (squared_box_distance(bvh.face_box(face), p) > prune_squared * (1.0 + 1e-9)) continue;
+        if (bvh.face_box(face).squared_distance(p) > prune_squared * (1.0 + 1e-9)) continue;
         if (visit(face)) return true;
       }
       continue;
     }
-    const double dl = squared_box_distance(nodes[static_cast<std::size_t>(node.left)].box, p);
-    const double dr = squared_box_distance(nodes[static_cast<std::size_t>(node.right)].box, p);
+    const double dl = nodes[static_cast<std::size_t>(node.left)].box.squared_distance(p);
+    const double dr = nodes[static_cast<std::size_t>(node.right)].box.squared_distance(p);
     if (dl <= dr) {
       stack[top++] = {node.right, dr};
       stack[top++] = {node.left, dl};
