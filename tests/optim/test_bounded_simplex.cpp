@@ -120,23 +120,28 @@ void check_optimality(const LinearProgram& lp, const LpResult& r, double tol) {
 // 300 random LPs (drawn from rng) of at most 3 rows and 4 columns (every other one with free columns) solved with
 // `options`: each optimum equals the brute-force vertex enumeration's and meets the duality
 // conditions, each infeasible one comes with a Farkas certificate; both kinds occur.
+// `r` solves `lp` as the brute-force vertex enumeration says: its optimum, meeting the duality
+// conditions, or infeasible with a Farkas certificate. Returns whether it is optimal.
+bool matches_brute_force(const LinearProgram& lp, const LpResult& r) {
+  const double expected = brute_force_optimum(lp);
+  if (expected == -kInf) {
+    REQUIRE(r.status == LpStatus::infeasible);
+    CHECK(farkas_gap(lp, r.y) > 0.0);
+    return false;
+  }
+  REQUIRE(r.status == LpStatus::optimal);
+  CHECK(r.objective == doctest::Approx(expected).epsilon(1e-9).scale(1.0));
+  check_optimality(lp, r, 1e-8);
+  return true;
+}
+
 void random_lps_match_brute_force(const BoundedSimplexOptions& options, Rng& rng) {
   int optimal = 0, infeasible = 0;
   for (int trial = 0; trial < 300; ++trial) {
     const int n = 1 + static_cast<int>(rng.below(4)), m = 1 + static_cast<int>(rng.below(3));
     const LinearProgram lp = random_lp(rng, m, n, trial % 2 == 1);
-    const double expected = brute_force_optimum(lp);
-    const LpResult r = bounded_simplex(lp, options);
-    if (expected == -kInf) {
-      REQUIRE(r.status == LpStatus::infeasible);
-      CHECK(farkas_gap(lp, r.y) > 0.0);
-      ++infeasible;
-    } else {
-      REQUIRE(r.status == LpStatus::optimal);
-      CHECK(r.objective == doctest::Approx(expected).epsilon(1e-9).scale(1.0));
-      check_optimality(lp, r, 1e-8);
-      ++optimal;
-    }
+    if (matches_brute_force(lp, bounded_simplex(lp, options))) ++optimal;
+    else ++infeasible;
   }
   CHECK(optimal > 100);
   CHECK(infeasible > 10);
@@ -343,17 +348,7 @@ TEST_CASE("bounded simplex, dual method from a neighbouring programme's basis: b
       moved.b(i) += rng.uniform(-0.05, 0.05);
       for (int j = 0; j < n; ++j) moved.A(i, j) += rng.uniform(-0.05, 0.05);
     }
-    const double expected = brute_force_optimum(moved);
-    const LpResult r = bounded_simplex(moved, dual, nullptr, &first.basis);
-    if (expected == -kInf) {
-      REQUIRE(r.status == LpStatus::infeasible);
-      CHECK(farkas_gap(moved, r.y) > 0.0);
-    } else {
-      REQUIRE(r.status == LpStatus::optimal);
-      CHECK(r.objective == doctest::Approx(expected).epsilon(1e-9).scale(1.0));
-      check_optimality(moved, r, 1e-8);
-      ++warm_optimal;
-    }
+    if (matches_brute_force(moved, bounded_simplex(moved, dual, nullptr, &first.basis))) ++warm_optimal;
   }
   CHECK(warm_optimal > 100);
   // Many columns and the free margin column: the warm basis gives the cold start's optimum in fewer
