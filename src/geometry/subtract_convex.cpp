@@ -271,8 +271,9 @@ class Subtractor {
     for (int k = 0; k < 3; ++k) {
       const int a = corners[k], b = corners[(k + 1) % 3];
       const EdgeKey edge{std::min(a, b), std::max(a, b)};
-      std::vector<Crossing> along;
-      if (const auto found = lists.find(edge); found != lists.end()) along = found->second;
+      const auto found = lists.find(edge);
+      // Copy-constructed, not assigned: GCC 12 warns (-Wnonnull) on assigning into an empty vector.
+      std::vector<Crossing> along = found != lists.end() ? found->second : std::vector<Crossing>();
       if (edge.first != a) std::reverse(along.begin(), along.end());
       int current = a;
       bool keep = kept(a);
