@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "geometry/closest_point.h"
+#include "geometry/face_shortlist.h"
 #include "geometry/grid_winding.h"
 #include "geometry/marching_tetrahedra.h"
 #include "geometry/mesh_shells.h"
@@ -52,7 +53,12 @@ class InnerField {
   virtual Aabb box() const = 0;  // where the void can be
   virtual std::vector<std::int8_t> inside(const NodeGrid& grid, const std::vector<std::int8_t>& outer_winding,
                                           int threads) const = 0;
-  virtual double signed_distance(const Eigen::Vector3d& p, bool inside, double cap) const = 0;
+  // `near`: faces gathered by gather_near for a region around p (any region: the list only
+  // changes the cost), or nullptr.
+  virtual double signed_distance(const Eigen::Vector3d& p, bool inside, double cap, const FaceShortlist* near = nullptr) const = 0;
+  // Fills `near` for signed_distance at points within `radius` − cap of `centre`, when the field
+  // has faces to gather (else leaves it empty).
+  virtual void gather_near(const Eigen::Vector3d& /*centre*/, double /*radius*/, FaceShortlist& /*near*/) const {}
   // Where the void's boundary first crosses the grid edge from p (a void node) towards q, as a
   // fraction of the edge; 1 when it does not cross. s_p, s_q: signed_distance at p and q. By
   // default the zero of the linear interpolation.
@@ -72,10 +78,13 @@ class MeshField final : public InnerField {
     for (std::int8_t& w : winding) w = w >= 1;
     return winding;
   }
-  double signed_distance(const Eigen::Vector3d& p, bool inside, double cap) const override {
-    const ClosestPoint to_inner = closest_point(bvh_, p, cap);
+  double signed_distance(const Eigen::Vector3d& p, bool inside, double cap, const FaceShortlist* near) const override {
+    const ClosestPoint to_inner = near && !near->empty() ? near->nearest(bvh_, p, cap) : closest_point(bvh_, p, cap);
     const double d_in = to_inner.found ? to_inner.distance : cap;
     return inside ? d_in : -d_in;
+  }
+  void gather_near(const Eigen::Vector3d& centre, double radius, FaceShortlist& near) const override {
+    near.gather(bvh_, centre, radius);
   }
 
  private:
@@ -114,7 +123,7 @@ class QuadricField final : public InnerField {
     });
     return in;
   }
-  double signed_distance(const Eigen::Vector3d& p, bool inside, double cap) const override {
+  double signed_distance(const Eigen::Vector3d& p, bool inside, double cap, const FaceShortlist*) const override {
     const Eigen::Vector3d u = p - centre_;
     const double q = local_value(u);
     const double gradient = local_gradient(u).norm();
@@ -168,10 +177,30 @@ class QuadricField final : public InnerField {
 };
 
 
-// The exact distance to the outer surface (the verification's own measure).
-double outer_distance_at(const TriangleBvh& outer_bvh, const Eigen::Vector3d& x) {
-  return closest_point(outer_bvh, x).distance;
-}
+// The exact distance to the outer surface (the verification's own measure, closest_point's) at
+// points of one grid edge, from faces gathered around the edge when its first point is asked; the
+// list serves the next edges (the contour's vertices come cell by cell) while it covers them.
+class EdgeDistances {
+ public:
+  // p + t e, t in [0, 1]; bound: an upper bound of the distance along the edge (a guess suffices:
+  // it only sizes the gathering); spare: how much wider to gather, for the edges that follow.
+  EdgeDistances(const TriangleBvh& bvh, FaceShortlist& near, const Eigen::Vector3d& p, const Eigen::Vector3d& e,
+                double bound, double spare)
+      : bvh_(bvh), near_(near), mid_(p + 0.5 * e), reach_(0.5 * e.norm() + bound), spare_(spare) {}
+  double at(const Eigen::Vector3d& x) {
+    if (!near_.covers(mid_, reach_)) near_.gather(bvh_, mid_, reach_ + spare_);
+    const ClosestPoint c = near_.nearest(bvh_, x, std::numeric_limits<double>::infinity(), hint_);
+    hint_ = c.face;
+    return c.distance;
+  }
+
+ private:
+  const TriangleBvh& bvh_;
+  FaceShortlist& near_;
+  Eigen::Vector3d mid_;
+  double reach_, spare_;
+  int hint_ = -1;
+};
 
 // A vertex placed on its grid edge: the fraction, a lower bound of its distance to the outer
 // surface (exact where it was measured), and whether the wall put it there.
@@ -184,14 +213,14 @@ struct Placement {
 // A point of [a, b] where the exact distance along p + t e is within [target, target + tolerance]
 // (regula falsi aimed at the middle of that band, Illinois steps), given f = distance − aim at
 // both ends (fa >= 0 > fb). Returns the fraction and its distance, or the last good end.
-std::pair<double, double> wall_point(const TriangleBvh& outer_bvh, const Eigen::Vector3d& p, const Eigen::Vector3d& e,
+std::pair<double, double> wall_point(EdgeDistances& outer, const Eigen::Vector3d& p, const Eigen::Vector3d& e,
                                      double a, double fa, double b, double fb, double aim, double tolerance) {
   double good = a, good_distance = fa + aim;
   int side = 0;
   for (int step = 0; step < kRootSteps && good_distance - aim > 0.5 * tolerance; ++step) {
     double t = (a * fb - b * fa) / (fb - fa);
     if (!(t > a && t < b)) t = 0.5 * (a + b);
-    const double distance = outer_distance_at(outer_bvh, p + t * e);
+    const double distance = outer.at(p + t * e);
     const double f = distance - aim;
     if (f >= -0.5 * tolerance) {
       good = t;
@@ -218,7 +247,7 @@ std::pair<double, double> wall_point(const TriangleBvh& outer_bvh, const Eigen::
 // target + tolerance/2 and accepted within tolerance/2 of it, so every vertex keeps the target,
 // at most `tolerance` above it. Vertices never come nearer the node than kMinFraction: `lower`
 // then says what they keep (below the target only for a lifted target the node cannot give).
-Placement place_on_edge(const TriangleBvh& outer_bvh, const Eigen::Vector3d& p, const Eigen::Vector3d& q, double d_p,
+Placement place_on_edge(const TriangleBvh& outer_bvh, FaceShortlist& near, const Eigen::Vector3d& p, const Eigen::Vector3d& q, double d_p,
                         double d_q, double t_in, double target, double tolerance, double rounding) {
   const Eigen::Vector3d e = q - p;
   const double length = e.norm();
@@ -239,17 +268,18 @@ Placement place_on_edge(const TriangleBvh& outer_bvh, const Eigen::Vector3d& p, 
   // exact for a plane on the first step). Otherwise measure where the inner boundary would put it.
   double t_wall = t_in, lower = 0.0;
   const bool whole_edge = t_in >= 1.0 - kMinFraction && d_q < aim;
+  EdgeDistances outer(outer_bvh, near, p, e, std::min(d_p, d_q) + length, 1.5 * length);
   if (whole_edge) {
-    std::tie(t_wall, lower) = wall_point(outer_bvh, p, e, 0.0, d_p - aim, 1.0, d_q - aim, aim, tolerance);
+    std::tie(t_wall, lower) = wall_point(outer, p, e, 0.0, d_p - aim, 1.0, d_q - aim, aim, tolerance);
   }
   if (!whole_edge || t_wall > t_in) {
-    const double d_end = outer_distance_at(outer_bvh, p + t_in * e);
+    const double d_end = outer.at(p + t_in * e);
     if (d_end >= target) {
       out.on_wall = false;
       out.lower = d_end;
       return out;
     }
-    std::tie(t_wall, lower) = wall_point(outer_bvh, p, e, 0.0, d_p - aim, t_in, d_end - aim, aim, tolerance);
+    std::tie(t_wall, lower) = wall_point(outer, p, e, 0.0, d_p - aim, t_in, d_end - aim, aim, tolerance);
   }
   if (t_wall >= kMinFraction && lower >= target) {
     out.fraction = t_wall;
@@ -509,8 +539,31 @@ NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, co
   v.inner.resize(count);
   v.phi.resize(count);
   const double h = grid.spacing, cap = 2.0 * h;
+  // Nodes are measured by 2³ blocks of the grid: the faces that can be nearest to any node of a
+  // block (within level + cap of it, or cap for the inner field) are gathered once per block.
+  // The lists only change the cost (FaceShortlist answers as closest_point would).
+  const std::int64_t bx = (grid.nx + 1) / 2, by = (grid.ny + 1) / 2;
+  const double half_diagonal = 0.5 * std::sqrt(3.0) * h;
   pool.run_parts(kParts, [&](int part) {
-    for (long n = split_point(static_cast<long>(count), kParts, part); n < split_point(static_cast<long>(count), kParts, part + 1); ++n) {
+    const long first = split_point(static_cast<long>(count), kParts, part), last = split_point(static_cast<long>(count), kParts, part + 1);
+    std::vector<std::pair<std::int64_t, long>> order;  // (block, position in v.nodes)
+    order.reserve(static_cast<std::size_t>(last - first));
+    for (long n = first; n < last; ++n) {
+      const std::int64_t node = v.nodes[static_cast<std::size_t>(n)];
+      const std::int64_t i = node % grid.nx, j = (node / grid.nx) % grid.ny, k = node / (grid.nx * grid.ny);
+      order.emplace_back(((k / 2) * by + j / 2) * bx + i / 2, n);
+    }
+    std::sort(order.begin(), order.end());
+    FaceShortlist outer_near, inner_near;
+    std::int64_t block = -1;
+    bool outer_gathered = false, inner_gathered = false;
+    int outer_hint = -1;
+    for (const auto& [b, n] : order) {
+      if (b != block) {
+        block = b;
+        outer_gathered = inner_gathered = false;
+        outer_hint = -1;
+      }
       const std::size_t i = static_cast<std::size_t>(n);
       const std::int64_t node = v.nodes[i];
       const std::size_t before = previous.at(node);
@@ -519,14 +572,25 @@ NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, co
         v.inner[i] = previous.inner[before];
       } else {
         const Eigen::Vector3d p = grid.position(node);
+        const std::int64_t bi = b % bx, bj = (b / bx) % by, bk = b / (bx * by);
+        const Eigen::Vector3d centre(grid.x(2 * bi) + 0.5 * h, grid.y(2 * bj) + 0.5 * h, grid.z(2 * bk) + 0.5 * h);
         double known = 0.0;
         if (reuse && reuse->known_distance(node, known)) {
           v.outer_distance[i] = known;
         } else {
-          const ClosestPoint to_outer = closest_point(outer_bvh, p, level + cap);
+          if (!outer_gathered) {
+            outer_near.gather(outer_bvh, centre, (level + cap + half_diagonal) * (1.0 + 1e-6));
+            outer_gathered = true;
+          }
+          const ClosestPoint to_outer = outer_near.nearest(outer_bvh, p, level + cap, outer_hint);
+          if (to_outer.found) outer_hint = to_outer.face;
           v.outer_distance[i] = to_outer.found ? to_outer.distance : level + cap;
         }
-        v.inner[i] = field.signed_distance(p, inner_inside[static_cast<std::size_t>(node)] != 0, cap);
+        if (!inner_gathered) {
+          field.gather_near(centre, (cap + half_diagonal) * (1.0 + 1e-6), inner_near);
+          inner_gathered = true;
+        }
+        v.inner[i] = field.signed_distance(p, inner_inside[static_cast<std::size_t>(node)] != 0, cap, &inner_near);
       }
       const double d_out = v.outer_distance[i];
       const double signed_out = outer_winding[static_cast<std::size_t>(node)] >= 1 ? d_out : -d_out;
@@ -586,7 +650,7 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
   const double rounding = 1e-9 * grid.spacing;
   const double tolerance = 1e-4 * wall;  // how far above the target a vertex on the wall may sit
   if (record) record->assign(static_cast<std::size_t>(vertex_count), ContourReuse::Vertex());
-  auto place = [&](long v) {
+  auto place = [&](long v, FaceShortlist& near) {
     const std::size_t i = static_cast<std::size_t>(v);
     const std::size_t ip = values.at(contour.positive_node[i]), iq = values.at(contour.negative_node[i]);
     const Eigen::Vector3d p = grid.position(contour.positive_node[i]), q = grid.position(contour.negative_node[i]);
@@ -597,7 +661,7 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
     const ContourReuse::Vertex* was = reuse ? reuse->find(contour.positive_node[i], contour.negative_node[i]) : nullptr;
     const Placement placed = was && was->t_in == t_in && was->target == aim
                                  ? Placement{was->fraction, was->placed_lower, was->on_wall}
-                                 : place_on_edge(outer_bvh, p, q, values.outer_distance[ip], values.outer_distance[iq], t_in,
+                                 : place_on_edge(outer_bvh, near, p, q, values.outer_distance[ip], values.outer_distance[iq], t_in,
                                                  aim, tolerance, rounding);
     if (record) {
       ContourReuse::Vertex& r = (*record)[i];
@@ -616,6 +680,7 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
   };
   std::vector<char> remembered(static_cast<std::size_t>(vertex_count), 0);
   pool.run_parts(kParts, [&](int part) {
+    FaceShortlist near;
     for (long v = split_point(vertex_count, kParts, part); v < split_point(vertex_count, kParts, part + 1); ++v) {
       const std::size_t i = static_cast<std::size_t>(v);
       if (const PassMemory::Vertex* was = previous.find(contour.positive_node[i], contour.negative_node[i])) {
@@ -626,7 +691,7 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
         remembered[i] = 1;
         if (record) (*record)[i] = was->placed;
       } else {
-        place(v);
+        place(v, near);
       }
     }
   });
@@ -669,7 +734,9 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
     raise = std::move(lifted);
     pool.run_parts(kParts, [&](int part) {
       const long count = static_cast<long>(moved.size());
-      for (long m = split_point(count, kParts, part); m < split_point(count, kParts, part + 1); ++m) place(moved[static_cast<std::size_t>(m)]);
+      FaceShortlist near;
+      for (long m = split_point(count, kParts, part); m < split_point(count, kParts, part + 1); ++m)
+        place(moved[static_cast<std::size_t>(m)], near);
     });
     check.clear();
     for (const long v : moved)
