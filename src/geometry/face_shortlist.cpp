@@ -1,5 +1,6 @@
 #include "geometry/face_shortlist.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace offsetopt {
@@ -19,9 +20,15 @@ void FaceShortlist::gather(const TriangleBvh& bvh, const Eigen::Vector3d& centre
   const double limit = radius * radius;
   bvh.traverse([&](const Aabb& box) { return box.squared_distance(centre) <= limit; },
                [&](int face) {
-                 if (bvh.face_box(face).squared_distance(centre) <= limit) faces_.push_back(face);
+                 const double squared = bvh.face_box(face).squared_distance(centre);
+                 if (squared <= limit) faces_.push_back({std::sqrt(squared), face});
                  return true;
                });
+  // Nearest the centre first: a point's search stops at the first face too far from the centre
+  // to come within its best distance.
+  std::sort(faces_.begin(), faces_.end(), [](const Entry& a, const Entry& b) { return a.from_centre < b.from_centre; });
+  // Rounding of the distances compared when stopping (coordinates' and radius' scale).
+  stop_slack_ = kSlack * (radius + centre.cwiseAbs().maxCoeff());
 }
 
 bool FaceShortlist::covers(const Eigen::Vector3d& centre, double reach) const {
@@ -49,8 +56,16 @@ ClosestPoint FaceShortlist::nearest(const TriangleBvh& bvh, const Eigen::Vector3
     }
   };
   if (hint >= 0) measure(hint);
-  for (const int face : faces_)
-    if (face != hint) measure(face);
+  // A face at least `from_centre` from the centre is at least that minus |p − c| from p.
+  const double offset = (p - centre_).norm() + stop_slack_;
+  double best_distance = std::sqrt(best_squared);
+  for (const Entry& entry : faces_) {
+    if (entry.from_centre - offset > best_distance) break;
+    if (entry.face == hint) continue;
+    const double before = best_squared;
+    measure(entry.face);
+    if (best_squared != before) best_distance = std::sqrt(best_squared);
+  }
   if (best.found) best.distance = (best.point - p).norm();
   // Any face nearer than the answer (or within max_distance) lies within |p − c| + that of the
   // centre, so it was gathered when that is within the radius; else the tree decides.

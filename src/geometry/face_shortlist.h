@@ -38,7 +38,12 @@ class FaceShortlist {
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
   double radius_ = 0.0;
   bool gathered_ = false;
-  std::vector<int> faces_;
+  struct Entry {
+    double from_centre;  // the face box's distance from the centre
+    int face;
+  };
+  std::vector<Entry> faces_;
+  double stop_slack_ = 0.0;
 };
 
 }  // namespace offsetopt
