@@ -617,6 +617,34 @@ NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, co
   return v;
 }
 
+// φ at the eight corners of every cell (marching_tetrahedra's corner_values). The cells ascend, so
+// each corner's node does too: one cursor per corner walks the sorted nodes instead of a binary
+// search per corner.
+std::vector<double> corner_phi(const NodeGrid& grid, const std::vector<std::int64_t>& cells, const NodeValues& values,
+                               WorkerPool& pool) {
+  std::vector<double> out(8 * cells.size());
+  const std::int64_t nxy = grid.nx * grid.ny;
+  pool.run_parts(kParts, [&](int part) {
+    const long first = split_point(static_cast<long>(cells.size()), kParts, part),
+               last = split_point(static_cast<long>(cells.size()), kParts, part + 1);
+    if (first == last) return;
+    std::size_t cursor[8];
+    std::int64_t offset[8];
+    for (int k = 0; k < 8; ++k) {
+      offset[k] = (k & 1) + ((k >> 1) & 1) * grid.nx + ((k >> 2) & 1) * nxy;
+      cursor[k] = values.at(cells[static_cast<std::size_t>(first)] + offset[k]);
+    }
+    for (long c = first; c < last; ++c)
+      for (int k = 0; k < 8; ++k) {
+        const std::int64_t node = cells[static_cast<std::size_t>(c)] + offset[k];
+        std::size_t& at = cursor[k];
+        while (values.nodes[at] < node) ++at;  // every corner is a listed node
+        out[8 * static_cast<std::size_t>(c) + static_cast<std::size_t>(k)] = values.phi[at];
+      }
+  });
+  return out;
+}
+
 // What a pass leaves for the next after a demotion: its vertices by their grid edge, and the faces
 // (by their vertices' edges) that kept the wall. Away from the demoted nodes the next contour is
 // the same, so only what changed is placed and measured again.
@@ -887,7 +915,7 @@ ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, con
     const std::vector<std::int64_t> cells = mixed_cells(grid, sign, pool);
     out.active_cells = static_cast<std::int64_t>(cells.size());
     values = node_values(outer_bvh, field, grid, cells, sign, outer_winding, inner_inside, target, level, values, reuse, pool);
-    contour = marching_tetrahedra(grid, cells, [&](std::int64_t node) { return values.phi[values.at(node)]; }, kMinFraction);
+    contour = marching_tetrahedra(grid, cells, corner_phi(grid, cells, values, pool), kMinFraction);
     PassMemory next;
     const std::vector<int> below = place_vertices(outer_bvh, field, grid, values, target, wall, hair, contour, memory, next,
                                                   reuse, reuse ? &record : nullptr, pool, out);

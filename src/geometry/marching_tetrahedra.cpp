@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <iterator>
-#include <unordered_map>
+#include <cstdint>
+#include <utility>
 
 #include <Eigen/Geometry>
 
@@ -43,16 +44,68 @@ std::array<int, 4> even_order(int first, int second) {
   return p;
 }
 
+// Edge key (>= 0) -> vertex index, open addressing with linear probing: looked up only, so the
+// order never matters; one flat array instead of a node per entry.
+class EdgeVertexMap {
+ public:
+  explicit EdgeVertexMap(std::size_t expected) {
+    std::size_t capacity = 16;
+    while (capacity < 2 * expected) capacity *= 2;
+    slots_.assign(capacity, {-1, -1});
+    mask_ = capacity - 1;
+  }
+  int find(std::int64_t key) const {
+    for (std::size_t at = slot_of(key);; at = (at + 1) & mask_) {
+      if (slots_[at].first == key) return slots_[at].second;
+      if (slots_[at].first < 0) return -1;
+    }
+  }
+  void insert(std::int64_t key, int value) {
+    if (2 * (size_ + 1) > slots_.size()) grow();
+    place(key, value);
+  }
+
+ private:
+  std::size_t slot_of(std::int64_t key) const {
+    return static_cast<std::size_t>((static_cast<std::uint64_t>(key) * 0x9E3779B97F4A7C15ull) >> 20) & mask_;
+  }
+  void place(std::int64_t key, int value) {
+    std::size_t at = slot_of(key);
+    while (slots_[at].first >= 0) at = (at + 1) & mask_;
+    slots_[at] = {key, value};
+    ++size_;
+  }
+  void grow() {
+    std::vector<std::pair<std::int64_t, int>> old(2 * slots_.size(), {-1, -1});
+    old.swap(slots_);
+    mask_ = slots_.size() - 1;
+    size_ = 0;
+    for (const auto& entry : old)
+      if (entry.first >= 0) place(entry.first, entry.second);
+  }
+  std::vector<std::pair<std::int64_t, int>> slots_;
+  std::size_t mask_ = 0, size_ = 0;
+};
+
 }  // namespace
 
 TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
                                const std::function<double(std::int64_t)>& value, double min_fraction) {
+  std::vector<double> corner_values(8 * cells.size());
+  const std::int64_t corner_offset[8] = {0, 1, grid.nx, 1 + grid.nx, grid.nx * grid.ny, 1 + grid.nx * grid.ny,
+                                         grid.nx + grid.nx * grid.ny, 1 + grid.nx + grid.nx * grid.ny};
+  for (std::size_t c = 0; c < cells.size(); ++c)
+    for (int k = 0; k < 8; ++k) corner_values[8 * c + static_cast<std::size_t>(k)] = value(cells[c] + corner_offset[k]);
+  return marching_tetrahedra(grid, cells, corner_values, min_fraction);
+}
+
+TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
+                               const std::vector<double>& corner_values, double min_fraction) {
   static const KuhnTable kuhn;
   TetContour out;
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::array<int, 3>> faces;
-  std::unordered_map<std::int64_t, int> edge_vertex;  // looked up only: the order never matters
-  edge_vertex.reserve(cells.size() * 3);
+  EdgeVertexMap edge_vertex(cells.size() * 3);
   vertices.reserve(cells.size() * 3);
   faces.reserve(cells.size() * 6);
   const std::int64_t corner_offset[8] = {0,
@@ -63,11 +116,12 @@ TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int6
                                          1 + grid.nx * grid.ny,
                                          grid.nx + grid.nx * grid.ny,
                                          1 + grid.nx + grid.nx * grid.ny};
-  for (const std::int64_t cell : cells) {
+  for (std::size_t cell_index = 0; cell_index < cells.size(); ++cell_index) {
+    const std::int64_t cell = cells[cell_index];
     std::array<double, 8> values;
     bool any_positive = false, any_negative = false;
     for (int c = 0; c < 8; ++c) {
-      values[static_cast<std::size_t>(c)] = value(cell + corner_offset[c]);
+      values[static_cast<std::size_t>(c)] = corner_values[8 * cell_index + static_cast<std::size_t>(c)];
       (values[static_cast<std::size_t>(c)] >= 0.0 ? any_positive : any_negative) = true;
     }
     if (!any_positive || !any_negative) continue;
@@ -80,8 +134,8 @@ TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int6
       int& local = in_cell[low][high ^ low];
       if (local >= 0) return local;
       const std::int64_t key = (cell + corner_offset[low]) * 8 + (high ^ low);
-      const auto found = edge_vertex.find(key);
-      if (found != edge_vertex.end()) return local = found->second;
+      const int found = edge_vertex.find(key);
+      if (found >= 0) return local = found;
       const bool a_positive = values[static_cast<std::size_t>(a)] >= 0.0;
       const int p = a_positive ? a : b, q = a_positive ? b : a;
       const double vp = values[static_cast<std::size_t>(p)], vq = values[static_cast<std::size_t>(q)];
@@ -93,7 +147,7 @@ TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int6
       out.positive_node.push_back(np);
       out.negative_node.push_back(nq);
       out.fraction.push_back(t);
-      edge_vertex.emplace(key, index);
+      edge_vertex.insert(key, index);
       return local = index;
     };
     for (const auto& tet : kuhn.tets) {

@@ -37,5 +37,9 @@ struct TetContour {
 // function of the input alone.
 TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
                                const std::function<double(std::int64_t)>& value, double min_fraction = 1e-3);
+// The same from the values read beforehand: corner_values[8 c + k] is the value at node
+// cells[c] + (k & 1) + ((k >> 1) & 1) nx + ((k >> 2) & 1) nx ny.
+TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
+                               const std::vector<double>& corner_values, double min_fraction = 1e-3);
 
 }  // namespace offsetopt
