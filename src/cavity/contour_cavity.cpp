@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <memory>
@@ -19,6 +20,7 @@
 #include "geometry/mesh_shells.h"
 #include "geometry/triangle_distance.h"
 #include "util/parallel.h"
+#include "util/sort_in_parts.h"
 
 namespace offsetopt {
 
@@ -544,11 +546,11 @@ NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, co
                        const std::vector<std::int8_t>& outer_winding, const std::vector<std::int8_t>& inner_inside,
                        double target, double level, const NodeValues& previous, const ContourReuse* reuse, WorkerPool& pool) {
   NodeValues v;
-  v.nodes.reserve(cells.size() * 4);
+  v.nodes.reserve(cells.size() * 8);
   for (const std::int64_t c : cells)
     for (int corner = 0; corner < 8; ++corner)
       v.nodes.push_back(c + (corner & 1) + ((corner >> 1) & 1) * grid.nx + ((corner >> 2) & 1) * grid.nx * grid.ny);
-  std::sort(v.nodes.begin(), v.nodes.end());
+  sort_in_parts(v.nodes, std::less<std::int64_t>(), pool);
   v.nodes.erase(std::unique(v.nodes.begin(), v.nodes.end()), v.nodes.end());
   const std::size_t count = v.nodes.size();
   v.outer_distance.resize(count);
@@ -747,13 +749,19 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
       for (int c = 0; c < 3; ++c) around[static_cast<std::size_t>(fill[static_cast<std::size_t>(mesh.F(f, c))]++)] = static_cast<int>(f);
   }
-  std::vector<int> check;
-  for (int f = 0; f < static_cast<int>(mesh.F.rows()); ++f) {
-    const bool known = remembered[static_cast<std::size_t>(mesh.F(f, 0))] && remembered[static_cast<std::size_t>(mesh.F(f, 1))] &&
-                       remembered[static_cast<std::size_t>(mesh.F(f, 2))] &&
-                       std::binary_search(previous.kept_faces.begin(), previous.kept_faces.end(), face_key(contour, f));
-    if (!known) check.push_back(f);
-  }
+  std::vector<int> check_part[kParts];
+  pool.run_parts(kParts, [&](int part) {
+    const long face_count = static_cast<long>(mesh.F.rows());
+    for (long g = split_point(face_count, kParts, part); g < split_point(face_count, kParts, part + 1); ++g) {
+      const int f = static_cast<int>(g);
+      const bool known = remembered[static_cast<std::size_t>(mesh.F(f, 0))] && remembered[static_cast<std::size_t>(mesh.F(f, 1))] &&
+                         remembered[static_cast<std::size_t>(mesh.F(f, 2))] &&
+                         std::binary_search(previous.kept_faces.begin(), previous.kept_faces.end(), face_key(contour, f));
+      if (!known) check_part[part].push_back(f);
+    }
+  });
+  std::vector<int> check = std::move(check_part[0]);
+  for (int part = 1; part < kParts; ++part) check.insert(check.end(), check_part[part].begin(), check_part[part].end());
   std::vector<int> below;
   for (int round = 0;; ++round) {
     const std::vector<double> deficit = face_deficits(outer_bvh, mesh, lower, check, wall, pool);
@@ -796,15 +804,20 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
       next.vertices[i] = {contour.positive_node[i], contour.negative_node[i], mesh.V.row(v).transpose(), lower[i], raise[i], on_wall[i],
                           record ? (*record)[i] : ContourReuse::Vertex()};
     }
-    std::sort(next.vertices.begin(), next.vertices.end(), [](const PassMemory::Vertex& x, const PassMemory::Vertex& y) {
+    sort_in_parts(next.vertices, [](const PassMemory::Vertex& x, const PassMemory::Vertex& y) {
       return std::make_pair(x.positive, x.negative) < std::make_pair(y.positive, y.negative);
-    });
+    }, pool);
     std::vector<char> failed(static_cast<std::size_t>(mesh.F.rows()), 0);
     for (const int f : below) failed[static_cast<std::size_t>(f)] = 1;
-    next.kept_faces.clear();
-    for (int f = 0; f < static_cast<int>(mesh.F.rows()); ++f)
-      if (!failed[static_cast<std::size_t>(f)]) next.kept_faces.push_back(face_key(contour, f));
-    std::sort(next.kept_faces.begin(), next.kept_faces.end());
+    std::vector<std::array<std::int64_t, 6>> kept_part[kParts];
+    pool.run_parts(kParts, [&](int part) {
+      const long face_count = static_cast<long>(mesh.F.rows());
+      for (long f = split_point(face_count, kParts, part); f < split_point(face_count, kParts, part + 1); ++f)
+        if (!failed[static_cast<std::size_t>(f)]) kept_part[part].push_back(face_key(contour, static_cast<int>(f)));
+    });
+    next.kept_faces = std::move(kept_part[0]);
+    for (int part = 1; part < kParts; ++part) next.kept_faces.insert(next.kept_faces.end(), kept_part[part].begin(), kept_part[part].end());
+    sort_in_parts(next.kept_faces, std::less<std::array<std::int64_t, 6>>(), pool);
   }
   return below;
 }
