@@ -928,7 +928,7 @@ ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, con
     const std::vector<std::int64_t> cells = mixed_cells(grid, sign, pool);
     out.active_cells = static_cast<std::int64_t>(cells.size());
     values = node_values(outer_bvh, field, grid, cells, sign, outer_winding, inner_inside, target, level, values, reuse, pool);
-    contour = marching_tetrahedra(grid, cells, corner_phi(grid, cells, values, pool), kMinFraction);
+    contour = marching_tetrahedra(grid, cells, corner_phi(grid, cells, values, pool), kMinFraction, &pool);
     PassMemory next;
     const std::vector<int> below = place_vertices(outer_bvh, field, grid, values, target, wall, hair, contour, memory, next,
                                                   reuse, reuse ? &record : nullptr, pool, out);

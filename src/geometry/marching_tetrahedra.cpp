@@ -1,5 +1,7 @@
 #include "geometry/marching_tetrahedra.h"
 
+#include "util/parallel.h"
+
 #include <algorithm>
 #include <array>
 #include <iterator>
@@ -87,6 +89,15 @@ class EdgeVertexMap {
   std::size_t mask_ = 0, size_ = 0;
 };
 
+// One range of cells contoured alone: its vertices (with their edges' keys) and faces.
+struct RangeContour {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> faces;
+  std::vector<std::int64_t> positive_node, negative_node, key;
+  std::vector<double> fraction;
+  EdgeVertexMap edge_vertex{16};
+};
+
 }  // namespace
 
 TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
@@ -96,18 +107,21 @@ TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int6
                                          grid.nx + grid.nx * grid.ny, 1 + grid.nx + grid.nx * grid.ny};
   for (std::size_t c = 0; c < cells.size(); ++c)
     for (int k = 0; k < 8; ++k) corner_values[8 * c + static_cast<std::size_t>(k)] = value(cells[c] + corner_offset[k]);
-  return marching_tetrahedra(grid, cells, corner_values, min_fraction);
+  return marching_tetrahedra(grid, cells, corner_values, min_fraction, nullptr);
 }
 
-TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
-                               const std::vector<double>& corner_values, double min_fraction) {
+namespace {
+
+// The cells [begin, end) contoured alone, their vertices numbered from 0 in visiting order.
+void contour_range(const NodeGrid& grid, const std::vector<std::int64_t>& cells, const std::vector<double>& corner_values,
+                   double min_fraction, std::size_t begin, std::size_t end, RangeContour& out) {
   static const KuhnTable kuhn;
-  TetContour out;
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<std::array<int, 3>> faces;
-  EdgeVertexMap edge_vertex(cells.size() * 3);
-  vertices.reserve(cells.size() * 3);
-  faces.reserve(cells.size() * 6);
+  std::vector<Eigen::Vector3d>& vertices = out.vertices;
+  std::vector<std::array<int, 3>>& faces = out.faces;
+  out.edge_vertex = EdgeVertexMap((end - begin) * 3);
+  EdgeVertexMap& edge_vertex = out.edge_vertex;
+  vertices.reserve((end - begin) * 3);
+  faces.reserve((end - begin) * 6);
   const std::int64_t corner_offset[8] = {0,
                                          1,
                                          grid.nx,
@@ -116,7 +130,7 @@ TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int6
                                          1 + grid.nx * grid.ny,
                                          grid.nx + grid.nx * grid.ny,
                                          1 + grid.nx + grid.nx * grid.ny};
-  for (std::size_t cell_index = 0; cell_index < cells.size(); ++cell_index) {
+  for (std::size_t cell_index = begin; cell_index < end; ++cell_index) {
     const std::int64_t cell = cells[cell_index];
     std::array<double, 8> values;
     bool any_positive = false, any_negative = false;
@@ -147,6 +161,7 @@ TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int6
       out.positive_node.push_back(np);
       out.negative_node.push_back(nq);
       out.fraction.push_back(t);
+      out.key.push_back(key);
       edge_vertex.insert(key, index);
       return local = index;
     };
@@ -186,11 +201,69 @@ TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int6
       }
     }
   }
-  out.mesh.V.resize(static_cast<Eigen::Index>(vertices.size()), 3);
-  for (std::size_t v = 0; v < vertices.size(); ++v) out.mesh.V.row(static_cast<Eigen::Index>(v)) = vertices[v].transpose();
-  out.mesh.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f)
-    for (int c = 0; c < 3; ++c) out.mesh.F(static_cast<Eigen::Index>(f), c) = faces[f][static_cast<std::size_t>(c)];
+}
+
+}  // namespace
+
+TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
+                               const std::vector<double>& corner_values, double min_fraction, WorkerPool* pool) {
+  // Two ranges of cells side by side. The first range's vertices are the serial run's first ones;
+  // the second's, in their visiting order, are either on an edge the first range already has
+  // (that vertex, at the same position: same values, same formula) or the serial run's next new
+  // ones. The numbering, positions and faces are therefore the serial run's, whatever the split.
+  const int parts = pool ? 2 : 1;
+  std::vector<RangeContour> range(static_cast<std::size_t>(parts));
+  auto run = [&](int part) {
+    contour_range(grid, cells, corner_values, min_fraction, static_cast<std::size_t>(split_point(static_cast<long>(cells.size()), parts, part)),
+                  static_cast<std::size_t>(split_point(static_cast<long>(cells.size()), parts, part + 1)),
+                  range[static_cast<std::size_t>(part)]);
+  };
+  if (pool) pool->run_parts(parts, run);
+  else run(0);
+  // Global index of every range's local vertex.
+  std::vector<std::vector<int>> global(static_cast<std::size_t>(parts));
+  std::vector<std::vector<char>> fresh(static_cast<std::size_t>(parts));  // not on an earlier range's edge
+  int vertex_count = 0;
+  for (int part = 0; part < parts; ++part) {
+    const RangeContour& r = range[static_cast<std::size_t>(part)];
+    std::vector<int>& g = global[static_cast<std::size_t>(part)];
+    g.resize(r.vertices.size());
+    fresh[static_cast<std::size_t>(part)].assign(r.vertices.size(), 0);
+    for (std::size_t v = 0; v < r.vertices.size(); ++v) {
+      int earlier = -1;
+      for (int before = 0; before < part && earlier < 0; ++before) {
+        const int local = range[static_cast<std::size_t>(before)].edge_vertex.find(r.key[v]);
+        if (local >= 0) earlier = global[static_cast<std::size_t>(before)][static_cast<std::size_t>(local)];
+      }
+      g[v] = earlier >= 0 ? earlier : vertex_count++;
+      fresh[static_cast<std::size_t>(part)][v] = earlier < 0;
+    }
+  }
+  TetContour out;
+  std::size_t face_count = 0;
+  for (const RangeContour& r : range) face_count += r.faces.size();
+  out.mesh.V.resize(vertex_count, 3);
+  out.mesh.F.resize(static_cast<Eigen::Index>(face_count), 3);
+  out.positive_node.resize(static_cast<std::size_t>(vertex_count));
+  out.negative_node.resize(static_cast<std::size_t>(vertex_count));
+  out.fraction.resize(static_cast<std::size_t>(vertex_count));
+  Eigen::Index row = 0;
+  for (int part = 0; part < parts; ++part) {
+    const RangeContour& r = range[static_cast<std::size_t>(part)];
+    const std::vector<int>& g = global[static_cast<std::size_t>(part)];
+    for (std::size_t v = 0; v < r.vertices.size(); ++v) {
+      if (!fresh[static_cast<std::size_t>(part)][v]) continue;
+      const std::size_t at = static_cast<std::size_t>(g[v]);
+      out.mesh.V.row(g[v]) = r.vertices[v].transpose();
+      out.positive_node[at] = r.positive_node[v];
+      out.negative_node[at] = r.negative_node[v];
+      out.fraction[at] = r.fraction[v];
+    }
+    for (const auto& face : r.faces) {
+      for (int c = 0; c < 3; ++c) out.mesh.F(row, c) = g[static_cast<std::size_t>(face[static_cast<std::size_t>(c)])];
+      ++row;
+    }
+  }
   return out;
 }
 

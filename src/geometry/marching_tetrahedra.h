@@ -19,6 +19,7 @@
 
 #include "geometry/node_grid.h"
 #include "mesh/mesh.h"
+#include "util/parallel.h"
 
 namespace offsetopt {
 
@@ -38,8 +39,10 @@ struct TetContour {
 TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
                                const std::function<double(std::int64_t)>& value, double min_fraction = 1e-3);
 // The same from the values read beforehand: corner_values[8 c + k] is the value at node
-// cells[c] + (k & 1) + ((k >> 1) & 1) nx + ((k >> 2) & 1) nx ny.
+// cells[c] + (k & 1) + ((k >> 1) & 1) nx + ((k >> 2) & 1) nx ny. With a pool, the cells are
+// contoured in two ranges side by side and joined: the same output, bit for bit.
 TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
-                               const std::vector<double>& corner_values, double min_fraction = 1e-3);
+                               const std::vector<double>& corner_values, double min_fraction = 1e-3,
+                               WorkerPool* pool = nullptr);
 
 }  // namespace offsetopt

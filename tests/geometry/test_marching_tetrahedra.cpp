@@ -151,3 +151,52 @@ TEST_CASE("grid winding counts a doubly covered region twice") {
   CHECK(mismatches == 0);
   CHECK(twice > 100);
 }
+
+TEST_CASE("marching tetrahedra in two ranges joined equals the serial contour, bit for bit") {
+  Rng rng(23);
+  WorkerPool pool(2);
+  for (int trial = 0; trial < 12; ++trial) {
+    NodeGrid grid;
+    grid.origin = Eigen::Vector3d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    grid.spacing = 0.1 + rng.uniform() * 0.2;
+    grid.nx = 4 + static_cast<std::int64_t>(rng.uniform() * 8);
+    grid.ny = 4 + static_cast<std::int64_t>(rng.uniform() * 8);
+    grid.nz = 4 + static_cast<std::int64_t>(rng.uniform() * 8);
+    // A ball's field with noise (surfaces that cross the split between the ranges) and zeros.
+    const Eigen::Vector3d centre = grid.position(grid.index(grid.nx / 2, grid.ny / 2, grid.nz / 2));
+    std::vector<double> value(static_cast<std::size_t>(grid.node_count()));
+    for (std::int64_t n = 0; n < grid.node_count(); ++n) {
+      const double r = rng.uniform();
+      value[static_cast<std::size_t>(n)] =
+          r < 0.05 ? 0.0 : 2.5 * grid.spacing - (grid.position(n) - centre).norm() + rng.uniform(-0.5, 0.5) * grid.spacing;
+    }
+    // Every cell, or only the mixed ones (the contour's own list).
+    for (const bool only_mixed : {false, true}) {
+      std::vector<std::int64_t> cells;
+      std::vector<double> corners;
+      for (std::int64_t k = 0; k + 1 < grid.nz; ++k)
+        for (std::int64_t j = 0; j + 1 < grid.ny; ++j)
+          for (std::int64_t i = 0; i + 1 < grid.nx; ++i) {
+            const std::int64_t c = grid.index(i, j, k);
+            double at[8];
+            int positive = 0;
+            for (int corner = 0; corner < 8; ++corner) {
+              at[corner] = value[static_cast<std::size_t>(c + (corner & 1) + ((corner >> 1) & 1) * grid.nx +
+                                                          ((corner >> 2) & 1) * grid.nx * grid.ny)];
+              positive += at[corner] >= 0.0;
+            }
+            if (only_mixed && (positive == 0 || positive == 8)) continue;
+            cells.push_back(c);
+            corners.insert(corners.end(), at, at + 8);
+          }
+      const TetContour serial = marching_tetrahedra(grid, cells, [&](std::int64_t n) { return value[static_cast<std::size_t>(n)]; });
+      const TetContour joined = marching_tetrahedra(grid, cells, corners, 1e-3, &pool);
+      REQUIRE(serial.mesh.F.rows() > 0);
+      CHECK(joined.mesh.V == serial.mesh.V);
+      CHECK(joined.mesh.F == serial.mesh.F);
+      CHECK(joined.positive_node == serial.positive_node);
+      CHECK(joined.negative_node == serial.negative_node);
+      CHECK(joined.fraction == serial.fraction);
+    }
+  }
+}
