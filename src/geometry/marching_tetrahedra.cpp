@@ -229,9 +229,13 @@ TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int6
     std::vector<int>& g = global[static_cast<std::size_t>(part)];
     g.resize(r.vertices.size());
     fresh[static_cast<std::size_t>(part)].assign(r.vertices.size(), 0);
+    // An earlier range's edge has its low node within one cell's reach of an earlier cell: below
+    // this range's first cell + (1, 1, 1). Only vertices on such edges are looked up.
+    const std::size_t first_cell = static_cast<std::size_t>(split_point(static_cast<long>(cells.size()), parts, part));
+    const std::int64_t reach = first_cell < cells.size() ? cells[first_cell] + 1 + grid.nx + grid.nx * grid.ny : 0;
     for (std::size_t v = 0; v < r.vertices.size(); ++v) {
       int earlier = -1;
-      for (int before = 0; before < part && earlier < 0; ++before) {
+      for (int before = 0; before < part && earlier < 0 && r.key[v] / 8 < reach; ++before) {
         const int local = range[static_cast<std::size_t>(before)].edge_vertex.find(r.key[v]);
         if (local >= 0) earlier = global[static_cast<std::size_t>(before)][static_cast<std::size_t>(local)];
       }
