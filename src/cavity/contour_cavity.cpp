@@ -546,12 +546,26 @@ NodeValues node_values(const TriangleBvh& outer_bvh, const InnerField& field, co
                        const std::vector<std::int8_t>& outer_winding, const std::vector<std::int8_t>& inner_inside,
                        double target, double level, const NodeValues& previous, const ContourReuse* reuse, WorkerPool& pool) {
   NodeValues v;
-  v.nodes.reserve(cells.size() * 8);
-  for (const std::int64_t c : cells)
-    for (int corner = 0; corner < 8; ++corner)
-      v.nodes.push_back(c + (corner & 1) + ((corner >> 1) & 1) * grid.nx + ((corner >> 2) & 1) * grid.nx * grid.ny);
-  sort_in_parts(v.nodes, std::less<std::int64_t>(), pool);
-  v.nodes.erase(std::unique(v.nodes.begin(), v.nodes.end()), v.nodes.end());
+  // The cells ascend, so each corner's nodes do: eight ascending lists, joined pairwise by set
+  // union (the sorted nodes without repeats, as sorting and dropping repeats would give).
+  std::vector<std::int64_t> lists[8];
+  static_assert(kParts == 2, "four corners' lists per part");
+  pool.run_parts(kParts, [&](int part) {
+    for (int corner = 4 * part; corner < 4 * part + 4; ++corner) {
+      const std::int64_t offset = (corner & 1) + ((corner >> 1) & 1) * grid.nx + ((corner >> 2) & 1) * grid.nx * grid.ny;
+      lists[corner].reserve(cells.size());
+      for (const std::int64_t c : cells) lists[corner].push_back(c + offset);
+    }
+    std::vector<std::int64_t> pair[2];
+    for (int k = 0; k < 2; ++k) {
+      const std::vector<std::int64_t>&x = lists[4 * part + 2 * k], &y = lists[4 * part + 2 * k + 1];
+      std::set_union(x.begin(), x.end(), y.begin(), y.end(), std::back_inserter(pair[k]));
+    }
+    lists[4 * part].clear();
+    std::set_union(pair[0].begin(), pair[0].end(), pair[1].begin(), pair[1].end(), std::back_inserter(lists[4 * part]));
+  });
+  v.nodes.reserve(lists[0].size() + lists[4].size());
+  std::set_union(lists[0].begin(), lists[0].end(), lists[4].begin(), lists[4].end(), std::back_inserter(v.nodes));
   const std::size_t count = v.nodes.size();
   v.outer_distance.resize(count);
   v.inner.resize(count);
