@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -34,6 +35,67 @@ Measures measure(const Vertices& X, const Faces& F) {
   }
   return m;
 }
+
+// L L for the Laplacians of one mesh (their pattern never changes), bit for bit the values of
+// Eigen's `L * L` with its symbolic work done once: Eigen sums entry (i, j) over the entries k of
+// column j of the right factor in storage order (each column of the left factor visited in its
+// own order), the first term assigned; the plan lists those (left, right) value positions in
+// that order for every entry of the product.
+class RepeatedSquare {
+ public:
+  // `square` = L * L as Eigen computed it (compressed, sorted).
+  RepeatedSquare(const Eigen::SparseMatrix<double>& L, const Eigen::SparseMatrix<double>& square)
+      : outer_(L.outerIndexPtr(), L.outerIndexPtr() + L.outerSize() + 1),
+        inner_(L.innerIndexPtr(), L.innerIndexPtr() + L.nonZeros()) {
+    valid_ = L.isCompressed() && square.isCompressed() && square.outerSize() == L.outerSize();
+    struct Term {
+      int row, left, right;
+    };
+    std::vector<Term> column;
+    term_start_.assign(1, 0);
+    for (Eigen::Index j = 0; valid_ && j < L.outerSize(); ++j) {
+      column.clear();
+      for (int right = outer_[j]; right < outer_[j + 1]; ++right) {
+        const int k = inner_[right];
+        for (int left = outer_[k]; left < outer_[k + 1]; ++left) column.push_back({inner_[left], left, right});
+      }
+      std::stable_sort(column.begin(), column.end(), [](const Term& a, const Term& b) { return a.row < b.row; });
+      std::size_t t = 0;
+      for (int p = square.outerIndexPtr()[j]; p < square.outerIndexPtr()[j + 1]; ++p) {
+        const int row = square.innerIndexPtr()[p];
+        if (t == column.size() || column[t].row != row) valid_ = false;
+        for (; t < column.size() && column[t].row == row; ++t) terms_.emplace_back(column[t].left, column[t].right);
+        term_start_.push_back(static_cast<int>(terms_.size()));
+      }
+      if (t != column.size()) valid_ = false;
+    }
+  }
+
+  // Whether the plan applies to L (the pattern it was built for).
+  bool matches(const Eigen::SparseMatrix<double>& L) const {
+    return valid_ && L.isCompressed() && L.outerSize() + 1 == static_cast<Eigen::Index>(outer_.size()) &&
+           std::equal(outer_.begin(), outer_.end(), L.outerIndexPtr()) &&
+           std::equal(inner_.begin(), inner_.end(), L.innerIndexPtr());
+  }
+
+  // square's values ← those of L * L (square has the pattern of the construction).
+  void evaluate(const Eigen::SparseMatrix<double>& L, Eigen::SparseMatrix<double>& square) const {
+    const double* x = L.valuePtr();
+    double* out = square.valuePtr();
+    for (std::size_t v = 0; v + 1 < term_start_.size(); ++v) {
+      int t = term_start_[v];
+      double sum = x[terms_[t].first] * x[terms_[t].second];
+      for (++t; t < term_start_[v + 1]; ++t) sum += x[terms_[t].first] * x[terms_[t].second];
+      out[v] = sum;
+    }
+  }
+
+ private:
+  std::vector<int> outer_, inner_;
+  std::vector<int> term_start_;  // per value of the square: its first term
+  std::vector<std::pair<int, int>> terms_;
+  bool valid_ = false;
+};
 
 // Contracts the decimated copy and carries its positions back to every input vertex.
 ContractionResult coarse_to_fine(const Vertices& V, const Faces& F, const ContractionOptions& options) {
@@ -135,11 +197,18 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
   SupernodalCholesky solver;
   solver.set_thread_count(options.threads);
   bool analysed = false;
+  std::optional<RepeatedSquare> square;
+  Eigen::SparseMatrix<double> A;
   result.status = ContractionStatus::step_cap;
   for (int step = 1; step <= options.max_steps; ++step) {
     const Eigen::SparseMatrix<double> L = cotan_laplacian(X, relabelled, cotan_options);
     // L is symmetric, so L^T L = L L. Its diagonal sum_j L_ij^2 is structurally present.
-    Eigen::SparseMatrix<double> A = L * L;
+    if (square && square->matches(L)) {
+      square->evaluate(L, A);
+    } else {
+      A = L * L;
+      square.emplace(L, A);
+    }
     A *= laplacian_weight * laplacian_weight;
     const Eigen::VectorXd attraction_squared = attraction.array().square();
     A.diagonal() += attraction_squared;
