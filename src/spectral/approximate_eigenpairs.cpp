@@ -63,20 +63,25 @@ class ShiftedTridiagonalLu {
   std::vector<bool> swapped_;
 };
 
-// A unit eigenvector of the tridiagonal for the eigenvalue μ, by three inverse iterations from
-// a fixed start with no special structure.
-Eigen::VectorXd tridiagonal_eigenvector(const Eigen::VectorXd& d, const Eigen::VectorXd& e, double mu, double tiny) {
+// Columns spanning the eigenvectors of the tridiagonal for eigenvalues near μ, by three block
+// inverse iterations (orthonormalised after each) from a fixed start with no special structure.
+Eigen::MatrixXd tridiagonal_eigenvectors(const Eigen::VectorXd& d, const Eigen::VectorXd& e, double mu, double tiny,
+                                         int count) {
   const Eigen::Index n = d.size();
   const ShiftedTridiagonalLu lu(d, e, mu, tiny);
-  Eigen::VectorXd x(n);
-  for (Eigen::Index i = 0; i < n; ++i) x(i) = 1.0 + 0.125 * static_cast<double>((i * 5) % 8);
+  Eigen::MatrixXd X(n, count);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (int c = 0; c < count; ++c) X(i, c) = 1.0 + 0.125 * static_cast<double>((i * (5 + 2 * c) + 3 * c * c) % 8);
   for (int iteration = 0; iteration < 3; ++iteration) {
-    lu.solve(x);
-    const double norm = x.norm();
-    if (!(norm > 0.0) || !std::isfinite(norm)) break;
-    x /= norm;
+    for (int c = 0; c < count; ++c) {
+      Eigen::VectorXd x = X.col(c);
+      lu.solve(x);
+      X.col(c) = x;
+    }
+    if (!X.allFinite()) break;
+    X = Eigen::HouseholderQR<Eigen::MatrixXd>(X).householderQ() * Eigen::MatrixXd::Identity(n, count);
   }
-  return x;
+  return X;
 }
 
 }  // namespace
@@ -109,28 +114,40 @@ ApproximateEigenpairs::ApproximateEigenpairs(const Eigen::MatrixXd& H) : H_(H) {
 }
 
 double ApproximateEigenpairs::vector(int i, Eigen::VectorXd& z) const {
+  Eigen::MatrixXd V;
+  const double bound = subspace(i, 1, V);
+  z = V.col(0);
+  return bound;
+}
+
+double ApproximateEigenpairs::subspace(int first, int count, Eigen::MatrixXd& V) const {
   const Eigen::Index n = H_.rows();
   const double infinity = std::numeric_limits<double>::infinity();
   if (n == 1) {
-    z = Eigen::VectorXd::Ones(1);
+    V = Eigen::MatrixXd::Ones(1, 1);
     return 0.0;
   }
-  z = tridiagonal_eigenvector(diagonal_, off_diagonal_, scaled_values_(n - 1 - i), tiny_);
+  const double mu = scaled_values_.segment(n - first - count, count).mean();
+  V = tridiagonal_eigenvectors(diagonal_, off_diagonal_, mu, tiny_, count);
   Eigen::HouseholderSequence<Eigen::MatrixXd, Eigen::VectorXd> reflections(reduced_, householder_);
   reflections.setLength(n - 1).setShift(1);
-  z = reflections * z;
+  V = reflections * V;
+  if (!V.allFinite()) return infinity;
+  V = Eigen::HouseholderQR<Eigen::MatrixXd>(V).householderQ() * Eigen::MatrixXd::Identity(n, count);
   // The bound, from H itself: whatever went wrong above shows in the residual.
-  const double norm = z.norm();
-  if (!(norm > 0.0) || !std::isfinite(norm)) return infinity;
-  z /= norm;
-  const Eigen::VectorXd Hz = H_ * z;
-  const double rho = z.dot(Hz);
-  const double residual = (Hz - rho * z).norm();
+  const Eigen::MatrixXd HV = H_ * V;
+  const Eigen::MatrixXd projected = V.transpose() * HV;
+  const double residual = (HV - V * projected).norm();
+  const Eigen::VectorXd inside =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (projected + projected.transpose()), Eigen::EigenvaluesOnly)
+          .eigenvalues();
+  const double lo = inside.minCoeff(), hi = inside.maxCoeff();
   double gap = infinity;
   for (Eigen::Index m = 0; m < n; ++m)
-    if (m != i) gap = std::min(gap, std::abs(values_(m) - rho));
-  gap -= slack_;
-  const double bound = std::sqrt(2.0) * (residual + 2.0 * slack_) / gap;
+    if (m < first || m >= first + count) gap = std::min(gap, std::max(lo - values_(m), values_(m) - hi));
+  const double root_count = std::sqrt(static_cast<double>(count));
+  gap -= slack_ * root_count;
+  const double bound = std::sqrt(2.0) * (residual + 2.0 * slack_ * root_count) / gap;
   return gap > 0.0 && std::isfinite(bound) ? bound : infinity;
 }
 

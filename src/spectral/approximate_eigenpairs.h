@@ -8,11 +8,12 @@
 //    Householder tridiagonalisation and the same implicit QR sweeps on the tridiagonal; the sweeps
 //    on the diagonal do not depend on whether rotations are accumulated), so every decision taken
 //    on them is the one the full decomposition would take.
-//  - Vectors: inverse iteration on the tridiagonal (LU with partial pivoting, three solves),
-//    mapped back by the Householder reflections: O(n) + O(n²) per vector.
-//  - Bounds: with the residual r = ‖H z - ρ z‖ (ρ = zᵀHz, recomputed from H) and the distance δ
-//    from ρ to the other computed eigenvalues, less their error, sin∠(z, u) ≤ r / δ (Davis–Kahan);
-//    a vector of a cluster (δ ≤ 0) gets an infinite bound. The bound also covers the
+//  - Vectors: (block) inverse iteration on the tridiagonal (LU with partial pivoting, three
+//    solves, orthonormalised), mapped back by the Householder reflections: O(n²) per vector.
+//  - Bounds: with the residual r = ‖H V - V (VᵀHV)‖_F (recomputed from H) and the distance δ
+//    from the eigenvalues of VᵀHV to the other computed eigenvalues, less their error,
+//    ‖sin Θ(V, U)‖₂ ≤ r / δ (Davis–Kahan); a vector inside a cluster (δ ≤ 0) gets an infinite
+//    bound, the cluster's subspace a finite one. The bound also covers the
 //    rounding of a backward-stable dense solver's vector for the same eigenvalue (its angle is at
 //    most ε_H / δ), so for any quantity Lipschitz in the vector and invariant under its sign,
 //    |f(z_dense) - f(z)| ≤ Lip(f) · (the bound).
@@ -31,6 +32,12 @@ class ApproximateEigenpairs {
   // A unit approximation of the eigenvector of values()(i) (0 <= i < n) into z; returns the
   // distance bound (+inf when unproven). O(n²).
   double vector(int i, Eigen::VectorXd& z) const;
+  // For a cluster, values()(first .. first + count - 1): an orthonormal basis V (n by count) of
+  // an approximation of its invariant subspace; returns a bound on min over orthogonal Q of
+  // ‖Z - V Q‖₂ for any orthonormal basis Z of the true subspace, or of a backward-stable dense
+  // solver's vectors for these values (+inf when the cluster is not separated from the rest).
+  // O(count n²).
+  double subspace(int first, int count, Eigen::MatrixXd& V) const;
 
  private:
   Eigen::MatrixXd H_, reduced_;  // H; its Householder reduction (vectors below the subdiagonal)

@@ -48,6 +48,8 @@ using Clock = std::chrono::steady_clock;
 constexpr double kCorrectionThreshold = 1e-12;
 // The exact residual estimate is computed once every wanted ‖Op y - θ y‖ / θ is below this.
 constexpr double kEstimateGate = 1e-2;
+// Ritz values closer than this (relative to the largest) are screened as one group.
+constexpr double kGroupGap = 1e-6;
 
 // ‖L‖∞ = largest absolute row sum (= column sum, L symmetric); bounds ‖L‖₂ from above.
 double infinity_norm(const Eigen::SparseMatrix<double>& L) {
@@ -569,20 +571,33 @@ bool BlockKrylovSchur::proven_unconverged() {
   const double rounding = 8.0 * static_cast<double>(j) * eps;
   const double tol = settings_.tolerance * internal_scale_;
   const double denominator = settings_.norm_L * smallest_phi_norm_;
-  Eigen::VectorXd z;
-  for (int i = required_ - 1; i >= 0; --i) {
-    const double distance = ritz.vector(i, z);
+  // Groups of (nearly) equal values, the last wanted first. A group's test reads sums over its
+  // members, which do not depend on the basis chosen inside its subspace: when the sum of
+  // squares exceeds the sum of the squared limits, some member exceeds its own.
+  const double group_gap = kGroupGap * std::abs(theta(0));
+  Eigen::MatrixXd V;
+  for (int end = required_; end > 0;) {
+    int begin = end - 1;
+    while (begin > 0 && theta(begin - 1) - theta(begin) <= group_gap) --begin;
+    const bool straddles = end == required_ && theta(required_ - 1) - theta(required_) <= group_gap;
+    const int count = end - begin;
+    const int first = begin;
+    end = begin;
+    if (straddles) continue;
+    const double distance = ritz.subspace(first, count, V);
     if (!std::isfinite(distance)) continue;
-    const Eigen::VectorXd coupling = C * z;
-    const double rho = coupling.norm(), rho_error = C_norm * (distance + rounding);
-    if (rho - rho_error > kEstimateGate * theta(i) * (1.0 + 1e-9)) return true;
+    const Eigen::MatrixXd coupling = C * V;
+    const double root_count = std::sqrt(static_cast<double>(count));
+    const double rho = coupling.norm(), rho_error = C_norm * root_count * (distance + rounding);
+    const double gate_limit = kEstimateGate * theta.segment(first, count).norm();
+    if (rho - rho_error > gate_limit * (1.0 + 1e-9)) return true;
     // The gate may pass or not: a failed estimate means not converged either way.
     if (!gram_current_) update_residual_gram();
-    const double squared = coupling.dot(residual_gram_ * coupling);
-    const double scale = std::abs(theta(i)) * denominator;
-    const double estimate = std::sqrt(std::max(squared, 0.0)) / scale;
-    const double error = std::sqrt(residual_gram_.norm()) * (rho_error + std::sqrt(rounding) * rho) / scale;
-    if (estimate - error > tol * (1.0 + 1e-6)) return true;
+    const double squared = (coupling.transpose() * residual_gram_ * coupling).trace();
+    const double estimate = std::sqrt(std::max(squared, 0.0));
+    const double error = std::sqrt(residual_gram_.norm()) * (rho_error + std::sqrt(rounding) * rho);
+    if (estimate - error > tol * denominator * theta.segment(first, count).cwiseAbs().norm() * (1.0 + 1e-6))
+      return true;
   }
   return false;
 }

@@ -77,3 +77,32 @@ TEST_CASE("approximate_eigenpairs: a repeated value gets no proven vector") {
   CHECK_FALSE(std::isfinite(ours.vector(2, z)));
   CHECK(std::isfinite(ours.vector(3, z)));
 }
+
+TEST_CASE("approximate_eigenpairs: a cluster's subspace within its bound of the dense solver's") {
+  // Values 3, 2 + 1e-9, 2, 2 - 1e-9, 1, 0.5 in a random orthonormal frame: the cluster at 2 has
+  // no proven single vector but a well-determined three-dimensional subspace.
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(6, 6);
+  H.diagonal() << 3.0, 2.0 + 1e-9, 2.0, 2.0 - 1e-9, 1.0, 0.5;
+  const Eigen::MatrixXd rotation = Eigen::HouseholderQR<Eigen::MatrixXd>(projection_like(6, 5, false, 9u)).householderQ();
+  H = (rotation * H * rotation.transpose()).eval();
+  H = 0.5 * (H + H.transpose()).eval();
+  const ApproximateEigenpairs ours(H);
+  REQUIRE(ours.ok());
+  Eigen::MatrixXd V;
+  const double bound = ours.subspace(1, 3, V);
+  REQUIRE(std::isfinite(bound));
+  CHECK(bound < 1e-6);
+  CHECK((V.transpose() * V - Eigen::MatrixXd::Identity(3, 3)).norm() < 1e-12);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> dense(H);
+  const Eigen::MatrixXd Z = dense.eigenvectors().middleCols(2, 3);  // ascending: 0.5, 1, then the cluster
+  // min over orthogonal Q of ‖Z - V Q‖₂: Q from the polar factor of Vᵀ Z.
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(V.transpose() * Z, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::MatrixXd Q = svd.matrixU() * svd.matrixV().transpose();
+  CHECK((Z - V * Q).operatorNorm() <= bound);
+  // A part of the cluster, separated by 1e-9 only: whatever bound it gets must hold too.
+  const double part_bound = ours.subspace(1, 2, V);
+  const Eigen::MatrixXd Z2 = dense.eigenvectors().middleCols(3, 2);
+  Eigen::JacobiSVD<Eigen::MatrixXd> part_svd(V.transpose() * Z2, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::MatrixXd Q2 = part_svd.matrixU() * part_svd.matrixV().transpose();
+  CHECK((Z2 - V * Q2).operatorNorm() <= part_bound);
+}
