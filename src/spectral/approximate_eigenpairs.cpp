@@ -129,9 +129,21 @@ double ApproximateEigenpairs::subspace(int first, int count, Eigen::MatrixXd& V)
   }
   const double mu = scaled_values_.segment(n - first - count, count).mean();
   V = tridiagonal_eigenvectors(diagonal_, off_diagonal_, mu, tiny_, count);
-  Eigen::HouseholderSequence<Eigen::MatrixXd, Eigen::VectorXd> reflections(reduced_, householder_);
-  reflections.setLength(n - 1).setShift(1);
-  V = reflections * V;
+  // V ← Q V with Q = H_0 H_1 ⋯ H_{n-2}, H_k = I - τ_k v_k v_kᵀ acting on rows k+1.., v_k = (1,
+  // the column of `reduced_` below its subdiagonal): one reflection at a time (Eigen's blocked
+  // application costs more for a few columns).
+  for (Eigen::Index k = n - 2; k >= 0; --k) {
+    const double tau = householder_(k);
+    if (tau == 0.0) continue;
+    const Eigen::Index length = n - k - 2;
+    const auto essential = reduced_.col(k).segment(k + 2, length);
+    for (int c = 0; c < count; ++c) {
+      auto column = V.col(c);
+      const double w = tau * (column(k + 1) + essential.dot(column.segment(k + 2, length)));
+      column(k + 1) -= w;
+      column.segment(k + 2, length) -= w * essential;
+    }
+  }
   if (!V.allFinite()) return infinity;
   V = Eigen::HouseholderQR<Eigen::MatrixXd>(V).householderQ() * Eigen::MatrixXd::Identity(n, count);
   // The bound, from H itself: whatever went wrong above shows in the residual.

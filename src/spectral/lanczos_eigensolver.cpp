@@ -275,6 +275,7 @@ class BlockKrylovSchur {
   Eigen::VectorXd rho_;
   int required_ = 0;  // pairs that must converge (k extended to the end of its cluster)
   bool ritz_current_ = false;  // theta_, Z_, coupling_, rho_ belong to the current H
+  bool screening_ = true;      // proven_unconverged is still worth trying
 
   int iterations_ = 0, restarts_ = 0, second_passes_ = 0, corrections_ = 0;
   long applications_ = 0;
@@ -670,7 +671,10 @@ bool BlockKrylovSchur::run() {
     if (settings_.on_progress)
       settings_.on_progress(std::min(0.99, static_cast<double>(applications_) / static_cast<double>(settings_.basis)));
     if (j_ > k_) {
-      if (proven_unconverged()) continue;
+      // Once a screen fails to prove anything, the iteration is near its end (the estimates are
+      // at the level of the vectors' rounding): the remaining steps go straight to the full path.
+      if (screening_ && proven_unconverged()) continue;
+      screening_ = false;
       rayleigh_ritz();
       if (converged_estimate()) return true;
     }
