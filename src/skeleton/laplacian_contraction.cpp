@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -36,66 +35,48 @@ Measures measure(const Vertices& X, const Faces& F) {
   return m;
 }
 
-// L L for the Laplacians of one mesh (their pattern never changes), bit for bit the values of
-// Eigen's `L * L` with its symbolic work done once: Eigen sums entry (i, j) over the entries k of
-// column j of the right factor in storage order (each column of the left factor visited in its
-// own order), the first term assigned; the plan lists those (left, right) value positions in
-// that order for every entry of the product.
-class RepeatedSquare {
- public:
-  // `square` = L * L as Eigen computed it (compressed, sorted).
-  RepeatedSquare(const Eigen::SparseMatrix<double>& L, const Eigen::SparseMatrix<double>& square)
-      : outer_(L.outerIndexPtr(), L.outerIndexPtr() + L.outerSize() + 1),
-        inner_(L.innerIndexPtr(), L.innerIndexPtr() + L.nonZeros()) {
-    valid_ = L.isCompressed() && square.isCompressed() && square.outerSize() == L.outerSize();
-    struct Term {
-      int row, left, right;
-    };
-    std::vector<Term> column;
-    term_start_.assign(1, 0);
-    for (Eigen::Index j = 0; valid_ && j < L.outerSize(); ++j) {
-      column.clear();
-      for (int right = outer_[j]; right < outer_[j + 1]; ++right) {
-        const int k = inner_[right];
-        for (int left = outer_[k]; left < outer_[k + 1]; ++left) column.push_back({inner_[left], left, right});
+// square's values ← those of L L, for a `square` that already holds the product's pattern (an
+// earlier L L of the same mesh: the pattern never changes). Bit for bit the values of Eigen's
+// `L * L`, whose symbolic work and two sorting transposes it saves: for each column j, entry
+// (i, j) gets its terms over the entries k of column j of the right factor in storage order
+// (column k of the left factor visited in its own order), the first term assigned. Returns false,
+// leaving `square` in an unspecified state, when the patterns disagree.
+bool square_into(const Eigen::SparseMatrix<double>& L, Eigen::SparseMatrix<double>& square,
+                 std::vector<double>& sums, std::vector<char>& touched) {
+  const Eigen::Index n = L.outerSize();
+  if (!L.isCompressed() || !square.isCompressed() || square.outerSize() != n || square.innerSize() != n) return false;
+  sums.resize(static_cast<std::size_t>(n));
+  touched.assign(static_cast<std::size_t>(n), 0);
+  const int* outer = L.outerIndexPtr();
+  const int* inner = L.innerIndexPtr();
+  const double* value = L.valuePtr();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    int count = 0;
+    for (int right = outer[j]; right < outer[j + 1]; ++right) {
+      const double y = value[right];
+      const int k = inner[right];
+      for (int left = outer[k]; left < outer[k + 1]; ++left) {
+        const std::size_t i = static_cast<std::size_t>(inner[left]);
+        if (!touched[i]) {
+          touched[i] = 1;
+          sums[i] = value[left] * y;
+          ++count;
+        } else {
+          sums[i] += value[left] * y;
+        }
       }
-      std::stable_sort(column.begin(), column.end(), [](const Term& a, const Term& b) { return a.row < b.row; });
-      std::size_t t = 0;
-      for (int p = square.outerIndexPtr()[j]; p < square.outerIndexPtr()[j + 1]; ++p) {
-        const int row = square.innerIndexPtr()[p];
-        if (t == column.size() || column[t].row != row) valid_ = false;
-        for (; t < column.size() && column[t].row == row; ++t) terms_.emplace_back(column[t].left, column[t].right);
-        term_start_.push_back(static_cast<int>(terms_.size()));
-      }
-      if (t != column.size()) valid_ = false;
+    }
+    const int begin = square.outerIndexPtr()[j], end = square.outerIndexPtr()[j + 1];
+    if (end - begin != count) return false;
+    for (int p = begin; p < end; ++p) {
+      const std::size_t i = static_cast<std::size_t>(square.innerIndexPtr()[p]);
+      if (!touched[i]) return false;
+      touched[i] = 0;
+      square.valuePtr()[p] = sums[i];
     }
   }
-
-  // Whether the plan applies to L (the pattern it was built for).
-  bool matches(const Eigen::SparseMatrix<double>& L) const {
-    return valid_ && L.isCompressed() && L.outerSize() + 1 == static_cast<Eigen::Index>(outer_.size()) &&
-           std::equal(outer_.begin(), outer_.end(), L.outerIndexPtr()) &&
-           std::equal(inner_.begin(), inner_.end(), L.innerIndexPtr());
-  }
-
-  // square's values ← those of L * L (square has the pattern of the construction).
-  void evaluate(const Eigen::SparseMatrix<double>& L, Eigen::SparseMatrix<double>& square) const {
-    const double* x = L.valuePtr();
-    double* out = square.valuePtr();
-    for (std::size_t v = 0; v + 1 < term_start_.size(); ++v) {
-      int t = term_start_[v];
-      double sum = x[terms_[t].first] * x[terms_[t].second];
-      for (++t; t < term_start_[v + 1]; ++t) sum += x[terms_[t].first] * x[terms_[t].second];
-      out[v] = sum;
-    }
-  }
-
- private:
-  std::vector<int> outer_, inner_;
-  std::vector<int> term_start_;  // per value of the square: its first term
-  std::vector<std::pair<int, int>> terms_;
-  bool valid_ = false;
-};
+  return true;
+}
 
 // Contracts the decimated copy and carries its positions back to every input vertex.
 ContractionResult coarse_to_fine(const Vertices& V, const Faces& F, const ContractionOptions& options) {
@@ -197,18 +178,14 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
   SupernodalCholesky solver;
   solver.set_thread_count(options.threads);
   bool analysed = false;
-  std::optional<RepeatedSquare> square;
   Eigen::SparseMatrix<double> A;
+  std::vector<double> square_sums;
+  std::vector<char> square_touched;
   result.status = ContractionStatus::step_cap;
   for (int step = 1; step <= options.max_steps; ++step) {
     const Eigen::SparseMatrix<double> L = cotan_laplacian(X, relabelled, cotan_options);
     // L is symmetric, so L^T L = L L. Its diagonal sum_j L_ij^2 is structurally present.
-    if (square && square->matches(L)) {
-      square->evaluate(L, A);
-    } else {
-      A = L * L;
-      square.emplace(L, A);
-    }
+    if (step == 1 || !square_into(L, A, square_sums, square_touched)) A = L * L;
     A *= laplacian_weight * laplacian_weight;
     const Eigen::VectorXd attraction_squared = attraction.array().square();
     A.diagonal() += attraction_squared;
