@@ -16,8 +16,8 @@
 //    ‖sin Θ(V, U)‖₂ ≤ r / δ (Davis–Kahan); a vector inside a cluster (δ ≤ 0) gets an infinite
 //    bound, the cluster's subspace a finite one. The bound also covers the rounding of a
 //    backward-stable dense solver's vector for the same eigenvalue (its angle is at most ε_H / δ,
-//    ε_H = 4 n ε ‖H‖_F here), so for any quantity Lipschitz in the vector and invariant under its sign,
-//    |f(z_dense) - f(z)| ≤ Lip(f) · (the bound).
+//    ε_H = 4 n ε ‖H‖_F here), so for any quantity Lipschitz in the vector and invariant under
+//    its sign, |f(z_dense) - f(z)| ≤ Lip(f) · (the bound).
 #pragma once
 #include <Eigen/Dense>
 

@@ -66,7 +66,8 @@ TEST_CASE("approximate_eigenpairs: vectors within their bound of the dense solve
 TEST_CASE("approximate_eigenpairs: a repeated value gets no proven vector") {
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(5, 5);
   H.diagonal() << 3.0, 2.0, 2.0, 1.0, 0.5;
-  const Eigen::MatrixXd rotation = Eigen::HouseholderQR<Eigen::MatrixXd>(projection_like(5, 4, false, 3u)).householderQ();
+  const Eigen::MatrixXd rotation =
+      Eigen::HouseholderQR<Eigen::MatrixXd>(projection_like(5, 4, false, 3u)).householderQ();
   H = (rotation * H * rotation.transpose()).eval();
   H = 0.5 * (H + H.transpose()).eval();
   const ApproximateEigenpairs ours(H);
@@ -83,7 +84,8 @@ TEST_CASE("approximate_eigenpairs: a cluster's subspace within its bound of the 
   // no proven single vector but a well-determined three-dimensional subspace.
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(6, 6);
   H.diagonal() << 3.0, 2.0 + 1e-9, 2.0, 2.0 - 1e-9, 1.0, 0.5;
-  const Eigen::MatrixXd rotation = Eigen::HouseholderQR<Eigen::MatrixXd>(projection_like(6, 5, false, 9u)).householderQ();
+  const Eigen::MatrixXd rotation =
+      Eigen::HouseholderQR<Eigen::MatrixXd>(projection_like(6, 5, false, 9u)).householderQ();
   H = (rotation * H * rotation.transpose()).eval();
   H = 0.5 * (H + H.transpose()).eval();
   const ApproximateEigenpairs ours(H);
