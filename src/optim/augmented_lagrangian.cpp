@@ -153,6 +153,7 @@ const char* to_string(AlStatus status) {
     case AlStatus::stalled: return "stalled";
     case AlStatus::max_outer_iterations: return "max-outer-iterations";
     case AlStatus::max_evaluations: return "max-evaluations";
+    case AlStatus::stopped: return "stopped";
     case AlStatus::numerical_issue: return "numerical-issue";
     case AlStatus::invalid_input: return "invalid-input";
   }
@@ -486,6 +487,7 @@ bool AugmentedLagrangian::reach_least_violation(double feas, const Measures& mea
   double least_stationarity = stationarity;
   for (int restart = 0; restart < kMaxLeastViolationRestarts; ++restart) {
     LbfgsbOptions lv = params_.inner;
+    lv.stop = params_.stop;
     lv.gradient_tolerance = params_.stationarity_tolerance * least_feas;
     lv.relative_gradient_tolerance = 0.0;
     lv.max_evaluations = std::max(1, std::min(lv.max_evaluations, params_.max_evaluations - ev_.count));
@@ -532,8 +534,14 @@ AlResult AugmentedLagrangian::minimize() {
   int stalled = 0;
   Measures meas;
   LbfgsbOptions inner = params_.inner;
+  inner.stop = params_.stop;
+  const auto stop_requested = [this]() { return params_.stop && params_.stop->load(std::memory_order_relaxed); };
 
   for (int outer = 1; outer <= params_.max_outer_iterations; ++outer) {
+    if (stop_requested()) {
+      evaluate_all(x_);
+      return fill_result(AlStatus::stopped, measures());
+    }
     res_.outer_iterations = outer;
     for (Eigen::Index k = 0; k < nn_ + m_; ++k) {
       nu_bar_(k) = clamp_to(nu_(k), -params_.max_multiplier, params_.max_multiplier);
@@ -553,6 +561,7 @@ AlResult AugmentedLagrangian::minimize() {
     nu_ = meas.nu;
     res_.stationarity = sub.projected_gradient_norm;
     report_iteration(outer, sub, meas);
+    if (stop_requested()) return fill_result(AlStatus::stopped, meas);
     const double feas = std::max(meas.violation, meas.scaled_violation);
     if (feas <= feas_tol && sub.projected_gradient_norm <= params_.stationarity_tolerance &&
         meas.complementarity <= params_.complementarity_tolerance)

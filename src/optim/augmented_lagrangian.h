@@ -37,6 +37,7 @@
 // ½ Σ (s_i dist(c_i, [lo_i, hi_i]))² over the box ends stationary above the tolerance: the result
 // then holds that least-violation point (a local one, for nonconvex constraints).
 #pragma once
+#include <atomic>
 #include <functional>
 #include <string>
 
@@ -106,6 +107,9 @@ struct AlOptions {
   LbfgsbOptions inner;  // memory, caps and line search of the subproblem solver; its gradient
                        // tolerance is set by the outer loop
   std::function<void(const AlIterationInfo&)> on_outer_iteration;  // optional observer
+  // When set (by another thread), the run ends with `stopped` at its next outer iteration, and
+  // every subproblem in flight ends at its next iteration (the inner options' stop is this one).
+  const std::atomic<bool>* stop = nullptr;
   // Inner defaults: no relative-reduction stop (the projected-gradient and noise tests decide),
   // and 20 pairs instead of 10 because the subproblems are ill-conditioned (ρ‖∇c‖² against the
   // objective's curvature): on the 100,000-row benchmark 20 pairs need 40% fewer evaluations.
@@ -126,6 +130,7 @@ enum class AlStatus {
                          // making progress before the stationarity tolerance (gradient noise)
   max_outer_iterations,  // outer cap reached
   max_evaluations,       // evaluation cap reached
+  stopped,               // AlOptions::stop was set: x is the last iterate, no claim is made
   numerical_issue,       // f or a constraint not finite at the start point
   invalid_input          // sizes, bounds or parameters not valid (message says which)
 };

@@ -195,6 +195,7 @@ const char* to_string(LbfgsbStatus status) {
     case LbfgsbStatus::max_iterations: return "max-iterations";
     case LbfgsbStatus::max_evaluations: return "max-evaluations";
     case LbfgsbStatus::line_search_failed: return "line-search-failed";
+    case LbfgsbStatus::stopped: return "stopped";
     case LbfgsbStatus::numerical_issue: return "numerical-issue";
     case LbfgsbStatus::invalid_input: return "invalid-input";
   }
@@ -289,6 +290,7 @@ LbfgsbResult lbfgsb_minimize(const ObjectiveFunction& f, const Eigen::VectorXd& 
   for (;;) {
     if (iterations >= params.max_iterations) return finish(LbfgsbStatus::max_iterations);
     if (evaluations >= params.max_evaluations) return finish(LbfgsbStatus::max_evaluations);
+    if (params.stop && params.stop->load(std::memory_order_relaxed)) return finish(LbfgsbStatus::stopped);
 
     // Search direction: Cauchy point, then subspace minimisation.
     const CauchyPoint cauchy = cauchy_start(x, g, lower, upper, memory, has_bounds);

@@ -22,6 +22,7 @@
 // monotone); a non-finite f or ∇f at a trial point halves the step instead of aborting; the
 // relative-reduction test has no floor of 1; and the approximate Wolfe acceptance below.
 #pragma once
+#include <atomic>
 #include <functional>
 #include <string>
 
@@ -62,6 +63,9 @@ struct LbfgsbOptions {
   double wolfe_curvature = 0.9;   // gtol, in (wolfe_decrease, 1)
   double line_search_xtol = 0.1;  // relative bracket width at which the line search gives up
   int max_line_search_evaluations = 20;
+  // When set (by another thread, whose work makes this run's result useless), the run ends with
+  // `stopped` before its next iteration; the lowest iterate so far is returned. Not owned.
+  const std::atomic<bool>* stop = nullptr;
 
   // Empty when valid, else what is wrong (one line).
   std::string check() const;
@@ -74,6 +78,7 @@ enum class LbfgsbStatus {
   max_iterations,      // iteration cap reached
   max_evaluations,     // evaluation cap reached
   line_search_failed,  // no acceptable step even along the projected steepest-descent path
+  stopped,             // LbfgsbOptions::stop was set
   numerical_issue,     // f or ∇f not finite at the start point
   invalid_input        // parameters, sizes, bounds (lower > upper) or start point not valid
 };

@@ -1,11 +1,13 @@
 #include "optimize/offset_optimization.h"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <future>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include <Eigen/Cholesky>
 
@@ -159,10 +161,11 @@ constexpr double kFinestQuadricCellsPerWall = 3.0;  // one refinement of the def
 constexpr double kContourBelowModel = 1e-3;
 constexpr int kOuterFoldRepairs = 4;           // see OffsetSolve::solve
 
-// The solve met the goal's constraints: not infeasible, and violated by at most 100 times the
-// solver's feasibility tolerance (normalised frame); a NaN violation is not met.
+// The solve met the goal's constraints: neither infeasible nor stopped, and violated by at most
+// 100 times the solver's feasibility tolerance (normalised frame); a NaN violation is not met.
 bool constraints_met(const AlResult& solved, const OptimizeOptions& options) {
-  return solved.status != AlStatus::infeasible && solved.max_violation <= 100.0 * options.solver.feasibility_tolerance;
+  return solved.status != AlStatus::infeasible && solved.status != AlStatus::stopped &&
+         solved.max_violation <= 100.0 * options.solver.feasibility_tolerance;
 }
 
 // Stage "frame": ground, support polygon, scale, and the goal in input units (for verification)
@@ -392,7 +395,7 @@ class OffsetSolve {
       // Tightened bounds only shrink the feasible set: when the goal's constraints are not met,
       // repairs cannot help, and the report says why.
       if (solve(round)) last_round_met = round;
-      if (round == max_repair_rounds || !constraints_met) break;
+      if (round == max_repair_rounds || !constraints_met || stopped()) break;
       const SurfaceDefects defects =
           find_surface_defects(outer, inner, b_.band.fixed, b_.left_solid, 0.5 * f_.wall, options_.threads);
       if (defects.empty()) break;
@@ -484,6 +487,9 @@ class OffsetSolve {
   bool constraints_met = false;
   std::vector<RepairRound> repairs;
 
+  // The solver was stopped from outside (options.solver.stop: the goal was found out of reach).
+  bool stopped() const { return solved.status == AlStatus::stopped; }
+
  private:
   AlOptions params(int round) const {
     AlOptions p = options_.solver;
@@ -525,7 +531,7 @@ class OffsetSolve {
     // The outer limits are local estimates (shape/outer_offset_limit.h): where the thickened
     // surface still folds, its limits there are halved (the last time set to 0) and the problem is
     // solved again from where it ended.
-    for (int repair = 0; options_.outer && repair < kOuterFoldRepairs; ++repair) {
+    for (int repair = 0; options_.outer && repair < kOuterFoldRepairs && !stopped(); ++repair) {
       const NewSelfIntersections folds = new_self_intersections(outer, b_.input_pairs, 100000, options_.threads);
       if (folds.pairs == 0) break;
       const double factor = repair + 1 < kOuterFoldRepairs ? 0.5 : 0.0;
@@ -926,6 +932,14 @@ QuadricAttempt attempt_quadric(const OptimizeOptions& options, const Frame& f, c
 // it when it wants the quadric void, and otherwise its result is dropped: the same bits either way.
 using QuadricAhead = std::future<QuadricAttempt>;
 
+// The quadric void may be written: a goal that lowers the centre of mass, no outer surface or
+// fixed region, and a programme that found its optimum.
+bool quadric_possible(const OptimizeOptions& options, const ReachabilitySummary& reach) {
+  return (options.cavity == CavityMode::automatic || options.cavity == CavityMode::quadric) &&
+         lowers_centre(options.goal) && !options.outer && options.fix.kind == FixRegion::Kind::none && reach.programme &&
+         reach.programme->reachable && reach.programme->optimum;
+}
+
 QuadricAttempt take_quadric(const OptimizeOptions& options, const Frame& f, const Band& b, const OffsetSolve& solve,
                             const Reachability& programme, QuadricAhead* ahead) {
   if (ahead && ahead->valid()) return ahead->get();
@@ -1313,38 +1327,65 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   say("skeleton: contracting " + std::to_string(n) + " vertices" + (options.threads > 1 ? ", alongside the reachability" : ""));
   std::future<BandOutcome> band_future = start_task(options.threads > 1, compute_band);
 
-  // Reachability, on this thread while the basis and the skeleton are computed on others. A goal
-  // no void reaches stops here (the work in flight is waited for, at most its own time).
+  // Reachability. With one thread it comes first, so that a goal no void reaches costs nothing
+  // else. With two or more it has a task of its own, beside the skeleton and the basis and then
+  // the solve: on `stand-filled --outer` the programme outlasts the other two by about 0.2 s, an
+  // idle core the solve now fills. The solve does not read the programme, so its bits are the
+  // same either way; when the goal is out of reach the solve is stopped (AlOptions::stop) and the
+  // goal refused as before, with the same precedence over the skeleton's and the basis' errors.
   say("reachability: can any void reach the goal?");
-  if (tick) tick("reachability", -1.0);
-  stage_start = Clock::now();
   const ReachabilityStageInput reach_input{&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
                                            options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
                                            options.threads, options.flatten, input_bvh.get()};
-  ReachabilitySummary reach = reachability_stage(reach_input);
-  timings.reach = seconds_since(stage_start);
-  if (tick) tick("reachability", 1.0);
-  if (reach.decided && !reach.reachable) return refuse_unreachable(input, options, f, std::move(reach), timings, total_start);
-
-  // The quadric void reads the input, the frame and the programme alone: on inputs large enough
-  // for the coarse copy, with two or more threads, it is started now, beside the skeleton and the
-  // basis, where the offset void's stages would otherwise run before it (make_cavity takes it if it
-  // wants it). One thread: the copy, the skeleton
-  // and the basis keep the others, and the result is the same on any number.
-  QuadricAhead quadric_ahead;
-  const bool quadric_possible = (options.cavity == CavityMode::automatic || options.cavity == CavityMode::quadric) &&
-                                lowers_centre(options.goal) && !options.outer && options.fix.kind == FixRegion::Kind::none &&
-                                reach.programme && reach.programme->reachable && reach.programme->optimum;
-  if (work_ahead(options, n) && quadric_possible)
-    quadric_ahead = start_task(true, [&input, &options, &f, input_bvh, programme = reach.programme]() {
-      return attempt_quadric(options, f, input, *input_bvh, *programme, 1);
-    });
+  std::atomic<bool> out_of_reach{false};
+  struct ReachOutcome {
+    ReachabilitySummary summary;
+    double seconds = 0.0;
+    QuadricAhead quadric_ahead;
+  };
+  const auto compute_reach = [&reach_input, &options, &f, &input, input_bvh, &out_of_reach, &tick, n]() {
+    ReachOutcome outcome;
+    if (tick) tick("reachability", -1.0);
+    const auto start = Clock::now();
+    outcome.summary = reachability_stage(reach_input);
+    outcome.seconds = seconds_since(start);
+    if (tick) tick("reachability", 1.0);
+    const ReachabilitySummary& reach = outcome.summary;
+    if (reach.decided && !reach.reachable) {
+      out_of_reach = true;
+      return outcome;
+    }
+    // The quadric void reads the input, the frame and the programme alone: on inputs large enough
+    // for the coarse copy, with two or more threads, it is started now, beside the skeleton, the
+    // basis and the solve, where the offset void's stages would otherwise run before it
+    // (make_cavity takes it if it wants it). One thread: the result is the same on any number.
+    if (work_ahead(options, n) && quadric_possible(options, reach))
+      outcome.quadric_ahead = start_task(true, [&input, &options, &f, input_bvh, programme = reach.programme]() {
+        return attempt_quadric(options, f, input, *input_bvh, *programme, 1);
+      });
+    return outcome;
+  };
+  std::future<ReachOutcome> reach_future = start_task(options.threads > 1, compute_reach);
+  std::optional<ReachOutcome> reached;
+  // The programme's outcome, waited for once; true when the goal is out of reach.
+  const auto refused = [&reach_future, &reached]() {
+    if (!reached) reached = reach_future.get();
+    return reached->summary.decided && !reached->summary.reachable;
+  };
+  const auto refuse = [&]() {
+    timings.reach = reached->seconds;
+    return refuse_unreachable(input, options, f, std::move(reached->summary), timings, total_start);
+  };
+  if (options.threads <= 1 && refused()) return refuse();
 
   BandOutcome band_outcome = band_future.get();
   const std::optional<CoarseCopy>& coarse = coarse_future.get().copy;
   const Mesh& basis_mesh = coarse_future.get().mesh;
   if (coarse) timings.coarse = coarse_future.get().seconds;
-  if (!band_outcome.problem.empty()) return failure(OptimizeStatus::bad_input, band_outcome.problem);
+  if (!band_outcome.problem.empty()) {
+    if (refused()) return refuse();
+    return failure(OptimizeStatus::bad_input, band_outcome.problem);
+  }
   Band b = std::move(band_outcome.band);
   timings.skeleton = band_outcome.seconds;
 
@@ -1361,8 +1402,10 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     const LanczosResult& harmonics = outcome.harmonics;
     basis_summary.status = harmonics.status;
     basis_summary.largest_eigenvalue = harmonics.eigenvalues.size() ? harmonics.eigenvalues(harmonics.eigenvalues.size() - 1) : 0.0;
-    if (harmonics.eigenvectors.cols() != k)
+    if (harmonics.eigenvectors.cols() != k) {
+      if (refused()) return refuse();
       return failure(OptimizeStatus::bad_input, "the eigensolver returned no basis: " + harmonics.message);
+    }
     if (coarse) coarse_basis = harmonics.eigenvectors;
     basis = coarse ? carry_to_input(*coarse, harmonics.eigenvectors) : harmonics.eigenvectors;
   }
@@ -1376,16 +1419,20 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   reduced_options.bounds = options.bounds;
   reduced_options.start_fraction = options.start_fraction;
   reduced_options.threads = options.threads;
-  if (const std::string problem_text = reduced_options.check(); !problem_text.empty())
+  if (const std::string problem_text = reduced_options.check(); !problem_text.empty()) {
+    if (refused()) return refuse();
     return failure(OptimizeStatus::bad_input, problem_text);
-  OffsetSolve solve(input, options, f, b, basis, reduced_options, say);
+  }
+  OptimizeOptions solve_options = options;
+  solve_options.solver.stop = &out_of_reach;
+  OffsetSolve solve(input, solve_options, f, b, basis, reduced_options, say);
   if (tick) tick("solve", 0.0);
   // Only where an evaluation on the copy is much cheaper: on the 113k bottle the copy's 163
   // evaluations cost about the 34 they saved on the input (104 -> 70); at 10^6 they cost 1/33.
   if (coarse && coarse_basis.size() && n >= 8 * static_cast<Eigen::Index>(coarse->decimated.input_vertex.size())) {
     int coarse_evaluations = 0;
     if (std::optional<AlResult> first =
-            coarse_solve(options, f, b, *coarse, basis_mesh, coarse_basis, reduced_options, coarse_evaluations)) {
+            coarse_solve(solve_options, f, b, *coarse, basis_mesh, coarse_basis, reduced_options, coarse_evaluations)) {
       say("solve on the coarse copy: " + std::to_string(coarse_evaluations) + " evaluations");
       solve.warm_start(std::move(*first));
     }
@@ -1393,6 +1440,10 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   solve.run();
   timings.solve = seconds_since(stage_start);
   if (tick) tick("solve", 1.0);
+  if (refused()) return refuse();
+  timings.reach = reached->seconds;
+  ReachabilitySummary reach = std::move(reached->summary);
+  QuadricAhead& quadric_ahead = reached->quadric_ahead;
 
   Cavity cavity = make_cavity(options, f, b, solve, reach, timings, say, quadric_ahead.valid() ? &quadric_ahead : nullptr);
   std::optional<OpeningsSummary> openings;

@@ -35,6 +35,49 @@ Measures measure(const Vertices& X, const Faces& F) {
   return m;
 }
 
+// square's values ← those of L L, for a `square` that already holds the product's pattern (an
+// earlier L L of the same mesh: the pattern never changes). Bit for bit the values of Eigen's
+// `L * L`, whose symbolic work and two sorting transposes it saves: for each column j, entry
+// (i, j) gets its terms over the entries k of column j of the right factor in storage order
+// (column k of the left factor visited in its own order), the first term assigned. Returns false,
+// leaving `square` in an unspecified state, when the patterns disagree.
+bool square_into(const Eigen::SparseMatrix<double>& L, Eigen::SparseMatrix<double>& square,
+                 std::vector<double>& sums, std::vector<char>& touched) {
+  const Eigen::Index n = L.outerSize();
+  if (!L.isCompressed() || !square.isCompressed() || square.outerSize() != n || square.innerSize() != n) return false;
+  sums.resize(static_cast<std::size_t>(n));
+  touched.assign(static_cast<std::size_t>(n), 0);
+  const int* outer = L.outerIndexPtr();
+  const int* inner = L.innerIndexPtr();
+  const double* value = L.valuePtr();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    int count = 0;
+    for (int right = outer[j]; right < outer[j + 1]; ++right) {
+      const double y = value[right];
+      const int k = inner[right];
+      for (int left = outer[k]; left < outer[k + 1]; ++left) {
+        const std::size_t i = static_cast<std::size_t>(inner[left]);
+        if (!touched[i]) {
+          touched[i] = 1;
+          sums[i] = value[left] * y;
+          ++count;
+        } else {
+          sums[i] += value[left] * y;
+        }
+      }
+    }
+    const int begin = square.outerIndexPtr()[j], end = square.outerIndexPtr()[j + 1];
+    if (end - begin != count) return false;
+    for (int p = begin; p < end; ++p) {
+      const std::size_t i = static_cast<std::size_t>(square.innerIndexPtr()[p]);
+      if (!touched[i]) return false;
+      touched[i] = 0;
+      square.valuePtr()[p] = sums[i];
+    }
+  }
+  return true;
+}
+
 // Contracts the decimated copy and carries its positions back to every input vertex.
 ContractionResult coarse_to_fine(const Vertices& V, const Faces& F, const ContractionOptions& options) {
   const CoarseCopy copy = coarse_copy(V, F, options.coarse_vertices, options.threads);
@@ -135,11 +178,14 @@ ContractionResult laplacian_contraction(const Vertices& V, const Faces& F, const
   SupernodalCholesky solver;
   solver.set_thread_count(options.threads);
   bool analysed = false;
+  Eigen::SparseMatrix<double> A;
+  std::vector<double> square_sums;
+  std::vector<char> square_touched;
   result.status = ContractionStatus::step_cap;
   for (int step = 1; step <= options.max_steps; ++step) {
     const Eigen::SparseMatrix<double> L = cotan_laplacian(X, relabelled, cotan_options);
     // L is symmetric, so L^T L = L L. Its diagonal sum_j L_ij^2 is structurally present.
-    Eigen::SparseMatrix<double> A = L * L;
+    if (step == 1 || !square_into(L, A, square_sums, square_touched)) A = L * L;
     A *= laplacian_weight * laplacian_weight;
     const Eigen::VectorXd attraction_squared = attraction.array().square();
     A.diagonal() += attraction_squared;

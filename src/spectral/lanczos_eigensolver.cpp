@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <thread>
 #include <vector>
 
+#include "spectral/approximate_eigenpairs.h"
 #include "spectral/panel_matrix.h"
 #include "spectral/shift_invert_operator.h"
 #include "util/parallel.h"
@@ -46,6 +48,8 @@ using Clock = std::chrono::steady_clock;
 constexpr double kCorrectionThreshold = 1e-12;
 // The exact residual estimate is computed once every wanted ‖Op y - θ y‖ / θ is below this.
 constexpr double kEstimateGate = 1e-2;
+// Ritz values closer than this (relative to the largest) are screened as one group.
+constexpr double kGroupGap = 1e-6;
 
 // ‖L‖∞ = largest absolute row sum (= column sum, L symmetric); bounds ‖L‖₂ from above.
 double infinity_norm(const Eigen::SparseMatrix<double>& L) {
@@ -224,7 +228,10 @@ class BlockKrylovSchur {
   void start();
   void expand();
   void rayleigh_ritz();
+  int required_pairs(const Eigen::VectorXd& theta) const;
   bool converged_estimate();
+  bool proven_unconverged();
+  bool restart_due() const;
   void restart();
   void ensure_capacity(int columns);
   void update_residual_gram();
@@ -267,6 +274,8 @@ class BlockKrylovSchur {
   Eigen::MatrixXd coupling_;
   Eigen::VectorXd rho_;
   int required_ = 0;  // pairs that must converge (k extended to the end of its cluster)
+  bool ritz_current_ = false;  // theta_, Z_, coupling_, rho_ belong to the current H
+  bool screening_ = true;      // proven_unconverged is still worth trying
 
   int iterations_ = 0, restarts_ = 0, second_passes_ = 0, corrections_ = 0;
   long applications_ = 0;
@@ -503,6 +512,7 @@ void BlockKrylovSchur::expand() {
   coupled_from_ = j;
   j_ = j + b;
   gram_current_ = false;
+  ritz_current_ = false;
 }
 
 void BlockKrylovSchur::rayleigh_ritz() {
@@ -518,16 +528,84 @@ void BlockKrylovSchur::rayleigh_ritz() {
   coupling_ = C_.leftCols(j) * Z_;
   rho_.resize(j);
   for (int i = 0; i < j; ++i) rho_(i) = coupling_.col(i).norm();
+  ritz_current_ = true;
 }
 
-bool BlockKrylovSchur::converged_estimate() {
-  const int j = j_;
+// k extended to the end of its cluster (θ descending).
+int BlockKrylovSchur::required_pairs(const Eigen::VectorXd& theta) const {
+  const int j = static_cast<int>(theta.size());
   const double shift = settings_.shift;
-  auto lambda = [&](int i) { return 1.0 / theta_(i) - shift; };
+  auto lambda = [&](int i) { return 1.0 / theta(i) - shift; };
   int required = std::min(k_, j);
   while (required < j && std::abs(lambda(required) - lambda(required - 1)) <=
                              settings_.cluster_tolerance * (std::abs(lambda(required - 1)) + shift))
     ++required;
+  return required;
+}
+
+// Whether the next pass of run() restarts (the basis cannot grow past the step after this one).
+bool BlockKrylovSchur::restart_due() const {
+  int limit = m_;
+  if (required_ + 1 + 2 * b_ > limit) limit = ((required_ + 1 + 2 * b_ + b_ - 1) / b_) * b_;
+  return j_ + b_ > limit;
+}
+
+// True when this step provably fails converged_estimate, shown from the Ritz values (bit for bit
+// those of rayleigh_ritz) and approximate Ritz vectors with bounded error
+// (spectral/approximate_eigenpairs.h): then the full decomposition (about four times the work
+// at these sizes) is skipped, with the same state for everything that follows (required_,
+// largest_theta_, the residual Gram matrix, which depends on R alone). Returns false, leaving
+// the decision to the full path, when a restart is due (it needs Z) or nothing can be proven.
+// Pairs are tried from the last wanted back: the slowest to converge fail first.
+bool BlockKrylovSchur::proven_unconverged() {
+  const int j = j_;
+  const ApproximateEigenpairs ritz(H_.topLeftCorner(j, j));
+  if (!ritz.ok()) return false;
+  const Eigen::VectorXd& theta = ritz.values();
+  largest_theta_ = std::max(largest_theta_, theta(0));
+  required_ = required_pairs(theta);
+  if (restart_due()) return false;
+  if (required_ >= j) return true;
+  const double eps = std::numeric_limits<double>::epsilon();
+  const auto C = C_.leftCols(j);
+  const double C_norm = C.norm();
+  const double rounding = 8.0 * static_cast<double>(j) * eps;
+  const double tol = settings_.tolerance * internal_scale_;
+  const double denominator = settings_.norm_L * smallest_phi_norm_;
+  // Groups of (nearly) equal values, the last wanted first. A group's test reads sums over its
+  // members, which do not depend on the basis chosen inside its subspace: when the sum of
+  // squares exceeds the sum of the squared limits, some member exceeds its own.
+  const double group_gap = kGroupGap * std::abs(theta(0));
+  Eigen::MatrixXd V;
+  for (int end = required_; end > 0;) {
+    int begin = end - 1;
+    while (begin > 0 && theta(begin - 1) - theta(begin) <= group_gap) --begin;
+    const bool straddles = end == required_ && theta(required_ - 1) - theta(required_) <= group_gap;
+    const int count = end - begin;
+    const int first = begin;
+    end = begin;
+    if (straddles) continue;
+    const double distance = ritz.subspace(first, count, V);
+    if (!std::isfinite(distance)) continue;
+    const Eigen::MatrixXd coupling = C * V;
+    const double root_count = std::sqrt(static_cast<double>(count));
+    const double rho = coupling.norm(), rho_error = C_norm * root_count * (distance + rounding);
+    const double gate_limit = kEstimateGate * theta.segment(first, count).norm();
+    if (rho - rho_error > gate_limit * (1.0 + 1e-9)) return true;
+    // The gate may pass or not: a failed estimate means not converged either way.
+    if (!gram_current_) update_residual_gram();
+    const double squared = (coupling.transpose() * residual_gram_ * coupling).trace();
+    const double estimate = std::sqrt(std::max(squared, 0.0));
+    const double error = std::sqrt(residual_gram_.norm()) * (rho_error + std::sqrt(rounding) * rho);
+    if (estimate - error > tol * denominator * theta.segment(first, count).cwiseAbs().norm() * (1.0 + 1e-6))
+      return true;
+  }
+  return false;
+}
+
+bool BlockKrylovSchur::converged_estimate() {
+  const int j = j_;
+  const int required = required_pairs(theta_);
   required_ = required;
   if (required >= j) return false;  // the pair past the cluster is not in the basis yet
   // Cheap gate first: the residual in the shifted-inverted problem, relative to θ, is far above
@@ -570,6 +648,7 @@ void BlockKrylovSchur::restart() {
   previous_ = PanelMatrix();
   j_ = keep;
   ++restarts_;
+  ritz_current_ = false;
 }
 
 bool BlockKrylovSchur::run() {
@@ -585,13 +664,17 @@ bool BlockKrylovSchur::run() {
       restart();
     }
     if (applications_ + b_ > settings_.max_applications) {
-      if (Z_.rows() != j_) rayleigh_ritz();  // the returned vectors come from the current basis
+      if (!ritz_current_) rayleigh_ritz();  // the returned vectors come from the current basis
       return false;
     }
     expand();
     if (settings_.on_progress)
       settings_.on_progress(std::min(0.99, static_cast<double>(applications_) / static_cast<double>(settings_.basis)));
     if (j_ > k_) {
+      // Once a screen fails to prove anything, the iteration is near its end (the estimates are
+      // at the level of the vectors' rounding): the remaining steps go straight to the full path.
+      if (screening_ && proven_unconverged()) continue;
+      screening_ = false;
       rayleigh_ritz();
       if (converged_estimate()) return true;
     }

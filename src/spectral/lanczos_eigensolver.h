@@ -20,6 +20,10 @@
 //    that cluster are converged, so a cluster straddling k is complete and its end is known.
 //    Then the true residuals are computed; should one miss the tolerance the internal tolerance
 //    is tightened and the iteration continues.
+//    A step's full Rayleigh–Ritz (every Ritz vector, by Eigen's dense solver) runs only where the
+//    test might pass or a restart needs the vectors; elsewhere the step is shown unconverged from
+//    the same Ritz values (bit for bit) and a few approximate Ritz vectors with proven error
+//    bounds (spectral/approximate_eigenpairs.h), so the results are the same bits either way.
 //  - Small problems (a Krylov basis would be a large part of #V) are solved densely with Eigen's
 //    SelfAdjointEigenSolver on M^(-1/2) L M^(-1/2) instead; the result is reported the same way.
 //

@@ -3,6 +3,8 @@
 // Infeasible at the least-violation point, repeated runs with identical iterates, bad input.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -419,5 +421,56 @@ TEST_CASE("augmented-lagrangian: an exhausted evaluation budget ends max_evaluat
     CHECK(r.evaluations <= budget);
     // Each budget runs out inside the first subproblem: the solve ends with it.
     CHECK(r.outer_iterations == 1);
+  }
+}
+
+TEST_CASE("augmented-lagrangian: a stop flag ends the solve within the subproblem in flight") {
+  // Rosenbrock in 10 variables on the sphere |x|² = 4, as above; the flag is raised from inside
+  // the objective after `after` evaluations (in use, by another thread). The solve must end
+  // `stopped` with far fewer evaluations than the whole solve, claim nothing (status), and have
+  // followed the same iterates as the unstopped solve up to there.
+  ConstrainedProblem p;
+  p.num_variables = 10;
+  std::vector<double> trace;
+  std::atomic<bool>* raise = nullptr;
+  int after = 0;
+  p.objective = [&trace, &raise, &after](const VectorXd& x, VectorXd& g) {
+    trace.push_back(x(0));
+    if (raise && static_cast<int>(trace.size()) == after) raise->store(true);
+    double f = 0.0;
+    g.setZero();
+    for (int i = 0; i + 1 < 10; ++i) {
+      const double a = x(i + 1) - x(i) * x(i), b = 1.0 - x(i);
+      f += 100.0 * a * a + b * b;
+      g(i) += -400.0 * a * x(i) - 2.0 * b;
+      g(i + 1) += 200.0 * a;
+    }
+    return f;
+  };
+  p.num_equality = 1;
+  p.equality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
+    c(0) = x.squaredNorm() - 4.0;
+    j.row(0) = 2.0 * x.transpose();
+  };
+  const AlResult full = augmented_lagrangian_minimize(p, VectorXd::Constant(10, -1.0));
+  REQUIRE(full.status == AlStatus::converged);
+  const std::vector<double> full_trace = trace;
+  for (int stop_after : {2, 30, 90}) {
+    CAPTURE(stop_after);
+    std::atomic<bool> stop{false};
+    raise = &stop;
+    after = stop_after;
+    trace.clear();
+    AlOptions params;
+    params.stop = &stop;
+    const AlResult r = augmented_lagrangian_minimize(p, VectorXd::Constant(10, -1.0), params);
+    MESSAGE(describe(r));
+    CHECK(r.status == AlStatus::stopped);
+    CHECK(std::string(to_string(r.status)) == "stopped");
+    CHECK(r.evaluations < full.evaluations);
+    // At most the rest of one line search, the subproblem's final evaluation and the stop's own.
+    CHECK(r.evaluations <= stop_after + params.inner.max_line_search_evaluations + 2);
+    const std::size_t common = std::min(trace.size(), full_trace.size()) - 1;  // the stop's own evaluation may differ
+    CHECK(std::equal(trace.begin(), trace.begin() + static_cast<std::ptrdiff_t>(common), full_trace.begin()));
   }
 }

@@ -4,8 +4,10 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -364,4 +366,46 @@ TEST_CASE("lbfgsb: identical iterates on repeated runs") {
   CHECK(t1 == t2);
   CHECK(a.x == b.x);
   CHECK(a.iterations == b.iterations);
+}
+
+TEST_CASE("lbfgsb: a stop flag ends the run before its next iteration, with the lowest iterate") {
+  // The flag is raised from inside the objective after `after` evaluations (in use it is raised by
+  // another thread); the run must end `stopped` within that iteration's line search, having made
+  // exactly the steps the unstopped run makes up to there.
+  const int n = 10;
+  std::vector<double> full_trace;
+  LbfgsbOptions params;
+  params.function_tolerance = 0.0;
+  const auto traced = [](std::vector<double>& trace, std::atomic<bool>* raise, int after) {
+    return [&trace, raise, after](const VectorXd& x, VectorXd& g) {
+      trace.push_back(x(0));
+      if (raise && static_cast<int>(trace.size()) == after) raise->store(true);
+      return chained_rosenbrock(x, g);
+    };
+  };
+  const LbfgsbResult full = lbfgsb_minimize(traced(full_trace, nullptr, 0), rosenbrock_start(n), VectorXd(), VectorXd(), params);
+  REQUIRE(full.status == LbfgsbStatus::converged);
+  for (int after : {1, 5, 20}) {
+    CAPTURE(after);
+    std::atomic<bool> stop{false};
+    std::vector<double> trace;
+    params.stop = &stop;
+    const LbfgsbResult r = lbfgsb_minimize(traced(trace, &stop, after), rosenbrock_start(n), VectorXd(), VectorXd(), params);
+    CHECK(r.status == LbfgsbStatus::stopped);
+    CHECK(std::string(to_string(r.status)) == "stopped");
+    CHECK(r.evaluations < full.evaluations);
+    CHECK(r.evaluations <= after + params.max_line_search_evaluations);
+    REQUIRE(trace.size() <= full_trace.size());
+    CHECK(std::equal(trace.begin(), trace.end(), full_trace.begin()));
+    VectorXd g(n);
+    VectorXd start_gradient(n);
+    CHECK(r.f <= chained_rosenbrock(rosenbrock_start(n), start_gradient));
+    CHECK(r.f == chained_rosenbrock(r.x, g));
+  }
+  std::atomic<bool> raised{true};
+  params.stop = &raised;
+  const LbfgsbResult at_once = lbfgsb_minimize(chained_rosenbrock, rosenbrock_start(n), VectorXd(), VectorXd(), params);
+  CHECK(at_once.status == LbfgsbStatus::stopped);
+  CHECK(at_once.iterations == 0);
+  CHECK(at_once.x == rosenbrock_start(n));
 }

@@ -69,6 +69,19 @@ TEST_CASE("reachability stage: a leaning cylinder is refused before the solve, w
   const OptimizeResult told = optimize_offsets(mesh, options);
   REQUIRE(told.status == OptimizeStatus::goal_not_met);
   CHECK(told.before.self_intersecting_pairs == 7);
+
+  // With two threads the programme runs beside the solve, which it stops: the refusal is the same.
+  options.input_self_intersections.reset();
+  for (int threads : {1, 2}) {
+    CAPTURE(threads);
+    options.threads = threads;
+    const OptimizeResult again = optimize_offsets(mesh, options);
+    REQUIRE(again.status == OptimizeStatus::goal_not_met);
+    REQUIRE(again.reachability);
+    CHECK(again.message == r.message);
+    CHECK(again.reachability->best_margin_upper == r.reachability->best_margin_upper);
+    CHECK(again.printable.V == r.printable.V);
+  }
 }
 
 TEST_CASE("reachability stage: an upright cylinder is reachable, its lowest centre of mass between closed forms") {
