@@ -48,8 +48,8 @@ std::vector<std::array<int, 3>> candidate_offsets() {
 class Repair {
  public:
   // `reference` pairs: those the unrounded mesh already has (sorted); they are not new.
-  Repair(const Mesh& original, Mesh& rounded, std::vector<char> frozen, std::vector<Pair> reference)
-      : original_(original), mesh_(rounded), frozen_(std::move(frozen)), reference_(std::move(reference)) {
+  Repair(const Mesh& original, Mesh& rounded, std::vector<char> frozen, std::vector<Pair> reference, int threads)
+      : original_(original), mesh_(rounded), frozen_(std::move(frozen)), reference_(std::move(reference)), threads_(threads) {
     const Eigen::Index nv = mesh_.V.rows(), nf = mesh_.F.rows();
     first_.assign(static_cast<std::size_t>(nv) + 1, 0);
     for (Eigen::Index f = 0; f < nf; ++f)
@@ -71,7 +71,7 @@ class Repair {
   // `tree` the tree they were searched in.
   long long new_defects(std::vector<int>* faces, IntersectingFaces& found, std::shared_ptr<const TriangleBvh>& tree) const {
     tree = std::make_shared<const TriangleBvh>(mesh_.V, mesh_.F);
-    found = self_intersections(*tree, kPairCap);
+    found = self_intersections_in_parts(*tree, kPairCap, threads_);
     long long count = 0;
     for (const Pair& p : found.pairs)
       if (!std::binary_search(reference_.begin(), reference_.end(), p)) {
@@ -175,6 +175,7 @@ class Repair {
   std::vector<int> first_, incident_;
   std::vector<char> was_collinear_;
   double slack_ = 0.0;
+  int threads_ = 1;
   TriangleBvh bvh_;
 };
 
@@ -189,14 +190,14 @@ Mesh nearest_floats(const Mesh& mesh) {
 // and in `found` the pairs of the last search, which was of `rounded` as it is returned (a pass
 // that moves nothing ends the repair before another search).
 long long repair(const Mesh& mesh, Mesh& rounded, const std::vector<char>& frozen, bool has_reference, int& rounds,
-                 IntersectingFaces& found, std::shared_ptr<const TriangleBvh>& tree) {
+                 IntersectingFaces& found, std::shared_ptr<const TriangleBvh>& tree, int threads) {
   std::vector<Pair> reference;
-  Repair probe(mesh, rounded, frozen, {});
+  Repair probe(mesh, rounded, frozen, {}, threads);
   std::vector<int> faces;
   long long left = probe.new_defects(&faces, found, tree);
   if (left == 0) return 0;
-  if (has_reference) reference = self_intersections(TriangleBvh(mesh.V, mesh.F), kPairCap).pairs;
-  Repair fix(mesh, rounded, frozen, reference);
+  if (has_reference) reference = self_intersections_in_parts(TriangleBvh(mesh.V, mesh.F), kPairCap, threads).pairs;
+  Repair fix(mesh, rounded, frozen, reference, threads);
   faces.clear();
   left = fix.new_defects(&faces, found, tree);
   for (int round = 0; round < kRoundingRepairRounds && left > 0; ++round) {
@@ -211,7 +212,7 @@ long long repair(const Mesh& mesh, Mesh& rounded, const std::vector<char>& froze
 }  // namespace
 
 RoundedForOutput round_for_output(const Mesh& outer, const Mesh& inner, const std::vector<char>& shared,
-                                  StoredPrecision precision) {
+                                  StoredPrecision precision, int threads) {
   RoundedForOutput out;
   if (precision == StoredPrecision::exact) {
     out.outer = outer;
@@ -221,7 +222,7 @@ RoundedForOutput round_for_output(const Mesh& outer, const Mesh& inner, const st
   out.outer = nearest_floats(outer);
   IntersectingFaces outer_found;
   std::shared_ptr<const TriangleBvh> outer_tree;
-  out.outer_new_pairs = repair(outer, out.outer, {}, true, out.repair_rounds, outer_found, outer_tree);
+  out.outer_new_pairs = repair(outer, out.outer, {}, true, out.repair_rounds, outer_found, outer_tree, threads);
   out.inner = nearest_floats(inner);
   std::vector<char> frozen;
   if (!shared.empty() && inner.V.rows() == outer.V.rows()) {
@@ -230,7 +231,7 @@ RoundedForOutput round_for_output(const Mesh& outer, const Mesh& inner, const st
       if (shared[static_cast<std::size_t>(i)]) out.inner.V.row(i) = out.outer.V.row(i);
   }
   // New pairs only: pairs the unrounded cavity has already are refused by the verification.
-  out.inner_new_pairs = repair(inner, out.inner, frozen, true, out.repair_rounds, out.inner_pairs, out.inner_tree);
+  out.inner_new_pairs = repair(inner, out.inner, frozen, true, out.repair_rounds, out.inner_pairs, out.inner_tree, threads);
   out.inner_searched = true;
   for (const auto* pair : {&outer, &inner}) {
     const Mesh& rounded = pair == &outer ? out.outer : out.inner;

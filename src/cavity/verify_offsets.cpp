@@ -329,7 +329,7 @@ Verification verify_offsets(const VerifyInput& in) {
 VerifiedCavity verify_written_cavity(VerifyInput input, const Mesh& outer, const Mesh& cavity, int faces_below_wall,
                                     StoredPrecision precision) {
   VerifiedCavity out;
-  out.rounded = round_for_output(outer, cavity, {}, precision);
+  out.rounded = round_for_output(outer, cavity, {}, precision, input.threads);
   input.outer = &out.rounded.outer;
   input.inner = &out.rounded.inner;
   input.rounding = &out.rounded;

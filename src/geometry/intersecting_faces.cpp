@@ -7,6 +7,7 @@
 
 #include "geometry/exact_triangle_intersection.h"
 #include "geometry/faces_intersect_exact.h"
+#include "util/parallel.h"
 
 namespace offsetopt {
 
@@ -95,6 +96,13 @@ IntersectingFaces merge_intersections(const IntersectingFaces& a, const Intersec
     out.truncated = true;
   }
   return out;
+}
+
+IntersectingFaces self_intersections_in_parts(const TriangleBvh& bvh, std::size_t max_pairs, int threads) {
+  IntersectingFaces parts[2];
+  WorkerPool pool(std::min(std::max(threads, 1), 2));
+  pool.run_parts(2, [&](int part) { parts[part] = self_intersections_part(bvh, part, max_pairs); });
+  return merge_intersections(parts[0], parts[1], max_pairs);
 }
 
 IntersectingFaces intersecting_faces(const TriangleBvh& a, const TriangleBvh& b, std::size_t max_pairs) {
