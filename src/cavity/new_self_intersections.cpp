@@ -10,7 +10,9 @@ namespace offsetopt {
 NewSelfIntersections new_self_intersections(const Mesh& surface, const std::vector<std::pair<int, int>>& own_pairs,
                                             std::size_t cap, int threads) {
   NewSelfIntersections out;
-  const TriangleBvh bvh(surface.V, surface.F);
+  BvhOptions options;
+  options.threads = threads;
+  const TriangleBvh bvh(surface.V, surface.F, options);
   // The cap applies to new pairs: the source's own may be many (a scan with 848 crossings), so
   // the search may find up to their number more before it stops.
   const std::size_t search_cap = cap + own_pairs.size();

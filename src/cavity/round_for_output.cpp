@@ -70,7 +70,7 @@ class Repair {
   // New defects (pairs and collinear faces) of the mesh as it is now; `found` gets its pairs and
   // `tree` the tree they were searched in.
   long long new_defects(std::vector<int>* faces, IntersectingFaces& found, std::shared_ptr<const TriangleBvh>& tree) const {
-    tree = std::make_shared<const TriangleBvh>(mesh_.V, mesh_.F);
+    tree = std::make_shared<const TriangleBvh>(mesh_.V, mesh_.F, tree_options());
     found = self_intersections_in_parts(*tree, kPairCap, threads_);
     long long count = 0;
     for (const Pair& p : found.pairs)
@@ -94,7 +94,7 @@ class Repair {
       for (int c = 0; c < 3; ++c) vertices.push_back(mesh_.F(f, c));
     std::sort(vertices.begin(), vertices.end());
     vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-    bvh_ = TriangleBvh(mesh_.V, mesh_.F);
+    bvh_ = TriangleBvh(mesh_.V, mesh_.F, tree_options());
     static const std::vector<std::array<int, 3>> offsets = candidate_offsets();
     bool moved = false;
     for (const int v : vertices) {
@@ -120,6 +120,12 @@ class Repair {
   }
 
  private:
+  BvhOptions tree_options() const {
+    BvhOptions options;
+    options.threads = threads_;
+    return options;
+  }
+
   Eigen::Vector3d corner(int f, int k, int v, const Eigen::Vector3d& x) const {
     const int u = mesh_.F(f, k);
     return u == v ? x : Eigen::Vector3d(mesh_.V.row(u).transpose());
@@ -196,7 +202,11 @@ long long repair(const Mesh& mesh, Mesh& rounded, const std::vector<char>& froze
   std::vector<int> faces;
   long long left = probe.new_defects(&faces, found, tree);
   if (left == 0) return 0;
-  if (has_reference) reference = self_intersections_in_parts(TriangleBvh(mesh.V, mesh.F), kPairCap, threads).pairs;
+  if (has_reference) {
+    BvhOptions options;
+    options.threads = threads;
+    reference = self_intersections_in_parts(TriangleBvh(mesh.V, mesh.F, options), kPairCap, threads).pairs;
+  }
   Repair fix(mesh, rounded, frozen, reference, threads);
   faces.clear();
   left = fix.new_defects(&faces, found, tree);
@@ -221,8 +231,7 @@ RoundedForOutput round_for_output(const Mesh& outer, const Mesh& inner, const st
   }
   out.outer = nearest_floats(outer);
   IntersectingFaces outer_found;
-  std::shared_ptr<const TriangleBvh> outer_tree;
-  out.outer_new_pairs = repair(outer, out.outer, {}, true, out.repair_rounds, outer_found, outer_tree, threads);
+  out.outer_new_pairs = repair(outer, out.outer, {}, true, out.repair_rounds, outer_found, out.outer_tree, threads);
   out.inner = nearest_floats(inner);
   std::vector<char> frozen;
   if (!shared.empty() && inner.V.rows() == outer.V.rows()) {

@@ -40,7 +40,8 @@ struct RoundedForOutput {
   // self_intersections_in_parts). Not searched with StoredPrecision::exact.
   bool inner_searched = false;
   IntersectingFaces inner_pairs;
-  std::shared_ptr<const TriangleBvh> inner_tree;  // the tree of that search (default options)
+  std::shared_ptr<const TriangleBvh> inner_tree;  // the tree of that search (default leaf size)
+  std::shared_ptr<const TriangleBvh> outer_tree;  // the tree of `outer` as it is now (default leaf size)
 };
 
 // `shared` (empty, or one flag per vertex when outer and inner share connectivity) marks inner

@@ -86,7 +86,8 @@ long long unmatched_edges(const Mesh& mesh) {
 
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
                                     const std::vector<char>& left_solid, double thin_below, int threads,
-                                    const IntersectingFaces* inner_self, const TriangleBvh* inner_tree) {
+                                    const IntersectingFaces* inner_self, const TriangleBvh* inner_tree,
+                                    const TriangleBvh* outer_tree) {
   // The two trees, then the two intersection searches, on two threads when there are: the same
   // result either way.
   WorkerPool pool(std::min(std::max(threads, 1), 2));
@@ -100,13 +101,14 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   }
   const Mesh& inner_free = any_fixed ? inner_kept : inner;
   const Mesh& outer_free = any_fixed ? outer_kept : outer;
-  TriangleBvh inner_built, outer_bvh;
-  const bool have_tree = inner_tree && !any_fixed;
+  TriangleBvh inner_built, outer_built;
+  const bool have_tree = inner_tree && !any_fixed, have_outer_tree = outer_tree && !any_fixed;
   pool.run_parts(2, [&](int part) {
     if (part == 0 && !have_tree) inner_built = TriangleBvh(inner_free.V, inner_free.F);
-    if (part == 1) outer_bvh = TriangleBvh(outer_free.V, outer_free.F);
+    if (part == 1 && !have_outer_tree) outer_built = TriangleBvh(outer_free.V, outer_free.F);
   });
   const TriangleBvh& inner_bvh = have_tree ? *inner_tree : inner_built;
+  const TriangleBvh& outer_bvh = have_outer_tree ? *outer_tree : outer_built;
   const std::size_t cap = 100000;
   const bool known = inner_self && !any_fixed && !inner_self->truncated;
   IntersectingFaces self_part[2], crossing;
@@ -300,7 +302,8 @@ Verification verify_offsets(const VerifyInput& in) {
   const bool searched = in.rounding && in.rounding->inner_searched && in.inner == &in.rounding->inner;
   const SurfaceDefects defects =
       find_surface_defects(outer, inner, in.fixed, {}, thin_below, in.threads, searched ? &in.rounding->inner_pairs : nullptr,
-                           searched ? in.rounding->inner_tree.get() : nullptr);
+                           searched ? in.rounding->inner_tree.get() : nullptr,
+                           searched && in.outer == &in.rounding->outer ? in.rounding->outer_tree.get() : nullptr);
   ValidityFigures& v = out.validity.emplace();
   v.inner_self_intersections = static_cast<long long>(defects.self_intersection_pairs);
   v.inner_outer_crossings = static_cast<long long>(defects.crossing_pairs);
