@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <future>
 #include <limits>
 
 #include "cavity/new_self_intersections.h"
@@ -196,6 +197,10 @@ Verification verify_offsets(const VerifyInput& in) {
   const Mesh& inner = *in.inner;
   const double diag = in.diagonal;
   const double position_tol = 1e-4 * diag;
+  // The cavity's closedness beside the integrals (both read only `inner`), on a thread of its
+  // own when there are two.
+  std::future<long long> open_edges_task;
+  if (!in.goal_only) open_edges_task = start_task(in.threads > 1, [&inner] { return unmatched_edges(inner); });
 
   // The integrals of the printed material, measured from a point near the object.
   const Eigen::Vector3d origin = mean_vertex(outer);
@@ -322,7 +327,7 @@ Verification verify_offsets(const VerifyInput& in) {
                                              std::to_string(outer_self.second_face) + ")");
   }
   const bool measured = std::isfinite(defects.thinnest_wall);
-  const long long open_edges = unmatched_edges(inner);
+  const long long open_edges = open_edges_task.get();
   v.cavity_unmatched_edges = open_edges;
   check.require(open_edges == 0, "the cavity is not closed: " + std::to_string(open_edges) +
                                      " of its edges are not shared by exactly two faces in opposite directions");
