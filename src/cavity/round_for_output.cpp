@@ -59,11 +59,7 @@ class Repair {
     std::vector<int> fill(first_.begin(), first_.end() - 1);
     for (Eigen::Index f = 0; f < nf; ++f)
       for (int c = 0; c < 3; ++c) incident_[static_cast<std::size_t>(fill[static_cast<std::size_t>(mesh_.F(f, c))]++)] = static_cast<int>(f);
-    was_collinear_.resize(static_cast<std::size_t>(nf));
-    for (Eigen::Index f = 0; f < nf; ++f)
-      was_collinear_[static_cast<std::size_t>(f)] =
-          collinear_exact(original.V.row(original.F(f, 0)).transpose(), original.V.row(original.F(f, 1)).transpose(),
-                          original.V.row(original.F(f, 2)).transpose());
+    was_collinear_.assign(static_cast<std::size_t>(nf), -1);
     slack_ = 4.0 * (2 * kRoundingSearchUlps + 1) * float_ulp(largest_coordinate(original));
   }
 
@@ -79,7 +75,7 @@ class Repair {
         if (faces) faces->insert(faces->end(), {p.first, p.second});
       }
     for (Eigen::Index f = 0; f < mesh_.F.rows(); ++f)
-      if (!was_collinear_[static_cast<std::size_t>(f)] && collinear(static_cast<int>(f), -1, Eigen::Vector3d::Zero())) {
+      if (collinear(static_cast<int>(f), -1, Eigen::Vector3d::Zero()) && !was_collinear(static_cast<int>(f))) {
         ++count;
         if (faces) faces->push_back(static_cast<int>(f));
       }
@@ -131,6 +127,18 @@ class Repair {
     return u == v ? x : Eigen::Vector3d(mesh_.V.row(u).transpose());
   }
 
+  // Whether face f of the unrounded mesh has collinear corners: asked only of faces collinear
+  // after rounding (few), so found on demand.
+  bool was_collinear(int f) const {
+    signed char& known = was_collinear_[static_cast<std::size_t>(f)];
+    if (known < 0)
+      known = collinear_exact(original_.V.row(original_.F(f, 0)).transpose(), original_.V.row(original_.F(f, 1)).transpose(),
+                              original_.V.row(original_.F(f, 2)).transpose())
+                  ? 1
+                  : 0;
+    return known == 1;
+  }
+
   bool collinear(int f, int v, const Eigen::Vector3d& x) const {
     return collinear_exact(corner(f, 0, v, x), corner(f, 1, v, x), corner(f, 2, v, x));
   }
@@ -143,7 +151,7 @@ class Repair {
     for (std::size_t i = begin; i < end; ++i) {
       const int f = incident_[i];
       for (int k = 0; k < 3; ++k) around.extend(corner(f, k, v, x));
-      if (!was_collinear_[static_cast<std::size_t>(f)] && collinear(f, v, x)) ++count;
+      if (collinear(f, v, x) && !was_collinear(f)) ++count;
     }
     around.lo.array() -= slack_;
     around.hi.array() += slack_;
@@ -179,7 +187,7 @@ class Repair {
   std::vector<char> frozen_;
   std::vector<Pair> reference_;
   std::vector<int> first_, incident_;
-  std::vector<char> was_collinear_;
+  mutable std::vector<signed char> was_collinear_;  // -1 until asked
   double slack_ = 0.0;
   int threads_ = 1;
   TriangleBvh bvh_;
