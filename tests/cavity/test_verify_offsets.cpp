@@ -171,5 +171,11 @@ TEST_CASE("find_surface_defects' wall scan in two halves: every vertex's closest
     CHECK(d.thinnest_wall == thinnest);
     CHECK(d.thinnest_vertex == thinnest_vertex);
     CHECK(d.thin_wall_vertices == thin);
+    // A threshold below every wall (the verification's usual case): only the thinnest is kept,
+    // and the pruning radius is the thinnest so far.
+    const SurfaceDefects thick = find_surface_defects(outer, inner, {}, {}, 0.5 * thinnest, threads);
+    CHECK(thick.thinnest_wall == thinnest);
+    CHECK(thick.thinnest_vertex == thinnest_vertex);
+    CHECK(thick.thin_wall_vertices.empty());
   }
 }
