@@ -114,7 +114,7 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   const bool known = inner_self && !any_fixed && !inner_self->truncated;
   IntersectingFaces self_part[2], crossing;
   if (known) {
-    crossing = intersecting_faces(inner_bvh, outer_bvh, cap);
+    crossing = intersecting_faces_in_parts(inner_bvh, outer_bvh, cap, threads);
   } else {
     pool.run_parts(2, [&](int part) {
       self_part[part] = self_intersections_part(inner_bvh, part, cap);
