@@ -4,21 +4,19 @@
 
 #include "geometry/bvh.h"
 #include "geometry/intersecting_faces.h"
-#include "util/parallel.h"
 
 namespace offsetopt {
 
 NewSelfIntersections new_self_intersections(const Mesh& surface, const std::vector<std::pair<int, int>>& own_pairs,
                                             std::size_t cap, int threads) {
   NewSelfIntersections out;
-  const TriangleBvh bvh(surface.V, surface.F);
+  BvhOptions options;
+  options.threads = threads;
+  const TriangleBvh bvh(surface.V, surface.F, options);
   // The cap applies to new pairs: the source's own may be many (a scan with 848 crossings), so
   // the search may find up to their number more before it stops.
   const std::size_t search_cap = cap + own_pairs.size();
-  IntersectingFaces parts[2];
-  WorkerPool pool(std::min(std::max(threads, 1), 2));
-  pool.run_parts(2, [&](int part) { parts[part] = self_intersections_part(bvh, part, search_cap); });
-  const IntersectingFaces found = merge_intersections(parts[0], parts[1], search_cap);
+  const IntersectingFaces found = self_intersections_in_parts(bvh, search_cap, threads);
   out.truncated = found.truncated;
   for (const auto& pair : found.pairs) {
     if (std::binary_search(own_pairs.begin(), own_pairs.end(), pair)) {

@@ -48,8 +48,8 @@ std::vector<std::array<int, 3>> candidate_offsets() {
 class Repair {
  public:
   // `reference` pairs: those the unrounded mesh already has (sorted); they are not new.
-  Repair(const Mesh& original, Mesh& rounded, std::vector<char> frozen, std::vector<Pair> reference)
-      : original_(original), mesh_(rounded), frozen_(std::move(frozen)), reference_(std::move(reference)) {
+  Repair(const Mesh& original, Mesh& rounded, std::vector<char> frozen, std::vector<Pair> reference, int threads)
+      : original_(original), mesh_(rounded), frozen_(std::move(frozen)), reference_(std::move(reference)), threads_(threads) {
     const Eigen::Index nv = mesh_.V.rows(), nf = mesh_.F.rows();
     first_.assign(static_cast<std::size_t>(nv) + 1, 0);
     for (Eigen::Index f = 0; f < nf; ++f)
@@ -59,19 +59,15 @@ class Repair {
     std::vector<int> fill(first_.begin(), first_.end() - 1);
     for (Eigen::Index f = 0; f < nf; ++f)
       for (int c = 0; c < 3; ++c) incident_[static_cast<std::size_t>(fill[static_cast<std::size_t>(mesh_.F(f, c))]++)] = static_cast<int>(f);
-    was_collinear_.resize(static_cast<std::size_t>(nf));
-    for (Eigen::Index f = 0; f < nf; ++f)
-      was_collinear_[static_cast<std::size_t>(f)] =
-          collinear_exact(original.V.row(original.F(f, 0)).transpose(), original.V.row(original.F(f, 1)).transpose(),
-                          original.V.row(original.F(f, 2)).transpose());
+    was_collinear_.assign(static_cast<std::size_t>(nf), -1);
     slack_ = 4.0 * (2 * kRoundingSearchUlps + 1) * float_ulp(largest_coordinate(original));
   }
 
   // New defects (pairs and collinear faces) of the mesh as it is now; `found` gets its pairs and
   // `tree` the tree they were searched in.
   long long new_defects(std::vector<int>* faces, IntersectingFaces& found, std::shared_ptr<const TriangleBvh>& tree) const {
-    tree = std::make_shared<const TriangleBvh>(mesh_.V, mesh_.F);
-    found = self_intersections(*tree, kPairCap);
+    tree = std::make_shared<const TriangleBvh>(mesh_.V, mesh_.F, tree_options());
+    found = self_intersections_in_parts(*tree, kPairCap, threads_);
     long long count = 0;
     for (const Pair& p : found.pairs)
       if (!std::binary_search(reference_.begin(), reference_.end(), p)) {
@@ -79,7 +75,7 @@ class Repair {
         if (faces) faces->insert(faces->end(), {p.first, p.second});
       }
     for (Eigen::Index f = 0; f < mesh_.F.rows(); ++f)
-      if (!was_collinear_[static_cast<std::size_t>(f)] && collinear(static_cast<int>(f), -1, Eigen::Vector3d::Zero())) {
+      if (collinear(static_cast<int>(f), -1, Eigen::Vector3d::Zero()) && !was_collinear(static_cast<int>(f))) {
         ++count;
         if (faces) faces->push_back(static_cast<int>(f));
       }
@@ -94,7 +90,7 @@ class Repair {
       for (int c = 0; c < 3; ++c) vertices.push_back(mesh_.F(f, c));
     std::sort(vertices.begin(), vertices.end());
     vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-    bvh_ = TriangleBvh(mesh_.V, mesh_.F);
+    bvh_ = TriangleBvh(mesh_.V, mesh_.F, tree_options());
     static const std::vector<std::array<int, 3>> offsets = candidate_offsets();
     bool moved = false;
     for (const int v : vertices) {
@@ -120,9 +116,27 @@ class Repair {
   }
 
  private:
+  BvhOptions tree_options() const {
+    BvhOptions options;
+    options.threads = threads_;
+    return options;
+  }
+
   Eigen::Vector3d corner(int f, int k, int v, const Eigen::Vector3d& x) const {
     const int u = mesh_.F(f, k);
     return u == v ? x : Eigen::Vector3d(mesh_.V.row(u).transpose());
+  }
+
+  // Whether face f of the unrounded mesh has collinear corners: asked only of faces collinear
+  // after rounding (few), so found on demand.
+  bool was_collinear(int f) const {
+    signed char& known = was_collinear_[static_cast<std::size_t>(f)];
+    if (known < 0)
+      known = collinear_exact(original_.V.row(original_.F(f, 0)).transpose(), original_.V.row(original_.F(f, 1)).transpose(),
+                              original_.V.row(original_.F(f, 2)).transpose())
+                  ? 1
+                  : 0;
+    return known == 1;
   }
 
   bool collinear(int f, int v, const Eigen::Vector3d& x) const {
@@ -137,7 +151,7 @@ class Repair {
     for (std::size_t i = begin; i < end; ++i) {
       const int f = incident_[i];
       for (int k = 0; k < 3; ++k) around.extend(corner(f, k, v, x));
-      if (!was_collinear_[static_cast<std::size_t>(f)] && collinear(f, v, x)) ++count;
+      if (collinear(f, v, x) && !was_collinear(f)) ++count;
     }
     around.lo.array() -= slack_;
     around.hi.array() += slack_;
@@ -173,8 +187,9 @@ class Repair {
   std::vector<char> frozen_;
   std::vector<Pair> reference_;
   std::vector<int> first_, incident_;
-  std::vector<char> was_collinear_;
+  mutable std::vector<signed char> was_collinear_;  // -1 until asked
   double slack_ = 0.0;
+  int threads_ = 1;
   TriangleBvh bvh_;
 };
 
@@ -189,14 +204,18 @@ Mesh nearest_floats(const Mesh& mesh) {
 // and in `found` the pairs of the last search, which was of `rounded` as it is returned (a pass
 // that moves nothing ends the repair before another search).
 long long repair(const Mesh& mesh, Mesh& rounded, const std::vector<char>& frozen, bool has_reference, int& rounds,
-                 IntersectingFaces& found, std::shared_ptr<const TriangleBvh>& tree) {
+                 IntersectingFaces& found, std::shared_ptr<const TriangleBvh>& tree, int threads) {
   std::vector<Pair> reference;
-  Repair probe(mesh, rounded, frozen, {});
+  Repair probe(mesh, rounded, frozen, {}, threads);
   std::vector<int> faces;
   long long left = probe.new_defects(&faces, found, tree);
   if (left == 0) return 0;
-  if (has_reference) reference = self_intersections(TriangleBvh(mesh.V, mesh.F), kPairCap).pairs;
-  Repair fix(mesh, rounded, frozen, reference);
+  if (has_reference) {
+    BvhOptions options;
+    options.threads = threads;
+    reference = self_intersections_in_parts(TriangleBvh(mesh.V, mesh.F, options), kPairCap, threads).pairs;
+  }
+  Repair fix(mesh, rounded, frozen, reference, threads);
   faces.clear();
   left = fix.new_defects(&faces, found, tree);
   for (int round = 0; round < kRoundingRepairRounds && left > 0; ++round) {
@@ -211,7 +230,7 @@ long long repair(const Mesh& mesh, Mesh& rounded, const std::vector<char>& froze
 }  // namespace
 
 RoundedForOutput round_for_output(const Mesh& outer, const Mesh& inner, const std::vector<char>& shared,
-                                  StoredPrecision precision) {
+                                  StoredPrecision precision, int threads) {
   RoundedForOutput out;
   if (precision == StoredPrecision::exact) {
     out.outer = outer;
@@ -220,8 +239,7 @@ RoundedForOutput round_for_output(const Mesh& outer, const Mesh& inner, const st
   }
   out.outer = nearest_floats(outer);
   IntersectingFaces outer_found;
-  std::shared_ptr<const TriangleBvh> outer_tree;
-  out.outer_new_pairs = repair(outer, out.outer, {}, true, out.repair_rounds, outer_found, outer_tree);
+  out.outer_new_pairs = repair(outer, out.outer, {}, true, out.repair_rounds, outer_found, out.outer_tree, threads);
   out.inner = nearest_floats(inner);
   std::vector<char> frozen;
   if (!shared.empty() && inner.V.rows() == outer.V.rows()) {
@@ -230,7 +248,7 @@ RoundedForOutput round_for_output(const Mesh& outer, const Mesh& inner, const st
       if (shared[static_cast<std::size_t>(i)]) out.inner.V.row(i) = out.outer.V.row(i);
   }
   // New pairs only: pairs the unrounded cavity has already are refused by the verification.
-  out.inner_new_pairs = repair(inner, out.inner, frozen, true, out.repair_rounds, out.inner_pairs, out.inner_tree);
+  out.inner_new_pairs = repair(inner, out.inner, frozen, true, out.repair_rounds, out.inner_pairs, out.inner_tree, threads);
   out.inner_searched = true;
   for (const auto* pair : {&outer, &inner}) {
     const Mesh& rounded = pair == &outer ? out.outer : out.inner;

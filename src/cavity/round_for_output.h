@@ -36,17 +36,20 @@ struct RoundedForOutput {
   int repair_rounds = 0;
   // The self-intersecting face pairs of `inner` as it is now (geometry/intersecting_faces.h's
   // search, capped at kRoundingPairCap), kept so the verification need not search it again: the
-  // repair's last search was of this very mesh. Not searched with StoredPrecision::exact.
+  // repair's last search was of this very mesh (geometry/intersecting_faces.h's
+  // self_intersections_in_parts). Not searched with StoredPrecision::exact.
   bool inner_searched = false;
   IntersectingFaces inner_pairs;
-  std::shared_ptr<const TriangleBvh> inner_tree;  // the tree of that search (default options)
+  std::shared_ptr<const TriangleBvh> inner_tree;  // the tree of that search (default leaf size)
+  std::shared_ptr<const TriangleBvh> outer_tree;  // the tree of `outer` as it is now (default leaf size)
 };
 
 // `shared` (empty, or one flag per vertex when outer and inner share connectivity) marks inner
 // vertices that are the outer vertex of the same index (an opening): they take its rounding.
-// With StoredPrecision::exact the meshes come back unchanged.
+// With StoredPrecision::exact the meshes come back unchanged. `threads` (>= 1): the searches in
+// two parts on two threads when > 1; the result is the same for any count.
 RoundedForOutput round_for_output(const Mesh& outer, const Mesh& inner, const std::vector<char>& shared,
-                                  StoredPrecision precision);
+                                  StoredPrecision precision, int threads = 2);
 
 // How far rounding (repairs included) can move the distance between a cavity vertex and the
 // outer surface: twice the largest vertex displacement, for coordinates below `largest_coordinate`

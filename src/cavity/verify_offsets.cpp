@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <future>
 #include <limits>
 
 #include "cavity/new_self_intersections.h"
@@ -86,7 +87,8 @@ long long unmatched_edges(const Mesh& mesh) {
 
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
                                     const std::vector<char>& left_solid, double thin_below, int threads,
-                                    const IntersectingFaces* inner_self, const TriangleBvh* inner_tree) {
+                                    const IntersectingFaces* inner_self, const TriangleBvh* inner_tree,
+                                    const TriangleBvh* outer_tree) {
   // The two trees, then the two intersection searches, on two threads when there are: the same
   // result either way.
   WorkerPool pool(std::min(std::max(threads, 1), 2));
@@ -100,18 +102,19 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   }
   const Mesh& inner_free = any_fixed ? inner_kept : inner;
   const Mesh& outer_free = any_fixed ? outer_kept : outer;
-  TriangleBvh inner_built, outer_bvh;
-  const bool have_tree = inner_tree && !any_fixed;
+  TriangleBvh inner_built, outer_built;
+  const bool have_tree = inner_tree && !any_fixed, have_outer_tree = outer_tree && !any_fixed;
   pool.run_parts(2, [&](int part) {
     if (part == 0 && !have_tree) inner_built = TriangleBvh(inner_free.V, inner_free.F);
-    if (part == 1) outer_bvh = TriangleBvh(outer_free.V, outer_free.F);
+    if (part == 1 && !have_outer_tree) outer_built = TriangleBvh(outer_free.V, outer_free.F);
   });
   const TriangleBvh& inner_bvh = have_tree ? *inner_tree : inner_built;
+  const TriangleBvh& outer_bvh = have_outer_tree ? *outer_tree : outer_built;
   const std::size_t cap = 100000;
   const bool known = inner_self && !any_fixed && !inner_self->truncated;
   IntersectingFaces self_part[2], crossing;
   if (known) {
-    crossing = intersecting_faces(inner_bvh, outer_bvh, cap);
+    crossing = intersecting_faces_in_parts(inner_bvh, outer_bvh, cap, threads);
   } else {
     pool.run_parts(2, [&](int part) {
       self_part[part] = self_intersections_part(inner_bvh, part, cap);
@@ -136,34 +139,74 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   TriangleBvh outer_whole;
   if (any_fixed) outer_whole = TriangleBvh(outer.V, outer.F);
   const TriangleBvh& outer_full = any_fixed ? outer_whole : outer_bvh;
-  // In vertex order on one thread: the thinnest wall found so far prunes every later search.
-  // Split in two halves, the second half starts without that bound: on the 100k-vertex bottle
-  // the halves on two threads took 0.22 s, one pass 0.055 s.
-  d.thinnest_wall = std::numeric_limits<double>::infinity();
-  // The last vertex searched is an anchor: the distance is 1-Lipschitz, so a vertex whose bound
-  // from the anchor's (exact, or the search radius when nothing was nearer) reaches the radius
-  // needs no search. Searching twice the radius makes anchors that cover the next vertices
-  // (neighbours on a contoured cavity lie a fraction of the wall apart) and still prunes the BVH.
-  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
-  double anchor_distance = -std::numeric_limits<double>::infinity();
+  // Two halves of the vertices, in vertex order within each, on two threads when there are. In
+  // each, the thinnest wall found so far prunes every later search, and so does `seed`, the
+  // thinnest of a few vertices spread over all of them: without it a half starting in a thick
+  // region searches wide balls until it reaches a thin one (halves without a seed took 0.22 s on
+  // a 100k-vertex bottle where the one pass took 0.055). The last vertex searched is an anchor:
+  // the distance is 1-Lipschitz, so a vertex whose bound from the anchor's (exact, or the search
+  // radius when nothing was nearer) reaches the radius needs no search. Searching twice the
+  // radius makes anchors that cover the next vertices (neighbours on a contoured cavity lie a
+  // fraction of the wall apart) and still prunes the BVH.
+  //
+  // Why the split changes nothing: the seed is some vertex's distance, so at least the thinnest
+  // wall m. A vertex skipped or not found is farther than the pruning radius, which is at least
+  // thin_below and at least min(seed, the half's thinnest so far) >= m: it is neither thin nor
+  // the first vertex at m. Every other vertex's distance is closest_point's whatever the bound,
+  // and is recorded when below thin_below or the half's thinnest so far (not the seed: the seed's
+  // own vertex may be the thinnest). The merge takes the first half's vertex on a tie and joins
+  // the thin lists in order: the one pass's result for any split and any seed.
+  struct WallScan {
+    double thinnest = std::numeric_limits<double>::infinity();
+    int vertex = -1;
+    std::vector<int> thin;
+  };
   const double rounding = 1e-12 * outer_full.diagonal();
-  for (Eigen::Index i = 0; i < inner.V.rows(); ++i) {
+  auto measured_vertex = [&](Eigen::Index i) {
     const std::size_t u = static_cast<std::size_t>(i);
-    if (is_fixed(u) || is_left_solid(u)) continue;
-    // Only distances below the thinnest so far or below thin_below matter.
-    const double radius = std::max(thin_below, d.thinnest_wall);
-    const Eigen::Vector3d p = inner.V.row(i).transpose();
-    if (anchor_distance - (p - anchor).norm() >= radius + rounding) continue;
-    const ClosestPoint c = closest_point(outer_full, p, 2.0 * radius);
-    anchor = p;
-    anchor_distance = c.found ? c.distance : 2.0 * radius;
-    if (!c.found || !(c.distance < radius)) continue;
-    if (c.distance < d.thinnest_wall) {
-      d.thinnest_wall = c.distance;
-      d.thinnest_vertex = static_cast<int>(i);
+    return !is_fixed(u) && !is_left_solid(u);
+  };
+  auto scan = [&](Eigen::Index begin, Eigen::Index end, double seed) {
+    WallScan w;
+    Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
+    double anchor_distance = -std::numeric_limits<double>::infinity();
+    for (Eigen::Index i = begin; i < end; ++i) {
+      if (!measured_vertex(i)) continue;
+      // Only distances below the thinnest so far or below thin_below matter.
+      const double radius = std::max(thin_below, std::min(seed, w.thinnest));
+      const Eigen::Vector3d p = inner.V.row(i).transpose();
+      if (anchor_distance - (p - anchor).norm() >= radius + rounding) continue;
+      const ClosestPoint c = closest_point(outer_full, p, 2.0 * radius);
+      anchor = p;
+      anchor_distance = c.found ? c.distance : 2.0 * radius;
+      if (!c.found || !(c.distance < std::max(thin_below, w.thinnest))) continue;
+      if (c.distance < w.thinnest) {
+        w.thinnest = c.distance;
+        w.vertex = static_cast<int>(i);
+      }
+      if (c.distance < thin_below) w.thin.push_back(static_cast<int>(i));
     }
-    if (c.distance < thin_below) d.thin_wall_vertices.push_back(static_cast<int>(i));
-  }
+    return w;
+  };
+  // Below this many vertices a thread costs more than the half it saves.
+  constexpr Eigen::Index kWallSplitVertices = 1024;
+  constexpr int kWallSeedVertices = 16;
+  const Eigen::Index count = inner.V.rows(), middle = count >= kWallSplitVertices ? count / 2 : count;
+  double seed = std::numeric_limits<double>::infinity();
+  if (middle < count)
+    for (int k = 0; k < kWallSeedVertices; ++k) {
+      const Eigen::Index i = count * k / kWallSeedVertices;
+      if (!measured_vertex(i)) continue;
+      const ClosestPoint c = closest_point(outer_full, inner.V.row(i).transpose(), seed);
+      if (c.found) seed = c.distance;
+    }
+  WallScan halves[2];
+  pool.run_parts(2, [&](int part) { halves[part] = part == 0 ? scan(0, middle, seed) : scan(middle, count, seed); });
+  const WallScan& won = halves[1].thinnest < halves[0].thinnest ? halves[1] : halves[0];
+  d.thinnest_wall = won.thinnest;
+  d.thinnest_vertex = won.vertex;
+  d.thin_wall_vertices = halves[0].thin;
+  d.thin_wall_vertices.insert(d.thin_wall_vertices.end(), halves[1].thin.begin(), halves[1].thin.end());
   return d;
 }
 
@@ -174,6 +217,10 @@ Verification verify_offsets(const VerifyInput& in) {
   const Mesh& inner = *in.inner;
   const double diag = in.diagonal;
   const double position_tol = 1e-4 * diag;
+  // The cavity's closedness beside the integrals (both read only `inner`), on a thread of its
+  // own when there are two.
+  std::future<long long> open_edges_task;
+  if (!in.goal_only) open_edges_task = start_task(in.threads > 1, [&inner] { return unmatched_edges(inner); });
 
   // The integrals of the printed material, measured from a point near the object.
   const Eigen::Vector3d origin = mean_vertex(outer);
@@ -280,7 +327,8 @@ Verification verify_offsets(const VerifyInput& in) {
   const bool searched = in.rounding && in.rounding->inner_searched && in.inner == &in.rounding->inner;
   const SurfaceDefects defects =
       find_surface_defects(outer, inner, in.fixed, {}, thin_below, in.threads, searched ? &in.rounding->inner_pairs : nullptr,
-                           searched ? in.rounding->inner_tree.get() : nullptr);
+                           searched ? in.rounding->inner_tree.get() : nullptr,
+                           searched && in.outer == &in.rounding->outer ? in.rounding->outer_tree.get() : nullptr);
   ValidityFigures& v = out.validity.emplace();
   v.inner_self_intersections = static_cast<long long>(defects.self_intersection_pairs);
   v.inner_outer_crossings = static_cast<long long>(defects.crossing_pairs);
@@ -299,7 +347,7 @@ Verification verify_offsets(const VerifyInput& in) {
                                              std::to_string(outer_self.second_face) + ")");
   }
   const bool measured = std::isfinite(defects.thinnest_wall);
-  const long long open_edges = unmatched_edges(inner);
+  const long long open_edges = open_edges_task.get();
   v.cavity_unmatched_edges = open_edges;
   check.require(open_edges == 0, "the cavity is not closed: " + std::to_string(open_edges) +
                                      " of its edges are not shared by exactly two faces in opposite directions");
@@ -329,7 +377,7 @@ Verification verify_offsets(const VerifyInput& in) {
 VerifiedCavity verify_written_cavity(VerifyInput input, const Mesh& outer, const Mesh& cavity, int faces_below_wall,
                                     StoredPrecision precision) {
   VerifiedCavity out;
-  out.rounded = round_for_output(outer, cavity, {}, precision);
+  out.rounded = round_for_output(outer, cavity, {}, precision, input.threads);
   input.outer = &out.rounded.outer;
   input.inner = &out.rounded.inner;
   input.rounding = &out.rounded;

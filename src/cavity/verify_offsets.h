@@ -34,11 +34,13 @@ struct SurfaceDefects {
 // `threads` (>= 1) splits the tree builds and the intersection searches; the result is the same
 // for any count.
 // `inner_self` and `inner_tree`, when given, are inner's own self-intersection search
-// (self_intersections with a cap of 100000) and its tree (default options): when nothing is fixed
-// they are used instead of searching and building again (the search only when not truncated).
+// (self_intersections with a cap of 100000) and its tree (default leaf size): when nothing is fixed
+// they are used instead of searching and building again (the search only when not truncated);
+// `outer_tree` likewise, outer's tree (default leaf size).
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
                                     const std::vector<char>& left_solid, double thin_below, int threads = 2,
-                                    const IntersectingFaces* inner_self = nullptr, const TriangleBvh* inner_tree = nullptr);
+                                    const IntersectingFaces* inner_self = nullptr, const TriangleBvh* inner_tree = nullptr,
+                                    const TriangleBvh* outer_tree = nullptr);
 
 struct VerifyInput {
   const Mesh* outer = nullptr;  // outer surface (the input itself without outer offsets)

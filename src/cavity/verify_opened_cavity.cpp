@@ -46,7 +46,7 @@ VerifiedOpenedCavity verify_opened_cavity(const Mesh& outer, const Mesh& cavity,
     out.verification.failures.insert(out.verification.failures.begin(), "openings: " + out.opened.message);
     return out;
   }
-  const RoundedForOutput rounded = round_for_output(out.opened.solid, Mesh(), {}, precision);
+  const RoundedForOutput rounded = round_for_output(out.opened.solid, Mesh(), {}, precision, input.threads);
   out.solid = rounded.outer;
   out.rounding_new_pairs = rounded.outer_new_pairs;
   // Closed and oriented as read back, but for what the input had (a pinched input keeps its pinch).

@@ -19,11 +19,16 @@ namespace offsetopt {
 
 struct BvhOptions {
   int leaf_size = 4;  // at most this many faces per leaf; >= 1
+  // The root's two subtrees built on two threads when > 1 and the mesh is large enough
+  // (kBvhSplitBuildFaces); the tree is the same for any count.
+  int threads = 1;
 
   // Empty when valid, else what is wrong (TriangleBvh's constructor throws it as
   // std::invalid_argument).
   std::string check() const;
 };
+
+constexpr int kBvhSplitBuildFaces = 8192;
 
 struct BvhNode {
   Aabb box;         // bounds of every face below, inflated by TriangleBvh::box_margin()
@@ -88,8 +93,13 @@ class TriangleBvh {
     double centroid[3];
     int face;
   };
-  // The node over items [begin, end) (its index), and `bounds` the union of their face boxes.
-  int build(std::vector<BuildItem>& items, int begin, int end, int depth, Aabb& bounds);
+  // The node over items [begin, end) (its index in `nodes`, which it and its subtree are
+  // appended to, their leaves' faces to `leaves`), and `bounds` the union of their face boxes.
+  int build(std::vector<BuildItem>& items, int begin, int end, int depth, Aabb& bounds, std::vector<BvhNode>& nodes,
+            std::vector<int>& leaves) const;
+  // Sorts items [begin, end) so that the first half is the lower half along the longest axis of
+  // their centroids' bounds, ties by face index: the median split.
+  static void split_at_median(std::vector<BuildItem>& items, int begin, int end);
 
   Vertices V_;
   Faces F_;

@@ -47,6 +47,8 @@ bool faces_intersect_exact(const Eigen::Vector3d f[3], const int f_ids[3], const
     const Eigen::Vector3d &g1 = g[(j + 1) % 3], &g2 = g[(j + 2) % 3], &f1 = f[(i + 1) % 3], &f2 = f[(i + 2) % 3];
     const PlaneSide plane_f(f[0], f[1], f[2]);
     const int side_g1 = plane_f(g1), side_g2 = plane_f(g2);
+    // g's far edge in f's plane puts all of g there (g has a plane): a flat region's neighbours.
+    if (side_g1 == 0 && side_g2 == 0) return coplanar_fan_pair_meets(f[i], f1, f2, g1, g2);
     if (side_g1 * side_g2 <= 0 && segment_meets_triangle_exact(g1, g2, side_g1, side_g2, f[0], f[1], f[2])) return true;
     const PlaneSide plane_g(g[0], g[1], g[2]);
     const int side_f1 = plane_g(f1), side_f2 = plane_g(f2);

@@ -7,6 +7,7 @@
 
 #include "geometry/exact_triangle_intersection.h"
 #include "geometry/faces_intersect_exact.h"
+#include "util/parallel.h"
 
 namespace offsetopt {
 
@@ -97,9 +98,19 @@ IntersectingFaces merge_intersections(const IntersectingFaces& a, const Intersec
   return out;
 }
 
-IntersectingFaces intersecting_faces(const TriangleBvh& a, const TriangleBvh& b, std::size_t max_pairs) {
+IntersectingFaces self_intersections_in_parts(const TriangleBvh& bvh, std::size_t max_pairs, int threads) {
+  IntersectingFaces parts[2];
+  WorkerPool pool(std::min(std::max(threads, 1), 2));
+  pool.run_parts(2, [&](int part) { parts[part] = self_intersections_part(bvh, part, max_pairs); });
+  return merge_intersections(parts[0], parts[1], max_pairs);
+}
+
+namespace {
+
+IntersectingFaces intersecting_faces_from(const TriangleBvh& a, const TriangleBvh& b, std::vector<std::pair<int, int>> start,
+                                          std::size_t max_pairs) {
   IntersectingFaces out;
-  traverse_face_pairs(a, b, false, {{0, 0}}, [&](int f, int g) {
+  traverse_face_pairs(a, b, false, std::move(start), [&](int f, int g) {
     if (!a.face_box(f).overlaps(b.face_box(g))) return true;
     const Eigen::Vector3d p[3] = {a.corner(f, 0), a.corner(f, 1), a.corner(f, 2)};
     const Eigen::Vector3d q[3] = {b.corner(g, 0), b.corner(g, 1), b.corner(g, 2)};
@@ -108,6 +119,25 @@ IntersectingFaces intersecting_faces(const TriangleBvh& a, const TriangleBvh& b,
   });
   std::sort(out.pairs.begin(), out.pairs.end());
   return out;
+}
+
+}  // namespace
+
+IntersectingFaces intersecting_faces(const TriangleBvh& a, const TriangleBvh& b, std::size_t max_pairs) {
+  return intersecting_faces_from(a, b, {{0, 0}}, max_pairs);
+}
+
+IntersectingFaces intersecting_faces_in_parts(const TriangleBvh& a, const TriangleBvh& b, std::size_t max_pairs, int threads) {
+  if (a.empty() || b.empty()) return {};
+  const BvhNode& root = a.nodes().front();
+  if (root.is_leaf()) return intersecting_faces(a, b, max_pairs);
+  IntersectingFaces parts[2];
+  WorkerPool pool(std::min(std::max(threads, 1), 2));
+  pool.run_parts(2, [&](int part) {
+    parts[part] = intersecting_faces_from(a, b, {{part == 0 ? root.left : root.right, 0}}, max_pairs);
+  });
+  // Each part's pairs are sorted and the parts' faces of `a` disjoint: the merge is their union.
+  return merge_intersections(parts[0], parts[1], max_pairs);
 }
 
 }  // namespace offsetopt

@@ -32,8 +32,18 @@ IntersectingFaces self_intersections_part(const TriangleBvh& bvh, int part, std:
 // The sorted union of two disjoint results, at most `max_pairs` of them (truncated if either was).
 IntersectingFaces merge_intersections(const IntersectingFaces& a, const IntersectingFaces& b, std::size_t max_pairs);
 
+// self_intersections' pairs as its two parts merged, the parts on two threads when `threads` > 1:
+// the same result for any count (and self_intersections' own unless truncated, when the two
+// stop at different pairs).
+IntersectingFaces self_intersections_in_parts(const TriangleBvh& bvh, std::size_t max_pairs, int threads);
+
 // (face of a, face of b) pairs that intersect. Stops after `max_pairs` pairs.
 IntersectingFaces intersecting_faces(const TriangleBvh& a, const TriangleBvh& b, std::size_t max_pairs = 1000);
+
+// intersecting_faces' pairs in two parts (below the root of `a` left and right, `a` not a
+// single leaf), the parts on two threads when `threads` > 1: the same result for any count, and
+// intersecting_faces' own unless truncated.
+IntersectingFaces intersecting_faces_in_parts(const TriangleBvh& a, const TriangleBvh& b, std::size_t max_pairs, int threads);
 
 // The rule above for two faces of one mesh, exposed for tests.
 bool mesh_faces_intersect(const TriangleBvh& bvh, int f, int g);

@@ -24,12 +24,6 @@ void append_u64_le(std::string& out, std::uint64_t value) {
   for (int i = 0; i < 8; ++i) out += static_cast<char>((value >> (8 * i)) & 0xff);
 }
 
-void append_f32_le(std::string& out, float value) {
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  append_u32_le(out, bits);
-}
-
 void append_f64_le(std::string& out, double value) {
   std::uint64_t bits;
   std::memcpy(&bits, &value, sizeof bits);
@@ -69,17 +63,25 @@ std::string to_binary_stl(const Mesh& mesh) {
   out.resize(80, ' ');
   out.reserve(84 + 50 * static_cast<std::size_t>(mesh.F.rows()));
   append_u32_le(out, static_cast<std::uint32_t>(mesh.F.rows()));
+  // One 50-byte record per face, filled in place and appended whole (appending byte by byte
+  // checked the capacity 50 times a face).
+  char record[50] = {};
+  auto put_f32 = [&record](int at, float value) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    for (int i = 0; i < 4; ++i) record[at + i] = static_cast<char>((bits >> (8 * i)) & 0xff);
+  };
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
     Eigen::Vector3d n = (b - a).cross(c - a);
     const double length = std::sqrt(n.dot(n));
     if (length > 0) n /= length;
     else n.setZero();
-    for (int k = 0; k < 3; ++k) append_f32_le(out, static_cast<float>(n[k]));
+    for (int k = 0; k < 3; ++k) put_f32(4 * k, static_cast<float>(n[k]));
+    int at = 12;
     for (const Eigen::Vector3d* p : {&a, &b, &c})
-      for (int k = 0; k < 3; ++k) append_f32_le(out, static_cast<float>((*p)[k]));
-    out += '\0';
-    out += '\0';
+      for (int k = 0; k < 3; ++k, at += 4) put_f32(at, static_cast<float>((*p)[k]));
+    out.append(record, sizeof record);  // the last two bytes: attribute count 0
   }
   return out;
 }

@@ -674,7 +674,7 @@ Cavity verify_offset_surfaces(const OptimizeOptions& options, const Frame& f, co
   // on real meshes the offset surface rarely verifies even unrounded).
   RoundedForOutput offset_written;
   if (options.output_precision != StoredPrecision::exact && c.verification.goal_met && c.verification.valid) {
-    offset_written = round_for_output(outer, inner, b.band.fixed, options.output_precision);
+    offset_written = round_for_output(outer, inner, b.band.fixed, options.output_precision, options.threads);
     verify_input.outer = &offset_written.outer;
     verify_input.inner = &offset_written.inner;
     verify_input.rounding = &offset_written;

@@ -6,9 +6,14 @@
 // self-intersections against hand-placed crossing boxes.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <limits>
+#include <vector>
+
 #include "../mass/geometry_checks.h"
 #include "cavity/verify_offsets.h"
 #include "geometry/bvh.h"
+#include "geometry/closest_point.h"
 #include "geometry/intersecting_faces.h"
 #include "mesh/primitives.h"
 
@@ -122,4 +127,55 @@ TEST_CASE("verify_offsets counts a moved outer surface's self-intersections that
 
   in.outer_own_pairs = nullptr;  // the outer surface is the input: not searched
   CHECK_FALSE(verify_offsets(in).validity->outer_new_self_intersections.has_value());
+}
+
+TEST_CASE("find_surface_defects' wall scan in two halves: every vertex's closest point, the thinnest by lowest index") {
+  // An off-centre sphere in a sphere: walls from 1.3 to 4.7, thinnest near one pole, and a
+  // threshold that makes a few hundred vertices thin; above the split's size (1024 vertices).
+  const Mesh outer = make_icosphere(10.0, 4);
+  Mesh inner = make_icosphere(7.0, 4);
+  inner.V.col(0).array() += 1.7;
+  const TriangleBvh bvh(outer.V, outer.F);
+  const double thin_below = 2.0;
+  double thinnest = std::numeric_limits<double>::infinity();
+  int thinnest_vertex = -1;
+  std::vector<int> thin;
+  auto measure_every_vertex = [&] {
+    thinnest = std::numeric_limits<double>::infinity();
+    thinnest_vertex = -1;
+    thin.clear();
+    for (Eigen::Index i = 0; i < inner.V.rows(); ++i) {
+      const double d = closest_point(bvh, inner.V.row(i).transpose()).distance;
+      if (d < thinnest) {
+        thinnest = d;
+        thinnest_vertex = static_cast<int>(i);
+      }
+      if (d < thin_below) thin.push_back(static_cast<int>(i));
+    }
+  };
+  measure_every_vertex();
+  // The thinnest vertex (in the second half) copied to the first place: an exact tie across the
+  // halves, which the lower index wins.
+  const int first_thinnest = thinnest_vertex;
+  REQUIRE(first_thinnest >= inner.V.rows() / 2);
+  inner.V.row(0) = inner.V.row(first_thinnest);
+  measure_every_vertex();
+  CHECK(thinnest_vertex == 0);
+  CHECK(std::find(thin.begin(), thin.end(), first_thinnest) != thin.end());
+  REQUIRE(inner.V.rows() >= 1024);
+  REQUIRE(thin.size() > 50);
+  REQUIRE(thin.size() < static_cast<std::size_t>(inner.V.rows()) / 2);
+  for (const int threads : {1, 2}) {
+    CAPTURE(threads);
+    const SurfaceDefects d = find_surface_defects(outer, inner, {}, {}, thin_below, threads);
+    CHECK(d.thinnest_wall == thinnest);
+    CHECK(d.thinnest_vertex == thinnest_vertex);
+    CHECK(d.thin_wall_vertices == thin);
+    // A threshold below every wall (the verification's usual case): only the thinnest is kept,
+    // and the pruning radius is the thinnest so far.
+    const SurfaceDefects thick = find_surface_defects(outer, inner, {}, {}, 0.5 * thinnest, threads);
+    CHECK(thick.thinnest_wall == thinnest);
+    CHECK(thick.thinnest_vertex == thinnest_vertex);
+    CHECK(thick.thin_wall_vertices.empty());
+  }
 }

@@ -230,3 +230,30 @@ TEST_CASE("ray-cast options: check() names what is wrong") {
   options.ignored_faces = {3, -1};
   CHECK(options.check() == "RayCastOptions::ignored_faces must hold face numbers >= 0");
 }
+
+TEST_CASE("a tree built on two threads is the one-thread tree, node for node") {
+  // Above kBvhSplitBuildFaces: a symmetric sphere (centroids tied on every axis) and the same
+  // sphere jittered.
+  Mesh sphere = make_icosphere(1.0, 5);
+  REQUIRE(sphere.F.rows() >= kBvhSplitBuildFaces);
+  Rng rng(77);
+  for (int jitter = 0; jitter < 2; ++jitter) {
+    if (jitter == 1)
+      for (Eigen::Index i = 0; i < sphere.V.rows(); ++i)
+        for (int c = 0; c < 3; ++c) sphere.V(i, c) += rng.uniform(-1e-3, 1e-3);
+    BvhOptions two;
+    two.threads = 2;
+    const TriangleBvh serial(sphere.V, sphere.F), split(sphere.V, sphere.F, two);
+    CAPTURE(jitter);
+    REQUIRE(serial.nodes().size() == split.nodes().size());
+    CHECK(serial.leaf_faces() == split.leaf_faces());
+    int differing = 0;
+    for (std::size_t n = 0; n < serial.nodes().size(); ++n) {
+      const BvhNode &a = serial.nodes()[n], &b = split.nodes()[n];
+      if (a.left != b.left || a.right != b.right || a.first != b.first || a.count != b.count || a.box.lo != b.box.lo ||
+          a.box.hi != b.box.hi)
+        ++differing;
+    }
+    CHECK(differing == 0);
+  }
+}

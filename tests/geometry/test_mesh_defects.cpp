@@ -8,12 +8,15 @@
 #include <cmath>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "geometry/exact_triangle_intersection.h"
 #include "geometry/mesh_defects.h"
 #include "geometry/triangle_triangle.h"
 #include "geometry/faces_intersect_exact.h"
 #include "mesh/demo_meshes.h"
 #include "mesh/primitives.h"
+#include "util/rng.h"
 
 using namespace offsetopt;
 using V3 = Eigen::Vector3d;
@@ -156,4 +159,80 @@ TEST_CASE("find_self_intersections on two threads: the report of one thread, and
   CHECK(capped2.first_face == capped1.first_face);
   CHECK(capped2.second_face == capped1.second_face);
   CHECK(capped2.candidate_pairs == capped1.candidate_pairs);
+}
+
+TEST_CASE("coplanar faces on one vertex: the 2-D fan test agrees with the two exact segment tests") {
+  // Points of a plane with integer coordinates (exactly coplanar, and on a small grid full of
+  // collinear triples, touching corners and overlapping edges), on tilted and axis-aligned planes,
+  // and random points of a horizontal plane (a flat top in general position).
+  Rng rng(2611);
+  auto integer = [&](int n) { return static_cast<double>(static_cast<int>(rng.below(2 * n + 1)) - n); };
+  int meets = 0, misses = 0;
+  for (int trial = 0; trial < 40000; ++trial) {
+    const int kind = trial % 3;
+    V3 origin(integer(5), integer(5), integer(5)), u(1, 0, 0), w(0, 1, 0);
+    if (kind == 1) {
+      u = V3(integer(3), integer(3), integer(3));
+      w = V3(integer(3), integer(3), integer(3));
+      if (u.cross(w).squaredNorm() == 0.0) continue;
+    }
+    V3 p[5];
+    for (V3& x : p) {
+      if (kind == 2) x = V3(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), 0.375);
+      else x = origin + integer(3) * u + integer(3) * w;
+    }
+    const V3 &v = p[0], &f1 = p[1], &f2 = p[2], &g1 = p[3], &g2 = p[4];
+    if (collinear_exact(v, f1, f2) || collinear_exact(v, g1, g2)) continue;
+    const bool slow = segment_meets_triangle_exact(g1, g2, v, f1, f2) || segment_meets_triangle_exact(f1, f2, v, g1, g2);
+    CAPTURE(trial);
+    CHECK(coplanar_fan_pair_meets(v, f1, f2, g1, g2) == slow);
+    // Through the pair rule, with the shared corner at every position of either face.
+    const int shift_f = trial % 3, shift_g = (trial / 3) % 3;
+    V3 a[3], b[3];
+    int ia[3], ib[3];
+    const V3 fa[3] = {v, f1, f2}, gb[3] = {v, g1, g2};
+    const int fi[3] = {0, 1, 2}, gi[3] = {0, 3, 4};
+    for (int k = 0; k < 3; ++k) {
+      a[k] = fa[(k + shift_f) % 3];
+      ia[k] = fi[(k + shift_f) % 3];
+      b[k] = gb[(k + shift_g) % 3];
+      ib[k] = gi[(k + shift_g) % 3];
+    }
+    if (f1 != g1 && f1 != g2 && f2 != g1 && f2 != g2) CHECK(faces_intersect_exact(a, ia, b, ib) == slow);
+    ++(slow ? meets : misses);
+  }
+  CHECK(meets > 1000);
+  CHECK(misses > 1000);
+}
+
+TEST_CASE("coplanar triangles: the 2-D separating-edge test agrees with the six exact segment tests") {
+  Rng rng(2612);
+  auto integer = [&](int n) { return static_cast<double>(static_cast<int>(rng.below(2 * n + 1)) - n); };
+  int meets = 0, misses = 0;
+  for (int trial = 0; trial < 40000; ++trial) {
+    const int kind = trial % 3;
+    V3 origin(integer(5), integer(5), integer(5)), u(0, 1, 0), w(0, 0, 1);
+    if (kind == 1) {
+      u = V3(integer(3), integer(3), integer(3));
+      w = V3(integer(3), integer(3), integer(3));
+      if (u.cross(w).squaredNorm() == 0.0) continue;
+    }
+    V3 a[3], b[3];
+    for (V3* t : {a, b})
+      for (int k = 0; k < 3; ++k) {
+        if (kind == 2) t[k] = V3(rng.uniform(-1.0, 1.0), -0.625, rng.uniform(-1.0, 1.0));
+        else t[k] = origin + integer(3) * u + integer(3) * w;
+      }
+    if (collinear_exact(a[0], a[1], a[2]) || collinear_exact(b[0], b[1], b[2])) continue;
+    bool slow = false;
+    for (int k = 0; k < 3 && !slow; ++k)
+      slow = segment_meets_triangle_exact(a[k], a[(k + 1) % 3], b[0], b[1], b[2]) ||
+             segment_meets_triangle_exact(b[k], b[(k + 1) % 3], a[0], a[1], a[2]);
+    CAPTURE(trial);
+    CHECK(triangles_meet_exact(a, b) == slow);
+    CHECK(triangles_meet_exact(b, a) == slow);
+    ++(slow ? meets : misses);
+  }
+  CHECK(meets > 1000);
+  CHECK(misses > 1000);
 }

@@ -178,6 +178,11 @@ TEST_CASE("two meshes: nested spheres do not cross, overlapping spheres do") {
                               moved.corner(g, 1), moved.corner(g, 2)))
         brute.emplace_back(f, g);
   CHECK(found.pairs == brute);
+  // In two parts, on one thread or two: the same pairs.
+  for (const int threads : {1, 2}) {
+    CHECK(intersecting_faces_in_parts(outer_bvh, moved, 1000000, threads).pairs == brute);
+    CHECK(intersecting_faces_in_parts(moved, outer_bvh, 1000000, threads).pairs.size() == brute.size());
+  }
 }
 
 TEST_CASE("faces sharing an edge intersect only when folded onto each other") {
