@@ -16,14 +16,20 @@ void FaceShortlist::gather(const TriangleBvh& bvh, const Eigen::Vector3d& centre
   centre_ = centre;
   radius_ = radius;
   gathered_ = true;
+  overflowed_ = false;
   faces_.clear();
   const double limit = radius * radius;
   bvh.traverse([&](const Aabb& box) { return box.squared_distance(centre) <= limit; },
                [&](int face) {
                  const double squared = bvh.face_box(face).squared_distance(centre);
                  if (squared <= limit) faces_.push_back({std::sqrt(squared), face});
-                 return true;
+                 overflowed_ = faces_.size() > kMaxFaces;
+                 return !overflowed_;
                });
+  if (overflowed_) {
+    faces_.clear();
+    return;
+  }
   // Nearest the centre first: a point's search stops at the first face too far from the centre
   // to come within its best distance.
   std::sort(faces_.begin(), faces_.end(), [](const Entry& a, const Entry& b) { return a.from_centre < b.from_centre; });
@@ -36,7 +42,7 @@ bool FaceShortlist::covers(const Eigen::Vector3d& centre, double reach) const {
 }
 
 ClosestPoint FaceShortlist::nearest(const TriangleBvh& bvh, const Eigen::Vector3d& p, double max_distance, int hint) const {
-  if (!gathered_ || bvh_ != &bvh) {
+  if (!gathered_ || overflowed_ || bvh_ != &bvh) {
     ++fallbacks;
     return closest_point(bvh, p, max_distance);
   }

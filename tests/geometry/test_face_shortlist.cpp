@@ -43,7 +43,8 @@ void check_grid(const Mesh& mesh, const Eigen::Vector3d& lo, double h, int n, do
             ++asked;
             if (near.fallbacks == before) ++answered;
             else ++fell_back;
-            if (generous) CHECK(near.fallbacks == before);  // the list answered, not the tree
+            // The list answered, not the tree (unless it held too many faces to keep).
+            if (generous && !near.overflowed()) CHECK(near.fallbacks == before);
             CHECK(got.found == want.found);
             CHECK(got.face == want.face);
             CHECK(got.point == want.point);
@@ -75,4 +76,28 @@ TEST_CASE("face shortlist: a sphere's nodes inside and out") {
   const Mesh sphere = make_icosphere(1.0, 3);
   check_grid(sphere, Eigen::Vector3d(-1.3, -1.2, -1.25), 0.1, 26, std::numeric_limits<double>::infinity());
   check_grid(sphere, Eigen::Vector3d(-1.3, -1.2, -1.25), 0.1, 26, 0.15);
+}
+
+TEST_CASE("face shortlist: a region with more than kMaxFaces faces is left to closest_point") {
+  // An icosphere of 5,120 faces gathered whole: the list keeps none, and every answer is the
+  // tree's, to the last bit.
+  const Mesh sphere = make_icosphere(1.0, 4);
+  REQUIRE(static_cast<std::size_t>(sphere.F.rows()) > FaceShortlist::kMaxFaces);
+  const TriangleBvh bvh(sphere.V, sphere.F);
+  FaceShortlist near;
+  near.gather(bvh, Eigen::Vector3d::Zero(), 3.0);
+  CHECK(near.overflowed());
+  CHECK(near.size() == 0);
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0.1, 0.2, 0.3), Eigen::Vector3d(0.9, 0.0, 0.1), Eigen::Vector3d(1.5, -0.2, 0.4)}) {
+    const long before = near.fallbacks;
+    const ClosestPoint want = closest_point(bvh, p), got = near.nearest(bvh, p);
+    CHECK(near.fallbacks == before + 1);
+    CHECK(got.face == want.face);
+    CHECK(got.point == want.point);
+    CHECK(got.distance == want.distance);
+  }
+  near.gather(bvh, Eigen::Vector3d(1.0, 0.0, 0.0), 0.1);  // a small region: kept
+  CHECK(!near.overflowed());
+  CHECK(near.size() > 0);
+  CHECK(near.size() <= FaceShortlist::kMaxFaces);
 }
