@@ -33,6 +33,29 @@ std::string describe(const AlResult& r) {
          std::to_string(r.inner_iterations) + " evals=" + std::to_string(r.evaluations);
 }
 
+// Rosenbrock in 10 variables on the sphere |x|² = 4.
+ConstrainedProblem rosenbrock_on_sphere() {
+  ConstrainedProblem p;
+  p.num_variables = 10;
+  p.objective = [](const VectorXd& x, VectorXd& g) {
+    double f = 0.0;
+    g.setZero();
+    for (int i = 0; i + 1 < 10; ++i) {
+      const double a = x(i + 1) - x(i) * x(i), b = 1.0 - x(i);
+      f += 100.0 * a * a + b * b;
+      g(i) += -400.0 * a * x(i) - 2.0 * b;
+      g(i + 1) += 200.0 * a;
+    }
+    return f;
+  };
+  p.num_equality = 1;
+  p.equality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
+    c(0) = x.squaredNorm() - 4.0;
+    j.row(0) = 2.0 * x.transpose();
+  };
+  return p;
+}
+
 }  // namespace
 
 TEST_CASE("augmented-lagrangian: 100,000 linear rows, 36 variables, solution known by construction") {
@@ -393,24 +416,7 @@ TEST_CASE("augmented-lagrangian: an exhausted evaluation budget ends max_evaluat
   // budget runs out inside a subproblem, the next subproblem's only evaluation is the cached
   // start point, so no outer iteration can move: the solve must stop there, not raise the
   // penalty outer iteration after outer iteration and then call the problem infeasible.
-  ConstrainedProblem p;
-  p.num_variables = 10;
-  p.objective = [](const VectorXd& x, VectorXd& g) {
-    double f = 0.0;
-    g.setZero();
-    for (int i = 0; i + 1 < 10; ++i) {
-      const double a = x(i + 1) - x(i) * x(i), b = 1.0 - x(i);
-      f += 100.0 * a * a + b * b;
-      g(i) += -400.0 * a * x(i) - 2.0 * b;
-      g(i + 1) += 200.0 * a;
-    }
-    return f;
-  };
-  p.num_equality = 1;
-  p.equality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
-    c(0) = x.squaredNorm() - 4.0;
-    j.row(0) = 2.0 * x.transpose();
-  };
+  const ConstrainedProblem p = rosenbrock_on_sphere();
   for (int budget : {7, 25, 60}) {
     CAPTURE(budget);
     AlOptions params;
@@ -429,28 +435,14 @@ TEST_CASE("augmented-lagrangian: a stop flag ends the solve within the subproble
   // the objective after `after` evaluations (in use, by another thread). The solve must end
   // `stopped` with far fewer evaluations than the whole solve, claim nothing (status), and have
   // followed the same iterates as the unstopped solve up to there.
-  ConstrainedProblem p;
-  p.num_variables = 10;
+  ConstrainedProblem p = rosenbrock_on_sphere();
   std::vector<double> trace;
   std::atomic<bool>* raise = nullptr;
   int after = 0;
-  p.objective = [&trace, &raise, &after](const VectorXd& x, VectorXd& g) {
+  p.objective = [&trace, &raise, &after, rosenbrock = p.objective](const VectorXd& x, VectorXd& g) {
     trace.push_back(x(0));
     if (raise && static_cast<int>(trace.size()) == after) raise->store(true);
-    double f = 0.0;
-    g.setZero();
-    for (int i = 0; i + 1 < 10; ++i) {
-      const double a = x(i + 1) - x(i) * x(i), b = 1.0 - x(i);
-      f += 100.0 * a * a + b * b;
-      g(i) += -400.0 * a * x(i) - 2.0 * b;
-      g(i + 1) += 200.0 * a;
-    }
-    return f;
-  };
-  p.num_equality = 1;
-  p.equality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
-    c(0) = x.squaredNorm() - 4.0;
-    j.row(0) = 2.0 * x.transpose();
+    return rosenbrock(x, g);
   };
   const AlResult full = augmented_lagrangian_minimize(p, VectorXd::Constant(10, -1.0));
   REQUIRE(full.status == AlStatus::converged);
