@@ -31,7 +31,8 @@ constexpr int kFusedPricingRows = 64;  // at most this many rows: Eigen's produc
 class PairedPricing {
  public:
   PairedPricing(const Eigen::MatrixXd& A) : m_(static_cast<int>(A.rows())), pairs_((static_cast<int>(A.cols()) + 1) / 2) {
-    packed_.setZero(2, static_cast<Eigen::Index>(pairs_) * m_);
+    packed_.resize(2, static_cast<Eigen::Index>(pairs_) * m_);
+    if (A.cols() % 2 == 1) packed_.row(1).tail(m_).setZero();  // the last pair's missing column
     for (Eigen::Index j = 0; j < A.cols(); ++j)
       for (int k = 0; k < m_; ++k) packed_((j % 2), (j / 2) * m_ + k) = A(k, j);
     y_.resize(2, m_);
@@ -320,12 +321,21 @@ class Simplex {
   // factorisation), or returns false: infeasible, stalled, or stopped on an artificial bound.
   bool solve_dual(LpResult& r, const std::vector<std::int8_t>* start, const std::vector<int>* start_basis) {
     constexpr double kArtificialBound = 1e3;
-    const std::vector<double> lo_saved = lo_, hi_saved = hi_;
+    // The variables with an infinite bound (few: a margin column, the slacks) and their own bounds.
+    struct Replaced {
+      int var;
+      double lo, hi;
+    };
+    std::vector<Replaced> replaced;
     const auto restore = [&] {
-      lo_ = lo_saved;
-      hi_ = hi_saved;
+      for (const Replaced& b : replaced) {
+        lo_[b.var] = b.lo;
+        hi_[b.var] = b.hi;
+      }
     };
     for (int var = 0; var < n_ + m_; ++var) {
+      if (std::isfinite(lo_[var]) && std::isfinite(hi_[var])) continue;
+      replaced.push_back({var, lo_[var], hi_[var]});
       if (!std::isfinite(lo_[var])) lo_[var] = -kArtificialBound;
       if (!std::isfinite(hi_[var])) hi_[var] = kArtificialBound;
     }
@@ -346,13 +356,18 @@ class Simplex {
         if (valid) seen[static_cast<std::size_t>(var)] = 1;
       }
       if (valid) {
-        const std::vector<double> placed = value_;
+        // refactor() sets the basic values only: those are the ones to put back if it fails.
+        std::vector<double> placed(static_cast<std::size_t>(m_));
+        for (int i = 0; i < m_; ++i) placed[static_cast<std::size_t>(i)] = value_[(*start_basis)[static_cast<std::size_t>(i)]];
         basis_.assign(static_cast<std::size_t>(m_), -1);
         for (int i = 0; i < m_; ++i) set_basic(i, (*start_basis)[static_cast<std::size_t>(i)]);
         started = refactor();
         if (!started) {
-          for (int i = 0; i < m_; ++i) position_[static_cast<std::size_t>((*start_basis)[static_cast<std::size_t>(i)])] = -1;
-          value_ = placed;
+          for (int i = 0; i < m_; ++i) {
+            const int var = (*start_basis)[static_cast<std::size_t>(i)];
+            position_[static_cast<std::size_t>(var)] = -1;
+            value_[var] = placed[static_cast<std::size_t>(i)];
+          }
         }
       }
     }
@@ -407,10 +422,9 @@ class Simplex {
       if (row < 0) {
         if (pivots_since_refactor_ == 0 && flips_since_refactor_ == 0) {
           // Feasible: no column may rest on an artificial bound.
-          for (int var = 0; var < n_ + m_; ++var)
-            if (position_[static_cast<std::size_t>(var)] < 0 &&
-                ((value_[var] == lo_[var] && !std::isfinite(lo_saved[var])) ||
-                 (value_[var] == hi_[var] && !std::isfinite(hi_saved[var])))) {
+          for (const Replaced& b : replaced)
+            if (position_[static_cast<std::size_t>(b.var)] < 0 &&
+                ((value_[b.var] == lo_[b.var] && !std::isfinite(b.lo)) || (value_[b.var] == hi_[b.var] && !std::isfinite(b.hi)))) {
               restore();
               return false;
             }
@@ -598,6 +612,10 @@ class Simplex {
   int window_start_ = 0;
 };
 
+// A's entries all finite: x · 0 is 0 for a finite x and NaN for an infinite or NaN one, and NaN
+// stays in the sum (allFinite() compares A − A with itself, a temporary of A's size).
+bool all_finite(const Eigen::MatrixXd& A) { return (A.array() * 0.0).sum() == 0.0; }
+
 }  // namespace
 
 const char* to_string(LpStatus status) {
@@ -631,7 +649,7 @@ LpResult bounded_simplex(const LinearProgram& lp, const BoundedSimplexOptions& o
     problem = "the sizes of A, b, sense, c, lower, upper (and start) disagree";
   for (Eigen::Index j = 0; problem.empty() && j < n; ++j)
     if (!(lp.lower(j) <= lp.upper(j)) || lp.lower(j) == kInf || lp.upper(j) == -kInf) problem = "a column has empty bounds";
-  if (problem.empty() && (!lp.A.allFinite() || !lp.b.allFinite() || !lp.c.allFinite())) problem = "A, b and c must be finite";
+  if (problem.empty() && (!all_finite(lp.A) || !lp.b.allFinite() || !lp.c.allFinite())) problem = "A, b and c must be finite";
   if (!problem.empty()) {
     r.status = LpStatus::numerical;
     r.message = problem;
