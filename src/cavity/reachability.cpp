@@ -387,6 +387,11 @@ class Solver {
     run.ratio_rows = ratio_rows;
     const double V0 = f_.P0(kIntVolume);
     const int m = static_cast<int>(rows.size());
+    // The last round's columns and costs, and for each group the one it was there (−1: split
+    // since): a block split leaves most groups, and so their columns, as they were.
+    Eigen::MatrixXd kept_A;
+    Eigen::VectorXd kept_c;
+    std::vector<int> kept_from;
     for (int round = 0;; ++round) {
       const int G = static_cast<int>(p.groups.size());
       LinearProgram lp;
@@ -403,6 +408,12 @@ class Solver {
         lp.b(k) = -(rows[static_cast<std::size_t>(k)].constant + rows[static_cast<std::size_t>(k)].solid.dot(f_.P0)) / V0;
       }
       for (int g = 0; g < G; ++g) {
+        if (!kept_from.empty() && kept_from[static_cast<std::size_t>(g)] >= 0) {
+          const int was = kept_from[static_cast<std::size_t>(g)];
+          lp.A.col(g) = kept_A.col(was);
+          if (objective) lp.c(g) = kept_c(was);
+          continue;
+        }
         const Group& grp = p.groups[static_cast<std::size_t>(g)];
         const Eigen::Matrix<double, 10, Eigen::Dynamic>& coefficients = grp.sign == -1 ? cv : cb;
         if (m == 1) {
@@ -487,11 +498,13 @@ class Solver {
       }
       std::vector<Group> groups;
       std::vector<double> next_warm;
+      std::vector<int> from;
       for (int g = 0; g < G; ++g) {
         const Group& grp = p.groups[static_cast<std::size_t>(g)];
         if (!split[static_cast<std::size_t>(g)]) {
           groups.push_back(grp);
           next_warm.push_back(run.u[static_cast<std::size_t>(g)]);
+          from.push_back(g);
           continue;
         }
         // Into its (up to) 8 octants, cells kept in order inside each.
@@ -516,9 +529,13 @@ class Solver {
           child.end = q;
           groups.push_back(child);
           next_warm.push_back(w.dot(child.integrals) > 0.0 ? 1.0 : 0.0);
+          from.push_back(-1);
         }
       }
       p.groups = std::move(groups);
+      kept_A = std::move(lp.A);
+      kept_c = std::move(lp.c);
+      kept_from = std::move(from);
       warm = std::move(next_warm);
     }
   }
