@@ -499,6 +499,7 @@ class Solver {
       std::vector<Group> groups;
       std::vector<double> next_warm;
       std::vector<int> from;
+      std::vector<int> octants, sorted;
       for (int g = 0; g < G; ++g) {
         const Group& grp = p.groups[static_cast<std::size_t>(g)];
         if (!split[static_cast<std::size_t>(g)]) {
@@ -510,23 +511,31 @@ class Solver {
         // Into its (up to) 8 octants, cells kept in order inside each.
         const Vector10d& w = weights_of(grp.sign);
         const int half = std::max(1, grp.side / 2);
-        auto octant = [&](int q) {
-          const FineCell& c = p.cells[static_cast<std::size_t>(p.order[static_cast<std::size_t>(q)])];
-          return (c.i / half) % 2 + 2 * ((c.j / half) % 2) + 4 * ((c.k / half) % 2);
-        };
-        std::vector<int> sorted;
-        for (int o = 0; o < 8; ++o)
-          for (int q = grp.begin; q < grp.end; ++q)
-            if (octant(q) == o) sorted.push_back(p.order[static_cast<std::size_t>(q)]);
+        // Each cell's octant once, then a stable counting sort by it.
+        const int count = grp.end - grp.begin;
+        octants.resize(static_cast<std::size_t>(count));
+        int first[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+        for (int q = 0; q < count; ++q) {
+          const FineCell& c = p.cells[static_cast<std::size_t>(p.order[static_cast<std::size_t>(grp.begin + q)])];
+          const int o = (c.i / half) % 2 + 2 * ((c.j / half) % 2) + 4 * ((c.k / half) % 2);
+          octants[static_cast<std::size_t>(q)] = o;
+          ++first[o + 1];
+        }
+        for (int o = 0; o < 8; ++o) first[o + 1] += first[o];
+        sorted.resize(static_cast<std::size_t>(count));
+        int next[8];
+        std::copy(first, first + 8, next);
+        for (int q = 0; q < count; ++q)
+          sorted[static_cast<std::size_t>(next[octants[static_cast<std::size_t>(q)]]++)] = p.order[static_cast<std::size_t>(grp.begin + q)];
         std::copy(sorted.begin(), sorted.end(), p.order.begin() + grp.begin);
-        for (int q = grp.begin; q < grp.end;) {
-          const int o = octant(q);
+        for (int o = 0; o < 8; ++o) {
+          if (first[o] == first[o + 1]) continue;
           Group child;
-          child.begin = q;
+          child.begin = grp.begin + first[o];
           child.sign = grp.sign;
           child.side = half;
-          while (q < grp.end && octant(q) == o) child.integrals += p.cell_integrals(p.order[static_cast<std::size_t>(q++)]);
-          child.end = q;
+          for (int q = child.begin; q < grp.begin + first[o + 1]; ++q) child.integrals += p.cell_integrals(p.order[static_cast<std::size_t>(q)]);
+          child.end = grp.begin + first[o + 1];
           groups.push_back(child);
           next_warm.push_back(w.dot(child.integrals) > 0.0 ? 1.0 : 0.0);
           from.push_back(-1);
