@@ -176,6 +176,7 @@ struct Partition {
   std::vector<FineCell> cells;
   std::vector<int> order;          // cells, block by block
   std::vector<Group> groups;
+  int splits = 0;                  // times the groups were replaced (Solver::moved_at's key)
   double h = 0.0;                  // cell side, normalised
   // cube_integrals(centre, h, 0), the same arithmetic inlined: the block splits evaluate it for
   // every cell of every block they look at.
@@ -298,10 +299,6 @@ double form_value(const Form& f, const Vector10d& P0, const Moved& m) {
   return sum.value();
 }
 
-double form_value(const Form& f, const Vector10d& P0, const Partition& p, const std::vector<double>& u) {
-  return form_value(f, P0, moved_integrals(p, u));
-}
-
 struct LpRun {
   LpStatus status = LpStatus::numerical;
   std::vector<double> u;           // per group
@@ -330,7 +327,7 @@ class Solver {
     std::vector<char> active(static_cast<std::size_t>(m), 0);
     auto values_at = [&](const std::vector<double>& u) {
       std::vector<double> v(static_cast<std::size_t>(m));
-      const Moved moved = moved_integrals(p, u);
+      const Moved& moved = moved_at(p, u);
       for (int k = 0; k < m; ++k) v[static_cast<std::size_t>(k)] = form_value(rows[static_cast<std::size_t>(k)], f_.P0, moved) / V0;
       return v;
     };
@@ -380,6 +377,20 @@ class Solver {
       if (run.status != LpStatus::optimal || pass >= 100) return run;
       if (add_lowest(values_at(run.u), with_z && active_ratio > 0 ? run.z : 0.0, 8, -1e-12) == 0) return run;
     }
+  }
+
+  // moved_integrals(p, u), kept for the last (partition, its splits, u) asked: a programme's
+  // caller reads its rows at the same occupancy the row generation last did, and the next
+  // programme starts from it.
+  const Moved& moved_at(const Partition& p, const std::vector<double>& u) {
+    if (!(moved_partition_ == &p && moved_splits_ == p.splits && moved_groups_ == p.groups.size() && moved_u_ == u)) {
+      moved_ = moved_integrals(p, u);
+      moved_partition_ = &p;
+      moved_splits_ = p.splits;
+      moved_groups_ = p.groups.size();
+      moved_u_ = u;
+    }
+    return moved_;
   }
 
   // `row_ids` names each row in the caller's full list (rows keep their names across Dinkelbach
@@ -546,6 +557,7 @@ class Solver {
         }
       }
       p.groups = std::move(groups);
+      ++p.splits;
       kept_A = std::move(lp.A);
       kept_c = std::move(lp.c);
       kept_from = std::move(from);
@@ -592,6 +604,11 @@ class Solver {
     int kind = 0;  // 0 group, 1 slack, 2 the margin column z
     int a = 0, b = 0;
   };
+  const Partition* moved_partition_ = nullptr;
+  int moved_splits_ = 0;
+  std::size_t moved_groups_ = 0;
+  std::vector<double> moved_u_;
+  Moved moved_;
   const Partition* basis_partition_ = nullptr;
   const Partition* active_partition_ = nullptr;
   std::vector<char> last_active_;
@@ -698,7 +715,7 @@ MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, con
     s.feasible = true;
     double t_new = kInf;
     int arg = -1;
-    const Moved moved = moved_integrals(p, run.u);
+    const Moved& moved = solver.moved_at(p, run.u);
     for (int j = 0; j < nr; ++j) {
       const double ratio = form_value(rows.numerators[static_cast<std::size_t>(j)], f.P0, moved) /
                            form_value(rows.denominators[static_cast<std::size_t>(j)], f.P0, moved);
@@ -800,7 +817,7 @@ std::optional<double> lowest_cz(Solver& solver, Partition& p, const GoalRows& ro
   const std::vector<Form> constraints = ratio_rows_at(rows, margin);
   const Form Z = solid_form(unit(kIntZ)), M = solid_form(unit(kIntVolume));
   std::vector<double> warm = u;
-  double theta = form_value(Z, f.P0, p, u) / form_value(M, f.P0, p, u);
+  double theta = form_value(Z, f.P0, solver.moved_at(p, u)) / form_value(M, f.P0, solver.moved_at(p, u));
   std::optional<double> best;
   for (int it = 0; it < cap; ++it) {
     Form obj;
@@ -808,7 +825,7 @@ std::optional<double> lowest_cz(Solver& solver, Partition& p, const GoalRows& ro
     // The ratio rows (at the margin) by row generation too: a round base has hundreds of edges.
     const LpRun run = solver.solve(p, constraints, static_cast<int>(rows.numerators.size()), false, &obj, warm);
     if (run.status != LpStatus::optimal) break;
-    const double next = form_value(Z, f.P0, p, run.u) / form_value(M, f.P0, p, run.u);
+    const double next = form_value(Z, f.P0, solver.moved_at(p, run.u)) / form_value(M, f.P0, solver.moved_at(p, run.u));
     if (!best || next < *best) {
       best = next;
       u = run.u;
