@@ -2,16 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#ifdef REACH_VERIFY
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#endif
 #include <limits>
 
 #include "cavity/contour_cavity.h"
 #include "geometry/aabb.h"
 #include "mass/volume_integrals.h"
+#include "optim/transposed_product_10.h"
 #include "util/neumaier_sum.h"
 
 namespace offsetopt {
@@ -240,26 +236,6 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
   return p;
 }
 
-// One column of the programme, (rows' coefficients)ᵀ · integrals with the rows' coefficients
-// side by side (`coefficients`, 10 × m), each entry summed as Eigen's row-major matrix-vector
-// product sums a row (the even and the odd terms apart, in order, then added, onto zero): the
-// same column bit for bit, without a dynamic product per column (a pass builds tens of thousands).
-void programme_column(const Eigen::Matrix<double, 10, Eigen::Dynamic>& coefficients, const Vector10d& integrals, double* column) {
-  using Pair = Eigen::Map<const Eigen::Array2d, Eigen::Aligned16>;
-  const Eigen::Array2d x0 = Pair(integrals.data()), x1 = Pair(integrals.data() + 2), x2 = Pair(integrals.data() + 4),
-                       x3 = Pair(integrals.data() + 6), x4 = Pair(integrals.data() + 8);
-  for (Eigen::Index k = 0; k < coefficients.cols(); ++k) {
-    const double* c = coefficients.col(k).data();
-    Eigen::Array2d sum = Eigen::Array2d::Zero();
-    sum += Pair(c) * x0;
-    sum += Pair(c + 2) * x1;
-    sum += Pair(c + 4) * x2;
-    sum += Pair(c + 6) * x3;
-    sum += Pair(c + 8) * x4;
-    column[k] = 0.0 + (sum[0] + sum[1]);
-  }
-}
-
 // Coefficient of a form on a column of integrals I with sign s.
 double form_on(const Form& f, const Vector10d& I, int sign) {
   return sign == -1 ? f.void_coefficients().dot(I) : sign == 1 ? f.solid.dot(I) : -f.solid.dot(I);
@@ -434,18 +410,8 @@ class Solver {
         if (m == 1) {
           lp.A.col(g).noalias() = coefficients.transpose() * grp.integrals;
         } else {
-          programme_column(coefficients, grp.integrals, lp.A.col(g).data());
+          transposed_product_10(coefficients, grp.integrals, lp.A.col(g).data());  // the product's bits
         }
-#ifdef REACH_VERIFY
-        {
-          Eigen::VectorXd check(m);
-          check.noalias() = coefficients.transpose() * grp.integrals;
-          if (std::memcmp(check.data(), lp.A.col(g).data(), sizeof(double) * static_cast<std::size_t>(m)) != 0) {
-            std::fprintf(stderr, "REACH_VERIFY: column mismatch m=%d\n", m);
-            std::abort();
-          }
-        }
-#endif
         if (grp.sign == -2) lp.A.col(g) = -lp.A.col(g);
         if (objective) lp.c(g) = form_on(*objective, grp.integrals, grp.sign) / V0;
       }

@@ -1,18 +1,14 @@
 #include "optim/bounded_simplex.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <utility>
-#ifdef REACH_VERIFY
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#endif
 
 #include <Eigen/LU>
+
+#include "optim/paired_pricing.h"
 
 namespace offsetopt {
 
@@ -21,53 +17,6 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr std::size_t kCandidatesPerPass = 64;
 constexpr int kPricingWindow = 1024;  // columns priced per window, at least (an eighth of them when more)
-
-constexpr int kFusedPricingRows = 64;  // at most this many rows: Eigen's product sums them in one block
-
-// Aᵀ[y r] summed as Eigen's matrix product sums it when [y r] has two columns: each entry in row
-// order onto zero, then added to zero (one accumulator over the whole depth while it fits one
-// block, kFusedPricingRows), so the dual steps see the same numbers bit for bit. A is packed once
-// per programme (columns in pairs, row by row) where the product packs it at every dual step.
-class PairedPricing {
- public:
-  PairedPricing(const Eigen::MatrixXd& A) : m_(static_cast<int>(A.rows())), pairs_((static_cast<int>(A.cols()) + 1) / 2) {
-    packed_.resize(2, static_cast<Eigen::Index>(pairs_) * m_);
-    if (A.cols() % 2 == 1) packed_.row(1).tail(m_).setZero();  // the last pair's missing column
-    for (Eigen::Index j = 0; j < A.cols(); ++j)
-      for (int k = 0; k < m_; ++k) packed_((j % 2), (j / 2) * m_ + k) = A(k, j);
-    y_.resize(2, m_);
-    r_.resize(2, m_);
-  }
-  // priced (n × 2) = Aᵀ [yr.col(0) yr.col(1)].
-  void price(const Eigen::MatrixXd& yr, Eigen::MatrixXd& priced) {
-    const Eigen::Index n = priced.rows();
-    for (int k = 0; k < m_; ++k) {
-      y_.col(k).setConstant(yr(k, 0));
-      r_.col(k).setConstant(yr(k, 1));
-    }
-    for (int p = 0; p < pairs_; ++p) {
-      Eigen::Array2d sy = Eigen::Array2d::Zero(), sr = Eigen::Array2d::Zero();
-      const Eigen::Index base = static_cast<Eigen::Index>(p) * m_;
-      for (int k = 0; k < m_; ++k) {
-        const Eigen::Array2d a = packed_.col(base + k);
-        sy += a * y_.col(k);
-        sr += a * r_.col(k);
-      }
-      sy = 0.0 + sy;
-      sr = 0.0 + sr;
-      priced(2 * p, 0) = sy[0];
-      priced(2 * p, 1) = sr[0];
-      if (2 * p + 1 < n) {
-        priced(2 * p + 1, 0) = sy[1];
-        priced(2 * p + 1, 1) = sr[1];
-      }
-    }
-  }
-
- private:
-  int m_ = 0, pairs_ = 0;
-  Eigen::Array<double, 2, Eigen::Dynamic> packed_, y_, r_;
-};
 
 // A breakpoint of the dual ratio test: θ, −|α|, column, taken in lexicographic order (the same
 // comparisons as on an array of the three, fewer instructions).
@@ -405,7 +354,7 @@ class Simplex {
     Eigen::MatrixXd yr(m_, 2);
     Eigen::MatrixXd priced;
     std::optional<PairedPricing> paired;  // packed at the first dual step (else Eigen's own product)
-    const bool pairs_priced = m_ >= 1 && m_ <= kFusedPricingRows && n_ + m_ + 2 >= 20;
+    const bool pairs_priced = PairedPricing::eligible(m_, n_);
     for (;;) {
       if (r.iterations >= o_.max_iterations || pivots >= max_pivots) break;
       // The leaving row: the largest bound violation among the basic variables.
@@ -439,19 +388,9 @@ class Simplex {
       const double sigma = below ? -1.0 : 1.0;
       yr.col(0) = duals();
       yr.col(1) = binv_.row(row).transpose();
-      // Eigen evaluates a product this small another way.
       if (pairs_priced && !paired) paired.emplace(lp_.A);
       if (paired) {
-        priced.resize(n_, 2);
-        paired->price(yr, priced);
-#ifdef REACH_VERIFY
-        Eigen::MatrixXd verify;
-        verify.noalias() = lp_.A.transpose() * yr;
-        if (std::memcmp(verify.data(), priced.data(), sizeof(double) * static_cast<std::size_t>(2 * n_)) != 0) {
-          std::fprintf(stderr, "REACH_VERIFY: pricing mismatch n=%d m=%d\n", n_, m_);
-          std::abort();
-        }
-#endif
+        paired->price(yr, priced);  // Aᵀ[y r], the product's bits
       } else {
         priced.noalias() = lp_.A.transpose() * yr;
       }
