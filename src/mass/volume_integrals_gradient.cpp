@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include "util/neumaier_pair.h"
 #include "util/neumaier_sum.h"
 
 namespace offsetopt {
@@ -100,7 +101,8 @@ void integrals_and_jacobian_rows(const Vertices& V, const Faces& F, const Eigen:
   constexpr bool first_moments = Rows >= 4, second_moments = Rows >= 10;
   constexpr bool second_moment_sums = Sums >= 10;
   jacobian.setZero(Rows, V.rows());
-  std::array<NeumaierSum, Sums> sums;
+  NeumaierSum volume_sum;                          // Sums = 1
+  std::array<NeumaierPair, (Sums + 1) / 2> sums;   // Sums = 4 or 10: integrals 2j and 2j + 1
   auto position = [&](int index) -> Eigen::Vector3d {
     if constexpr (Shifted) return V.row(index).transpose() - origin;
     return V.row(index).transpose();
@@ -115,20 +117,17 @@ void integrals_and_jacobian_rows(const Vertices& V, const Faces& F, const Eigen:
     if constexpr (second_moment_sums) {
       Gxx = G(0, 0), Gyy = G(1, 1), Gzz = G(2, 2), Gxy = G(0, 1), Gyz = G(1, 2), Gzx = G(2, 0);
     }
-    // The same terms, in the same order, as volume_integrals().
-    sums[kIntVolume].add(D / 6.0);
-    if constexpr (Sums >= 4) {
-      sums[kIntX].add(D * S.x() / 24.0);
-      sums[kIntY].add(D * S.y() / 24.0);
-      sums[kIntZ].add(D * S.z() / 24.0);
+    // The same terms, in the same order, as volume_integrals(); sums in pairs (kInt order).
+    if constexpr (Sums == 1) {
+      volume_sum.add(D / 6.0);
+    } else {
+      sums[0].add(D / 6.0, D * S.x() / 24.0);
+      sums[1].add(D * S.y() / 24.0, D * S.z() / 24.0);
     }
     if constexpr (second_moment_sums) {
-      sums[kIntXX].add(D * Gxx / 120.0);
-      sums[kIntYY].add(D * Gyy / 120.0);
-      sums[kIntZZ].add(D * Gzz / 120.0);
-      sums[kIntXY].add(D * Gxy / 120.0);
-      sums[kIntYZ].add(D * Gyz / 120.0);
-      sums[kIntZX].add(D * Gzx / 120.0);
+      sums[2].add(D * Gxx / 120.0, D * Gyy / 120.0);
+      sums[3].add(D * Gzz / 120.0, D * Gxy / 120.0);
+      sums[4].add(D * Gyz / 120.0, D * Gzx / 120.0);
     }
     for (int corner = 0; corner < 3; ++corner) {
       const Eigen::Vector3d d = directions.row(corner_index[corner]).transpose();
@@ -150,7 +149,11 @@ void integrals_and_jacobian_rows(const Vertices& V, const Faces& F, const Eigen:
     }
   }
   integrals.setConstant(std::numeric_limits<double>::quiet_NaN());
-  for (int k = 0; k < Sums; ++k) integrals(k) = sums[static_cast<std::size_t>(k)].value();
+  if constexpr (Sums == 1) {
+    integrals(kIntVolume) = volume_sum.value();
+  } else {
+    for (int k = 0; k < Sums; ++k) integrals(k) = sums[static_cast<std::size_t>(k / 2)].value(k % 2);
+  }
 }
 
 template <int Rows, int Sums>
