@@ -78,6 +78,26 @@ void ReducedProblem::apply_basis_part(const Eigen::VectorXd& coefficients, int p
   for (Eigen::Index i = begin; i < end; ++i) out(i) = band_.fixed[static_cast<std::size_t>(i)] ? 0.0 : coefficients(i);
 }
 
+template <int Rows>
+void ReducedProblem::fill_vertex_rows(Eigen::Index begin, Eigen::Index end) {
+  using Column = Eigen::Matrix<double, Rows, 1>;
+  const bool outer = options_.outer;
+  const double* inner_slope = cache_.inner_slope.data();
+  for (Eigen::Index i = begin; i < end; ++i) {
+    double* column = per_vertex_.col(i).data();
+    const Column inner = Eigen::Map<const Column>(inner_jacobian_[0].col(i).data()) +
+                         Eigen::Map<const Column>(inner_jacobian_[1].col(i).data());
+    Eigen::Map<Column> by_inner_raw(column);
+    by_inner_raw = inner * inner_slope[i];
+    if (!outer) continue;
+    Eigen::Map<Column> inner_by_outer_raw(column + Rows), outer_by_outer_raw(column + 2 * Rows);
+    inner_by_outer_raw = inner * inner_by_outer_(i);
+    outer_by_outer_raw = (Eigen::Map<const Column>(outer_jacobian_[0].col(i).data()) +
+                          Eigen::Map<const Column>(outer_jacobian_[1].col(i).data())) *
+                         outer_slope_(i);
+  }
+}
+
 Eigen::MatrixXd ReducedProblem::project_rows(const Eigen::MatrixXd& per_vertex, Eigen::Index begin,
                                              Eigen::Index end) const {
   const Eigen::Index count = end - begin;
@@ -275,18 +295,10 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const 
   Eigen::MatrixXd projected_part[2];
   auto projection_part = [&](int part) {
     const Eigen::Index begin = vertex_split_[part], end = vertex_split_[part + 1];
-    for (Eigen::Index i = begin; i < end; ++i) {
-      double* column = per_vertex_.col(i).data();
-      const double* inner_a = inner_jacobian_[0].col(i).data();
-      const double* inner_b = inner_jacobian_[1].col(i).data();
-      for (Eigen::Index r = 0; r < R; ++r) column[r] = (inner_a[r] + inner_b[r]) * e.inner_slope(i);
-      if (!outer) continue;
-      const double* outer_a = outer_jacobian_[0].col(i).data();
-      const double* outer_b = outer_jacobian_[1].col(i).data();
-      for (Eigen::Index r = 0; r < R; ++r) {
-        column[R + r] = (inner_a[r] + inner_b[r]) * inner_by_outer_(i);
-        column[2 * R + r] = (outer_a[r] + outer_b[r]) * outer_slope_(i);
-      }
+    switch (R) {
+      case 1: fill_vertex_rows<1>(begin, end); break;
+      case 4: fill_vertex_rows<4>(begin, end); break;
+      default: fill_vertex_rows<10>(begin, end); break;
     }
     projected_part[part] = project_rows(per_vertex_, begin, end);
   };

@@ -118,6 +118,11 @@ class ReducedProblem {
   // Columns [begin, end) of a (rows by #V) matrix times the same rows of Γ: rows by k, one
   // part of the product (the parts add up to the whole).
   Eigen::MatrixXd project_rows(const Eigen::MatrixXd& per_vertex, Eigen::Index begin, Eigen::Index end) const;
+  // Columns [begin, end) of per_vertex_'s Jacobian rows (Rows = integral_rows_ each: inner by Γα;
+  // with outer offsets also inner by Γβ and outer by Γβ): the two face halves' columns added, times
+  // the vertex's slope. Each entry (a + b) · slope, whatever Rows.
+  template <int Rows>
+  void fill_vertex_rows(Eigen::Index begin, Eigen::Index end);
   void run_parts(const std::function<void(int)>& part) const;  // part(0) and part(1), maybe on two threads
   void build_hard_bounds();
   void update_outer_inward_limit();
