@@ -96,11 +96,12 @@ namespace {
 // changes no coordinate's bits (x − (+0) == x, also for x = −0), so it is skipped.
 template <int Rows, int Sums, bool Shifted>
 void integrals_and_jacobian_rows(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
-                                 const Vertices& directions, Vector10d& integrals, Eigen::MatrixXd& jacobian) {
+                                 const Vertices& directions, Vector10d& integrals, Eigen::MatrixXd& jacobian,
+                                 bool jacobian_is_zero) {
   static_assert(Rows <= Sums, "every integral with a Jacobian row is summed");
   constexpr bool first_moments = Rows >= 4, second_moments = Rows >= 10;
   constexpr bool second_moment_sums = Sums >= 10;
-  jacobian.setZero(Rows, V.rows());
+  if (!jacobian_is_zero) jacobian.setZero(Rows, V.rows());
   NeumaierSum volume_sum;                          // Sums = 1
   std::array<NeumaierPair, (Sums + 1) / 2> sums;   // Sums = 4 or 10: integrals 2j and 2j + 1
   auto position = [&](int index) -> Eigen::Vector3d {
@@ -158,32 +159,36 @@ void integrals_and_jacobian_rows(const Vertices& V, const Faces& F, const Eigen:
 
 template <int Rows, int Sums>
 void integrals_and_jacobian_from(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
-                                 const Vertices& directions, Vector10d& integrals, Eigen::MatrixXd& jacobian) {
+                                 const Vertices& directions, Vector10d& integrals, Eigen::MatrixXd& jacobian,
+                                 bool jacobian_is_zero) {
   bool positive_zero = true;
   for (int k = 0; k < 3; ++k) positive_zero = positive_zero && origin(k) == 0.0 && !std::signbit(origin(k));
   if (positive_zero)
-    integrals_and_jacobian_rows<Rows, Sums, false>(V, F, origin, directions, integrals, jacobian);
+    integrals_and_jacobian_rows<Rows, Sums, false>(V, F, origin, directions, integrals, jacobian, jacobian_is_zero);
   else
-    integrals_and_jacobian_rows<Rows, Sums, true>(V, F, origin, directions, integrals, jacobian);
+    integrals_and_jacobian_rows<Rows, Sums, true>(V, F, origin, directions, integrals, jacobian, jacobian_is_zero);
 }
 
 }  // namespace
 
 void volume_integrals_and_directional_jacobian(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
                                                const Vertices& directions, Vector10d& integrals,
-                                               Eigen::MatrixXd& jacobian, int jacobian_rows, int integral_count) {
+                                               Eigen::MatrixXd& jacobian, int jacobian_rows, int integral_count,
+                                               bool jacobian_is_zero) {
+  const Eigen::Index rows = jacobian_rows >= 10 ? 10 : (jacobian_rows >= 4 ? 4 : 1);
+  jacobian_is_zero = jacobian_is_zero && jacobian.rows() == rows && jacobian.cols() == V.rows();
   const bool all = integral_count >= 10;
   if (jacobian_rows >= 10)
-    integrals_and_jacobian_from<10, 10>(V, F, origin, directions, integrals, jacobian);
+    integrals_and_jacobian_from<10, 10>(V, F, origin, directions, integrals, jacobian, jacobian_is_zero);
   else if (jacobian_rows >= 4)
     (all ? integrals_and_jacobian_from<4, 10> : integrals_and_jacobian_from<4, 4>)(V, F, origin, directions, integrals,
-                                                                                    jacobian);
+                                                                                    jacobian, jacobian_is_zero);
   else if (all)
-    integrals_and_jacobian_from<1, 10>(V, F, origin, directions, integrals, jacobian);
+    integrals_and_jacobian_from<1, 10>(V, F, origin, directions, integrals, jacobian, jacobian_is_zero);
   else if (integral_count >= 4)
-    integrals_and_jacobian_from<1, 4>(V, F, origin, directions, integrals, jacobian);
+    integrals_and_jacobian_from<1, 4>(V, F, origin, directions, integrals, jacobian, jacobian_is_zero);
   else
-    integrals_and_jacobian_from<1, 1>(V, F, origin, directions, integrals, jacobian);
+    integrals_and_jacobian_from<1, 1>(V, F, origin, directions, integrals, jacobian, jacobian_is_zero);
 }
 
 }  // namespace offsetopt

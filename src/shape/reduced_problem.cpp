@@ -83,18 +83,24 @@ void ReducedProblem::fill_vertex_rows(Eigen::Index begin, Eigen::Index end) {
   using Column = Eigen::Matrix<double, Rows, 1>;
   const bool outer = options_.outer;
   const double* inner_slope = cache_.inner_slope.data();
+  // The face halves' columns are cleared once read: the next evaluation's kernel adds into them
+  // without clearing the whole matrices first (they hold +0, as after setZero).
   for (Eigen::Index i = begin; i < end; ++i) {
     double* column = per_vertex_.col(i).data();
-    const Column inner = Eigen::Map<const Column>(inner_jacobian_[0].col(i).data()) +
-                         Eigen::Map<const Column>(inner_jacobian_[1].col(i).data());
+    Eigen::Map<Column> inner_a(inner_jacobian_[0].col(i).data()), inner_b(inner_jacobian_[1].col(i).data());
+    const Column inner = inner_a + inner_b;
+    inner_a.setZero();
+    inner_b.setZero();
     Eigen::Map<Column> by_inner_raw(column);
     by_inner_raw = inner * inner_slope[i];
     if (!outer) continue;
+    Eigen::Map<Column> outer_a(outer_jacobian_[0].col(i).data()), outer_b(outer_jacobian_[1].col(i).data());
+    const Column outer_sum = outer_a + outer_b;
+    outer_a.setZero();
+    outer_b.setZero();
     Eigen::Map<Column> inner_by_outer_raw(column + Rows), outer_by_outer_raw(column + 2 * Rows);
     inner_by_outer_raw = inner * inner_by_outer_(i);
-    outer_by_outer_raw = (Eigen::Map<const Column>(outer_jacobian_[0].col(i).data()) +
-                          Eigen::Map<const Column>(outer_jacobian_[1].col(i).data())) *
-                         outer_slope_(i);
+    outer_by_outer_raw = outer_sum * outer_slope_(i);
   }
 }
 
@@ -282,11 +288,11 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const 
   auto surface_part = [&](int part) {
     volume_integrals_and_directional_jacobian(inner_vertices_, face_parts_[part], origin, band_.inner_direction,
                                               inner_part_integrals[part], inner_jacobian_[part], integral_rows_,
-                                              integral_count);
+                                              integral_count, true);
     if (outer)
       volume_integrals_and_directional_jacobian(outer_vertices_, face_parts_[part], origin, band_.outer_direction,
                                                 outer_part_integrals[part], outer_jacobian_[part], integral_rows_,
-                                                integral_count);
+                                                integral_count, true);
   };
   run_parts(surface_part);
   e.inner_integrals = inner_part_integrals[0] + inner_part_integrals[1];

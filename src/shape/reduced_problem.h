@@ -145,7 +145,8 @@ class ReducedProblem {
   Vertices inner_vertices_, outer_vertices_;
   Faces face_parts_[2];              // the faces cut in two fixed halves
   Eigen::Index vertex_split_[3] = {0, 0, 0};  // vertex halves [split[p], split[p + 1])
-  Eigen::MatrixXd inner_jacobian_[2], outer_jacobian_[2];  // integral_rows_ by #V, per face half
+  // integral_rows_ by #V, per face half; all +0 between evaluations (fill_vertex_rows clears them)
+  Eigen::MatrixXd inner_jacobian_[2], outer_jacobian_[2];
   Eigen::MatrixXd per_vertex_;
   Eigen::VectorXd raw_inner_, raw_outer_;         // Γα and Γβ per vertex
   Eigen::VectorXd outer_slope_, inner_by_outer_;  // ∂δout/∂(Γβ) and ∂δin/∂(Γβ) per vertex
