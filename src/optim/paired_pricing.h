@@ -22,6 +22,8 @@ class PairedPricing {
   void price(const Eigen::MatrixXd& yr, Eigen::MatrixXd& priced);
 
  private:
+  void store(Eigen::Index pair, const Eigen::Array2d& sy, const Eigen::Array2d& sr, Eigen::MatrixXd& priced) const;
+
   Eigen::Index m_ = 0, n_ = 0, pairs_ = 0;
   Eigen::Array<double, 2, Eigen::Dynamic> packed_, y_, r_;  // y_, r_: each entry in both lanes
 };
