@@ -13,12 +13,34 @@ namespace offsetopt {
 
 namespace {
 
-// The rule for two faces whose corners are known not to be collinear.
+// The rule for two faces whose corners are known not to be collinear. Faces on exactly one
+// common corner whose far edges both lie apart from the other face's box are faces_intersect_exact's
+// first shortcut, taken here on the tree's packed corners and face boxes before anything is
+// copied: most pairs a search meets are such neighbours.
 bool planar_faces_intersect(const TriangleBvh& bvh, int f, int g) {
   const auto& F = bvh.faces();
+  const int ids_f[3] = {F(f, 0), F(f, 1), F(f, 2)}, ids_g[3] = {F(g, 0), F(g, 1), F(g, 2)};
+  int shared = 0, in_f = 0, in_g = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (ids_f[i] == ids_g[j]) {
+        ++shared;
+        in_f = i;
+        in_g = j;
+      }
+  if (shared == 1) {
+    // The far edge of `face` (its corners other than corner `c`) apart from the box of `other`.
+    auto far_edge_apart = [&bvh](int face, int c, int other) {
+      const Eigen::Vector3d p = bvh.corner(face, c == 0 ? 1 : 0), q = bvh.corner(face, c == 2 ? 1 : 2);
+      const Aabb& box = bvh.face_box(other);
+      return std::max(p.x(), q.x()) < box.lo.x() || std::min(p.x(), q.x()) > box.hi.x() ||
+             std::max(p.y(), q.y()) < box.lo.y() || std::min(p.y(), q.y()) > box.hi.y() ||
+             std::max(p.z(), q.z()) < box.lo.z() || std::min(p.z(), q.z()) > box.hi.z();
+    };
+    if (far_edge_apart(g, in_g, f) && far_edge_apart(f, in_f, g)) return false;
+  }
   const Eigen::Vector3d a[3] = {bvh.corner(f, 0), bvh.corner(f, 1), bvh.corner(f, 2)};
   const Eigen::Vector3d b[3] = {bvh.corner(g, 0), bvh.corner(g, 1), bvh.corner(g, 2)};
-  const int ids_f[3] = {F(f, 0), F(f, 1), F(f, 2)}, ids_g[3] = {F(g, 0), F(g, 1), F(g, 2)};
   return faces_intersect_exact(a, ids_f, b, ids_g);
 }
 
