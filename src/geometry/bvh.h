@@ -114,10 +114,12 @@ class TriangleBvh {
 // Visits every (face of a, face of b) pair of leaves whose boxes overlap, below the node pairs
 // `start` (popped last first; {{0, 0}} for the whole trees). With `same` (a and b one tree) the
 // pairs (i, j) and (j, i) are visited once and no face meets itself. The larger box is split
-// first; the order is a function of the trees alone. visit(f, g) returns false to stop.
+// first; the order is a function of the trees alone. visit(f, g) returns false to stop. With
+// `skip_apart`, a face of a leaf of `a` whose own box misses the other leaf's box meets none of
+// its faces' boxes and is not visited with them (the visits left keep their order).
 template <class Visitor>
 void traverse_face_pairs(const TriangleBvh& a, const TriangleBvh& b, bool same, std::vector<std::pair<int, int>> start,
-                         Visitor&& visit) {
+                         Visitor&& visit, bool skip_apart = false) {
   if (a.empty() || b.empty()) return;
   const auto& na = a.nodes();
   const auto& nb = b.nodes();
@@ -141,9 +143,12 @@ void traverse_face_pairs(const TriangleBvh& a, const TriangleBvh& b, bool same, 
       continue;
     }
     if (x.is_leaf() && y.is_leaf()) {
-      for (int i = x.first; i < x.first + x.count; ++i)
+      for (int i = x.first; i < x.first + x.count; ++i) {
+        const int f = a.leaf_faces()[static_cast<std::size_t>(i)];
+        if (skip_apart && !a.face_box(f).overlaps(y.box)) continue;
         for (int j = y.first; j < y.first + y.count; ++j)
-          if (!visit(a.leaf_faces()[static_cast<std::size_t>(i)], b.leaf_faces()[static_cast<std::size_t>(j)])) return;
+          if (!visit(f, b.leaf_faces()[static_cast<std::size_t>(j)])) return;
+      }
       continue;
     }
     const bool split_a = !x.is_leaf() && (y.is_leaf() || (x.box.hi - x.box.lo).squaredNorm() >= (y.box.hi - y.box.lo).squaredNorm());

@@ -88,7 +88,7 @@ IntersectingFaces self_intersections_from(const TriangleBvh& bvh, std::vector<st
   traverse_face_pairs(bvh, bvh, true, std::move(start), [&](int f, int g) {
     if (!bvh.face_box(f).overlaps(bvh.face_box(g)) || flat(f) || flat(g) || !planar_faces_intersect(bvh, f, g)) return true;
     return record_pair(out, std::min(f, g), std::max(f, g), max_pairs);
-  });
+  }, true);
   std::sort(out.pairs.begin(), out.pairs.end());
   return out;
 }
@@ -138,7 +138,7 @@ IntersectingFaces intersecting_faces_from(const TriangleBvh& a, const TriangleBv
     const Eigen::Vector3d q[3] = {b.corner(g, 0), b.corner(g, 1), b.corner(g, 2)};
     if (!unrelated_faces_meet(p, q)) return true;
     return record_pair(out, f, g, max_pairs);
-  });
+  }, true);
   std::sort(out.pairs.begin(), out.pairs.end());
   return out;
 }
