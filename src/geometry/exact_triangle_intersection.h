@@ -51,8 +51,9 @@ bool segment_meets_triangle_exact(const Eigen::Vector3d& a, const Eigen::Vector3
 // Triangles v-f1-f2 and v-g1-g2 (neither collinear) lying in one plane and sharing the corner v:
 // whether the edge f1-f2 meets the closed triangle g or the edge g1-g2 meets f (the rule for
 // faces on a common vertex, geometry/faces_intersect_exact.h). The same answer as the two
-// segment_meets_triangle_exact tests, from 10 orient2d signs in one projection instead of ~40:
-// the faces of a flat region meet their coplanar neighbours this way by the thousand.
+// segment_meets_triangle_exact tests, from 6 orient2d signs in one projection (whether the
+// faces' wedges at v share a ray) instead of ~40: the faces of a flat region meet their
+// coplanar neighbours this way by the thousand.
 bool coplanar_fan_pair_meets(const Eigen::Vector3d& v, const Eigen::Vector3d& f1, const Eigen::Vector3d& f2,
                              const Eigen::Vector3d& g1, const Eigen::Vector3d& g2);
 
