@@ -133,14 +133,11 @@ bool exactly_degenerate(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3&
 
 }  // namespace
 
-int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const Vec3 u = b - a, v = c - a, w = d - a;
-  const double det = u.x() * (v.y() * w.z() - v.z() * w.y()) - u.y() * (v.x() * w.z() - v.z() * w.x()) +
-                     u.z() * (v.x() * w.y() - v.y() * w.x());
-  const double permanent = std::fabs(u.x()) * (std::fabs(v.y() * w.z()) + std::fabs(v.z() * w.y())) +
-                           std::fabs(u.y()) * (std::fabs(v.x() * w.z()) + std::fabs(v.z() * w.x())) +
-                           std::fabs(u.z()) * (std::fabs(v.x() * w.y()) + std::fabs(v.y() * w.x()));
-  if (std::fabs(det) > 1e-14 * permanent) return sign(det);
+namespace {
+
+// orient3d_sign past its floating-point filter: the comparisons, the extended-precision filter,
+// the exact expansions.
+int orient3d_sign_unfiltered(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   if (exactly_degenerate(a, b, c, d)) return 0;
   if (!extended_precision()) return sign(orient3d(a, b, c, d));
   // The same evaluation in x87 extended precision (unit roundoff 2^-64): Shewchuk's bound for it
@@ -161,6 +158,19 @@ int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return sign(orient3d(a, b, c, d));
 }
 
+}  // namespace
+
+int orient3d_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const double det = u.x() * (v.y() * w.z() - v.z() * w.y()) - u.y() * (v.x() * w.z() - v.z() * w.x()) +
+                     u.z() * (v.x() * w.y() - v.y() * w.x());
+  const double permanent = std::fabs(u.x()) * (std::fabs(v.y() * w.z()) + std::fabs(v.z() * w.y())) +
+                           std::fabs(u.y()) * (std::fabs(v.x() * w.z()) + std::fabs(v.z() * w.x())) +
+                           std::fabs(u.z()) * (std::fabs(v.x() * w.y()) + std::fabs(v.y() * w.x()));
+  if (std::fabs(det) > 1e-14 * permanent) return sign(det);
+  return orient3d_sign_unfiltered(a, b, c, d);
+}
+
 PlaneSide::PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c) : a_(a), b_(b), c_(c) {
   const Vec3 u = b - a, v = c - a;
   normal_ = Vec3(u.y() * v.z() - u.z() * v.y(), u.z() * v.x() - u.x() * v.z(), u.x() * v.y() - u.y() * v.x());
@@ -175,7 +185,8 @@ int PlaneSide::operator()(const Vec3& d) const {
   const double det = normal_.x() * w.x() + normal_.y() * w.y() + normal_.z() * w.z();
   const double permanent = bound_.x() * std::fabs(w.x()) + bound_.y() * std::fabs(w.y()) + bound_.z() * std::fabs(w.z());
   if (std::fabs(det) > 1e-14 * permanent) return sign(det);
-  return orient3d_sign(a_, b_, c_, d);
+  // Past orient3d_sign's own filter too (a sign it decides is the exact sign either way).
+  return orient3d_sign_unfiltered(a_, b_, c_, d);
 }
 
 int orient2d_sign(const Vec2& a, const Vec2& b, const Vec2& c) {

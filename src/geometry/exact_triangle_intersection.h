@@ -28,7 +28,7 @@ bool collinear_exact(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const E
 
 // orient3d_sign(a, b, c, ·) for many points against one triangle's plane: (b − a) × (c − a) and
 // its part of the filter's error bound are computed once; what the filter leaves open goes to
-// orient3d_sign itself, so every sign is the same.
+// orient3d_sign's exact stages, so every sign is the same.
 class PlaneSide {
  public:
   PlaneSide(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
