@@ -123,10 +123,17 @@ void traverse_face_pairs(const TriangleBvh& a, const TriangleBvh& b, bool same, 
   if (a.empty() || b.empty()) return;
   const auto& na = a.nodes();
   const auto& nb = b.nodes();
+  // A stack written by index: each step pushes at most three pairs, and a descent of at most 61
+  // levels in each tree keeps it below `start` + 256 (grown if ever needed).
   std::vector<std::pair<int, int>> stack = std::move(start);
-  while (!stack.empty()) {
-    const auto [ia, ib] = stack.back();
-    stack.pop_back();
+  std::size_t top = stack.size();
+  stack.resize(top + 256);
+  auto push = [&stack, &top](int i, int j) {
+    if (top == stack.size()) stack.resize(2 * stack.size());
+    stack[top++] = {i, j};
+  };
+  while (top > 0) {
+    const auto [ia, ib] = stack[--top];
     const BvhNode& x = na[static_cast<std::size_t>(ia)];
     const BvhNode& y = nb[static_cast<std::size_t>(ib)];
     if (!x.box.overlaps(y.box)) continue;
@@ -136,9 +143,9 @@ void traverse_face_pairs(const TriangleBvh& a, const TriangleBvh& b, bool same, 
           for (int j = i + 1; j < x.first + x.count; ++j)
             if (!visit(a.leaf_faces()[static_cast<std::size_t>(i)], a.leaf_faces()[static_cast<std::size_t>(j)])) return;
       } else {
-        stack.emplace_back(x.right, x.right);
-        stack.emplace_back(x.left, x.right);
-        stack.emplace_back(x.left, x.left);
+        push(x.right, x.right);
+        push(x.left, x.right);
+        push(x.left, x.left);
       }
       continue;
     }
@@ -153,11 +160,11 @@ void traverse_face_pairs(const TriangleBvh& a, const TriangleBvh& b, bool same, 
     }
     const bool split_a = !x.is_leaf() && (y.is_leaf() || (x.box.hi - x.box.lo).squaredNorm() >= (y.box.hi - y.box.lo).squaredNorm());
     if (split_a) {
-      stack.emplace_back(x.right, ib);
-      stack.emplace_back(x.left, ib);
+      push(x.right, ib);
+      push(x.left, ib);
     } else {
-      stack.emplace_back(ia, y.right);
-      stack.emplace_back(ia, y.left);
+      push(ia, y.right);
+      push(ia, y.left);
     }
   }
 }
