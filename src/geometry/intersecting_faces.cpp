@@ -76,11 +76,13 @@ bool record_pair(IntersectingFaces& out, int f, int g, std::size_t max_pairs) {
   return false;
 }
 
-IntersectingFaces self_intersections_from(const TriangleBvh& bvh, std::vector<std::pair<int, int>> start, std::size_t max_pairs) {
+IntersectingFaces self_intersections_from(const TriangleBvh& bvh, std::vector<std::pair<int, int>> start, std::size_t max_pairs,
+                                          const std::vector<char>* known = nullptr) {
   IntersectingFaces out;
-  // Collinearity once per face, on demand (each face meets about 15 candidates).
-  std::vector<signed char> collinear(static_cast<std::size_t>(bvh.faces().rows()), -1);
+  // Collinearity once per face, on demand (each face meets about 15 candidates), unless known.
+  std::vector<signed char> collinear(known ? 0 : static_cast<std::size_t>(bvh.faces().rows()), -1);
   auto flat = [&](int f) {
+    if (known) return (*known)[static_cast<std::size_t>(f)] != 0;
     signed char& c = collinear[static_cast<std::size_t>(f)];
     if (c < 0) c = collinear_face(bvh, f) ? 1 : 0;
     return c == 1;
@@ -99,13 +101,14 @@ IntersectingFaces self_intersections(const TriangleBvh& bvh, std::size_t max_pai
   return self_intersections_from(bvh, {{0, 0}}, max_pairs);
 }
 
-IntersectingFaces self_intersections_part(const TriangleBvh& bvh, int part, std::size_t max_pairs) {
+IntersectingFaces self_intersections_part(const TriangleBvh& bvh, int part, std::size_t max_pairs,
+                                          const std::vector<char>* collinear) {
   if (bvh.empty()) return {};
   const BvhNode& root = bvh.nodes().front();
-  if (root.is_leaf()) return part == 0 ? self_intersections(bvh, max_pairs) : IntersectingFaces{};
+  if (root.is_leaf()) return part == 0 ? self_intersections_from(bvh, {{0, 0}}, max_pairs, collinear) : IntersectingFaces{};
   // Popped last-in first-out, as self_intersections would descend from the root.
-  if (part == 0) return self_intersections_from(bvh, {{root.left, root.right}, {root.left, root.left}}, max_pairs);
-  return self_intersections_from(bvh, {{root.right, root.right}}, max_pairs);
+  if (part == 0) return self_intersections_from(bvh, {{root.left, root.right}, {root.left, root.left}}, max_pairs, collinear);
+  return self_intersections_from(bvh, {{root.right, root.right}}, max_pairs, collinear);
 }
 
 IntersectingFaces merge_intersections(const IntersectingFaces& a, const IntersectingFaces& b, std::size_t max_pairs) {
@@ -120,10 +123,11 @@ IntersectingFaces merge_intersections(const IntersectingFaces& a, const Intersec
   return out;
 }
 
-IntersectingFaces self_intersections_in_parts(const TriangleBvh& bvh, std::size_t max_pairs, int threads) {
+IntersectingFaces self_intersections_in_parts(const TriangleBvh& bvh, std::size_t max_pairs, int threads,
+                                              const std::vector<char>* collinear) {
   IntersectingFaces parts[2];
   WorkerPool pool(std::min(std::max(threads, 1), 2));
-  pool.run_parts(2, [&](int part) { parts[part] = self_intersections_part(bvh, part, max_pairs); });
+  pool.run_parts(2, [&](int part) { parts[part] = self_intersections_part(bvh, part, max_pairs, collinear); });
   return merge_intersections(parts[0], parts[1], max_pairs);
 }
 
