@@ -1,9 +1,12 @@
 #include "mass/volume_integrals_gradient.h"
 
 #include <array>
+#include <cmath>
+#include <limits>
 
 #include <Eigen/Geometry>
 
+#include "util/neumaier_pair.h"
 #include "util/neumaier_sum.h"
 
 namespace offsetopt {
@@ -88,32 +91,45 @@ Eigen::Matrix<double, 10, Eigen::Dynamic> volume_integrals_directional_jacobian(
 
 namespace {
 
-// The fused pass for a Jacobian of Rows rows (1, 4 or 10), so the loop carries no row tests.
-template <int Rows>
+// The fused pass for a Jacobian of Rows rows (1, 4 or 10) and the first Sums integrals (Rows to
+// 10), so the loop carries no row tests. Shifted = false: the origin is +0, whose subtraction
+// changes no coordinate's bits (x − (+0) == x, also for x = −0), so it is skipped.
+template <int Rows, int Sums, bool Shifted>
 void integrals_and_jacobian_rows(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
-                                 const Vertices& directions, Vector10d& integrals, Eigen::MatrixXd& jacobian) {
+                                 const Vertices& directions, Vector10d& integrals, Eigen::MatrixXd& jacobian,
+                                 bool jacobian_is_zero) {
+  static_assert(Rows <= Sums, "every integral with a Jacobian row is summed");
   constexpr bool first_moments = Rows >= 4, second_moments = Rows >= 10;
-  jacobian.setZero(Rows, V.rows());
-  std::array<NeumaierSum, 10> sums;
+  constexpr bool second_moment_sums = Sums >= 10;
+  if (!jacobian_is_zero) jacobian.setZero(Rows, V.rows());
+  NeumaierSum volume_sum;                          // Sums = 1
+  std::array<NeumaierPair, (Sums + 1) / 2> sums;   // Sums = 4 or 10: integrals 2j and 2j + 1
+  auto position = [&](int index) -> Eigen::Vector3d {
+    if constexpr (Shifted) return V.row(index).transpose() - origin;
+    return V.row(index).transpose();
+  };
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     const int corner_index[3] = {F(f, 0), F(f, 1), F(f, 2)};
-    const Eigen::Vector3d p[3] = {V.row(corner_index[0]).transpose() - origin, V.row(corner_index[1]).transpose() - origin,
-                                  V.row(corner_index[2]).transpose() - origin};
+    const Eigen::Vector3d p[3] = {position(corner_index[0]), position(corner_index[1]), position(corner_index[2])};
     const double D = p[0].dot(p[1].cross(p[2]));
     const Eigen::Vector3d S = p[0] + p[1] + p[2];
     auto G = [&](int i, int j) { return p[0](i) * p[0](j) + p[1](i) * p[1](j) + p[2](i) * p[2](j) + S(i) * S(j); };
-    const double Gxx = G(0, 0), Gyy = G(1, 1), Gzz = G(2, 2), Gxy = G(0, 1), Gyz = G(1, 2), Gzx = G(2, 0);
-    // The same terms, in the same order, as volume_integrals().
-    sums[kIntVolume].add(D / 6.0);
-    sums[kIntX].add(D * S.x() / 24.0);
-    sums[kIntY].add(D * S.y() / 24.0);
-    sums[kIntZ].add(D * S.z() / 24.0);
-    sums[kIntXX].add(D * Gxx / 120.0);
-    sums[kIntYY].add(D * Gyy / 120.0);
-    sums[kIntZZ].add(D * Gzz / 120.0);
-    sums[kIntXY].add(D * Gxy / 120.0);
-    sums[kIntYZ].add(D * Gyz / 120.0);
-    sums[kIntZX].add(D * Gzx / 120.0);
+    double Gxx = 0.0, Gyy = 0.0, Gzz = 0.0, Gxy = 0.0, Gyz = 0.0, Gzx = 0.0;
+    if constexpr (second_moment_sums) {
+      Gxx = G(0, 0), Gyy = G(1, 1), Gzz = G(2, 2), Gxy = G(0, 1), Gyz = G(1, 2), Gzx = G(2, 0);
+    }
+    // The same terms, in the same order, as volume_integrals(); sums in pairs (kInt order).
+    if constexpr (Sums == 1) {
+      volume_sum.add(D / 6.0);
+    } else {
+      sums[0].add(D / 6.0, D * S.x() / 24.0);
+      sums[1].add(D * S.y() / 24.0, D * S.z() / 24.0);
+    }
+    if constexpr (second_moment_sums) {
+      sums[2].add(D * Gxx / 120.0, D * Gyy / 120.0);
+      sums[3].add(D * Gzz / 120.0, D * Gxy / 120.0);
+      sums[4].add(D * Gyz / 120.0, D * Gzx / 120.0);
+    }
     for (int corner = 0; corner < 3; ++corner) {
       const Eigen::Vector3d d = directions.row(corner_index[corner]).transpose();
       const double dD = p[(corner + 1) % 3].cross(p[(corner + 2) % 3]).dot(d);
@@ -133,20 +149,46 @@ void integrals_and_jacobian_rows(const Vertices& V, const Faces& F, const Eigen:
       column[kIntZX] += (dD * Gzx + D * (d.z() * u.x() + d.x() * u.z())) / 120.0;
     }
   }
-  for (int k = 0; k < 10; ++k) integrals(k) = sums[static_cast<std::size_t>(k)].value();
+  integrals.setConstant(std::numeric_limits<double>::quiet_NaN());
+  if constexpr (Sums == 1) {
+    integrals(kIntVolume) = volume_sum.value();
+  } else {
+    for (int k = 0; k < Sums; ++k) integrals(k) = sums[static_cast<std::size_t>(k / 2)].value(k % 2);
+  }
+}
+
+template <int Rows, int Sums>
+void integrals_and_jacobian_from(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
+                                 const Vertices& directions, Vector10d& integrals, Eigen::MatrixXd& jacobian,
+                                 bool jacobian_is_zero) {
+  bool positive_zero = true;
+  for (int k = 0; k < 3; ++k) positive_zero = positive_zero && origin(k) == 0.0 && !std::signbit(origin(k));
+  if (positive_zero)
+    integrals_and_jacobian_rows<Rows, Sums, false>(V, F, origin, directions, integrals, jacobian, jacobian_is_zero);
+  else
+    integrals_and_jacobian_rows<Rows, Sums, true>(V, F, origin, directions, integrals, jacobian, jacobian_is_zero);
 }
 
 }  // namespace
 
 void volume_integrals_and_directional_jacobian(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
                                                const Vertices& directions, Vector10d& integrals,
-                                               Eigen::MatrixXd& jacobian, int jacobian_rows) {
+                                               Eigen::MatrixXd& jacobian, int jacobian_rows, int integral_count,
+                                               bool jacobian_is_zero) {
+  const Eigen::Index rows = jacobian_rows >= 10 ? 10 : (jacobian_rows >= 4 ? 4 : 1);
+  jacobian_is_zero = jacobian_is_zero && jacobian.rows() == rows && jacobian.cols() == V.rows();
+  const bool all = integral_count >= 10;
   if (jacobian_rows >= 10)
-    integrals_and_jacobian_rows<10>(V, F, origin, directions, integrals, jacobian);
+    integrals_and_jacobian_from<10, 10>(V, F, origin, directions, integrals, jacobian, jacobian_is_zero);
   else if (jacobian_rows >= 4)
-    integrals_and_jacobian_rows<4>(V, F, origin, directions, integrals, jacobian);
+    (all ? integrals_and_jacobian_from<4, 10> : integrals_and_jacobian_from<4, 4>)(V, F, origin, directions, integrals,
+                                                                                    jacobian, jacobian_is_zero);
+  else if (all)
+    integrals_and_jacobian_from<1, 10>(V, F, origin, directions, integrals, jacobian, jacobian_is_zero);
+  else if (integral_count >= 4)
+    integrals_and_jacobian_from<1, 4>(V, F, origin, directions, integrals, jacobian, jacobian_is_zero);
   else
-    integrals_and_jacobian_rows<1>(V, F, origin, directions, integrals, jacobian);
+    integrals_and_jacobian_from<1, 1>(V, F, origin, directions, integrals, jacobian, jacobian_is_zero);
 }
 
 }  // namespace offsetopt

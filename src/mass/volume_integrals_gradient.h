@@ -36,9 +36,15 @@ Eigen::Matrix<double, 10, Eigen::Dynamic> volume_integrals_directional_jacobian(
 // `jacobian` (resized to jacobian_rows by #V) the first jacobian_rows rows of what
 // volume_integrals_directional_jacobian returns, bit for bit. jacobian_rows is 1 (the volume),
 // 4 (and the first moments) or 10 (other values: the largest of these not above it, at least 1):
-// a goal that needs no second moments skips their derivatives.
+// a goal that needs no second moments skips their derivatives. integral_count < 10 sums only the
+// first max(integral_count, jacobian rows) integrals (rounded up to 1, 4 or 10 like the rows),
+// each bit for bit as above, and sets the others to NaN: an optimiser's inner evaluations, whose
+// goal reads no more than those, skip the rest. jacobian_is_zero: the caller promises `jacobian`
+// already has its shape and holds +0 everywhere (an optimiser that clears the columns as it reads
+// them), so it is not cleared again; the result is the same.
 void volume_integrals_and_directional_jacobian(const Vertices& V, const Faces& F, const Eigen::Vector3d& origin,
                                                const Vertices& directions, Vector10d& integrals,
-                                               Eigen::MatrixXd& jacobian, int jacobian_rows = 10);
+                                               Eigen::MatrixXd& jacobian, int jacobian_rows = 10,
+                                               int integral_count = 10, bool jacobian_is_zero = false);
 
 }  // namespace offsetopt

@@ -72,7 +72,9 @@ std::vector<std::string> goal_inequality_names(const GoalSpec& spec);
 
 // How many leading integrals (kInt order) the goal's values depend on: 1 (the volume), 4 (and
 // the first moments) or 10 (and the second moments). evaluate_goal's derivatives by the other
-// integrals, outer and inner, are exactly 0, so the optimiser needs no Jacobian rows for them.
+// integrals, outer and inner, are exactly 0, so the optimiser needs no Jacobian rows for them, and
+// its values and derivatives do not depend on those integrals at all (they may be NaN): the
+// optimiser's inner evaluations do not sum them.
 int goal_integral_rows(const GoalSpec& spec);
 
 // `outer` and `inner` are raw integrals measured from the same origin; `inner` may be all zero

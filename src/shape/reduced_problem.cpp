@@ -68,20 +68,40 @@ void ReducedProblem::run_parts(const std::function<void(int)>& part) const {
 
 ReducedProblem::~ReducedProblem() = default;
 
-Eigen::VectorXd ReducedProblem::apply_basis(const Eigen::VectorXd& coefficients) const {
+void ReducedProblem::apply_basis_part(const Eigen::VectorXd& coefficients, int part, Eigen::VectorXd& out) const {
+  const Eigen::Index begin = vertex_split_[part], end = vertex_split_[part + 1];
   if (!identity_basis_) {
     // Reading Γ (#V by k) is most of this product's cost; each half of the rows is read by one thread.
-    Eigen::VectorXd out(basis_.rows());
-    run_parts([&](int part) {
-      const Eigen::Index begin = vertex_split_[part], count = vertex_split_[part + 1] - begin;
-      out.segment(begin, count).noalias() = basis_.middleRows(begin, count) * coefficients;
-    });
-    return out;
+    out.segment(begin, end - begin).noalias() = basis_.middleRows(begin, end - begin) * coefficients;
+    return;
   }
-  Eigen::VectorXd out = coefficients;
-  for (Eigen::Index i = 0; i < out.size(); ++i)
-    if (band_.fixed[static_cast<std::size_t>(i)]) out(i) = 0.0;
-  return out;
+  for (Eigen::Index i = begin; i < end; ++i) out(i) = band_.fixed[static_cast<std::size_t>(i)] ? 0.0 : coefficients(i);
+}
+
+template <int Rows>
+void ReducedProblem::fill_vertex_rows(Eigen::Index begin, Eigen::Index end) {
+  using Column = Eigen::Matrix<double, Rows, 1>;
+  const bool outer = options_.outer;
+  const double* inner_slope = cache_.inner_slope.data();
+  // The face halves' columns are cleared once read: the next evaluation's kernel adds into them
+  // without clearing the whole matrices first (they hold +0, as after setZero).
+  for (Eigen::Index i = begin; i < end; ++i) {
+    double* column = per_vertex_.col(i).data();
+    Eigen::Map<Column> inner_a(inner_jacobian_[0].col(i).data()), inner_b(inner_jacobian_[1].col(i).data());
+    const Column inner = inner_a + inner_b;
+    inner_a.setZero();
+    inner_b.setZero();
+    Eigen::Map<Column> by_inner_raw(column);
+    by_inner_raw = inner * inner_slope[i];
+    if (!outer) continue;
+    Eigen::Map<Column> outer_a(outer_jacobian_[0].col(i).data()), outer_b(outer_jacobian_[1].col(i).data());
+    const Column outer_sum = outer_a + outer_b;
+    outer_a.setZero();
+    outer_b.setZero();
+    Eigen::Map<Column> inner_by_outer_raw(column + Rows), outer_by_outer_raw(column + 2 * Rows);
+    inner_by_outer_raw = inner * inner_by_outer_(i);
+    outer_by_outer_raw = outer_sum * outer_slope_(i);
+  }
 }
 
 Eigen::MatrixXd ReducedProblem::project_rows(const Eigen::MatrixXd& per_vertex, Eigen::Index begin,
@@ -155,16 +175,23 @@ void ReducedProblem::build_hard_bounds() {
     }
 }
 
-const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd& x) {
-  if (cache_valid_ && cache_.x.size() == x.size() && cache_.x == x) return cache_;
+const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd& x) { return evaluate_with_integrals(x, true); }
+
+const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const Eigen::VectorXd& x, bool all_integrals) {
+  if (cache_valid_ && cache_.x.size() == x.size() && cache_.x == x && (cache_all_integrals_ || !all_integrals))
+    return cache_;
   const Eigen::Index n = mesh_.V.rows();
   const bool clamp = options_.bounds == BoundsMode::clamp;
   const bool outer = options_.outer;
   const double tau = options_.ramp_width;
   Evaluation& e = cache_;
   e.x = x;
-  const Eigen::VectorXd raw_inner = apply_basis(x.head(k_));
-  const Eigen::VectorXd raw_outer = outer ? apply_basis(x.tail(k_)) : Eigen::VectorXd();
+  const Eigen::VectorXd inner_coefficients = x.head(k_);
+  const Eigen::VectorXd outer_coefficients = outer ? Eigen::VectorXd(x.tail(k_)) : Eigen::VectorXd();
+  raw_inner_.resize(n);
+  if (outer) raw_outer_.resize(n);
+  const Eigen::VectorXd& raw_inner = raw_inner_;
+  const Eigen::VectorXd& raw_outer = raw_outer_;
 
   // Per-vertex rows, projected onto Γ in one pass: the derivatives of the integrals the goal
   // uses (R of the 10), inner by α; with outer offsets also inner by β (through lo) and outer by
@@ -185,10 +212,13 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
   if (overshoot_term) overshoot_squares_.resize(outer ? 2 * n : n);
   const double overshoot_weight = overshoot_term ? options_.overshoot_weight / static_cast<double>(n) : 0.0;
 
-  // Offsets through the clamp, their slopes (by Γα, and by the outer offset through lo), the
-  // surfaces, and the overshoot term μ/n Σ (raw − clamped)² with its derivative: vertex by vertex,
-  // in the two fixed vertex halves.
+  // The raw offsets Γα (and Γβ), then the offsets through the clamp, their slopes (by Γα, and by
+  // the outer offset through lo), the surfaces, and the overshoot term μ/n Σ (raw − clamped)² with
+  // its derivative: vertex by vertex, in the two fixed vertex halves. A vertex reads only its own
+  // raw offsets, so one pass over the parts does it all (one wake of the pool, not three).
   auto vertex_part = [&](int part) {
+    apply_basis_part(inner_coefficients, part, raw_inner_);
+    if (outer) apply_basis_part(outer_coefficients, part, raw_outer_);
     for (Eigen::Index i = vertex_split_[part]; i < vertex_split_[part + 1]; ++i) {
       const bool fixed = band_.fixed[static_cast<std::size_t>(i)];
       double outer_offset = 0.0, outer_slope = 0.0;
@@ -251,13 +281,18 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
   // the same two parts (halves of the faces, then halves of the vertices), summed in a fixed
   // order, so the result is the same whether the parts run on one thread or two.
   const Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  // Inside the solve the goal reads no more than the first R integrals (goal_integral_rows), so
+  // the others are not summed there (they are NaN); an evaluation that leaves this class has all ten.
+  const int integral_count = all_integrals ? 10 : integral_rows_;
   Vector10d inner_part_integrals[2], outer_part_integrals[2];
   auto surface_part = [&](int part) {
     volume_integrals_and_directional_jacobian(inner_vertices_, face_parts_[part], origin, band_.inner_direction,
-                                              inner_part_integrals[part], inner_jacobian_[part], integral_rows_);
+                                              inner_part_integrals[part], inner_jacobian_[part], integral_rows_,
+                                              integral_count, true);
     if (outer)
       volume_integrals_and_directional_jacobian(outer_vertices_, face_parts_[part], origin, band_.outer_direction,
-                                                outer_part_integrals[part], outer_jacobian_[part], integral_rows_);
+                                                outer_part_integrals[part], outer_jacobian_[part], integral_rows_,
+                                                integral_count, true);
   };
   run_parts(surface_part);
   e.inner_integrals = inner_part_integrals[0] + inner_part_integrals[1];
@@ -266,18 +301,10 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
   Eigen::MatrixXd projected_part[2];
   auto projection_part = [&](int part) {
     const Eigen::Index begin = vertex_split_[part], end = vertex_split_[part + 1];
-    for (Eigen::Index i = begin; i < end; ++i) {
-      double* column = per_vertex_.col(i).data();
-      const double* inner_a = inner_jacobian_[0].col(i).data();
-      const double* inner_b = inner_jacobian_[1].col(i).data();
-      for (Eigen::Index r = 0; r < R; ++r) column[r] = (inner_a[r] + inner_b[r]) * e.inner_slope(i);
-      if (!outer) continue;
-      const double* outer_a = outer_jacobian_[0].col(i).data();
-      const double* outer_b = outer_jacobian_[1].col(i).data();
-      for (Eigen::Index r = 0; r < R; ++r) {
-        column[R + r] = (inner_a[r] + inner_b[r]) * inner_by_outer_(i);
-        column[2 * R + r] = (outer_a[r] + outer_b[r]) * outer_slope_(i);
-      }
+    switch (R) {
+      case 1: fill_vertex_rows<1>(begin, end); break;
+      case 4: fill_vertex_rows<4>(begin, end); break;
+      default: fill_vertex_rows<10>(begin, end); break;
     }
     projected_part[part] = project_rows(per_vertex_, begin, end);
   };
@@ -321,6 +348,7 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd
   for (Eigen::Index r = 0; r < e.goal.inequality.size(); ++r)
     e.inequality_jacobian.row(r) = chain(e.goal.inequality_jacobian.row(r));
   cache_valid_ = true;
+  cache_all_integrals_ = all_integrals;
   return e;
 }
 
@@ -359,20 +387,20 @@ ConstrainedProblem ReducedProblem::constrained_problem() {
   ConstrainedProblem p;
   p.num_variables = num_variables();
   p.objective = [this](const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
-    const Evaluation& e = evaluate(x);
+    const Evaluation& e = evaluate_with_integrals(x, false);
     grad = e.objective_gradient;
     return e.objective;
   };
   const std::size_t eq = goal_equality_names(goal_).size(), ineq = goal_inequality_names(goal_).size();
   p.num_equality = static_cast<int>(eq);
   p.equality = [this](const Eigen::VectorXd& x, Eigen::VectorXd& values, Eigen::MatrixXd& jacobian) {
-    const Evaluation& e = evaluate(x);
+    const Evaluation& e = evaluate_with_integrals(x, false);
     values = e.goal.equality;
     jacobian = e.equality_jacobian;
   };
   p.num_inequality = static_cast<int>(ineq);
   p.inequality = [this](const Eigen::VectorXd& x, Eigen::VectorXd& values, Eigen::MatrixXd& jacobian) {
-    const Evaluation& e = evaluate(x);
+    const Evaluation& e = evaluate_with_integrals(x, false);
     values = e.goal.inequality;
     jacobian = e.inequality_jacobian;
   };

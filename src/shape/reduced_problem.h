@@ -110,11 +110,19 @@ class ReducedProblem {
   ConstrainedProblem constrained_problem();
 
  private:
-  // Γ c, its rows in the two vertex halves (every entry computed the same way either way).
-  Eigen::VectorXd apply_basis(const Eigen::VectorXd& coefficients) const;
+  // all_integrals = false (the solver's own calls): only the integrals the goal reads are summed,
+  // the others are NaN; every other output is the same as evaluate(x)'s, bit for bit.
+  const Evaluation& evaluate_with_integrals(const Eigen::VectorXd& x, bool all_integrals);
+  // Rows [vertex_split_[part], vertex_split_[part + 1]) of Γ c into `out` (#V).
+  void apply_basis_part(const Eigen::VectorXd& coefficients, int part, Eigen::VectorXd& out) const;
   // Columns [begin, end) of a (rows by #V) matrix times the same rows of Γ: rows by k, one
   // part of the product (the parts add up to the whole).
   Eigen::MatrixXd project_rows(const Eigen::MatrixXd& per_vertex, Eigen::Index begin, Eigen::Index end) const;
+  // Columns [begin, end) of per_vertex_'s Jacobian rows (Rows = integral_rows_ each: inner by Γα;
+  // with outer offsets also inner by Γβ and outer by Γβ): the two face halves' columns added, times
+  // the vertex's slope. Each entry (a + b) · slope, whatever Rows.
+  template <int Rows>
+  void fill_vertex_rows(Eigen::Index begin, Eigen::Index end);
   void run_parts(const std::function<void(int)>& part) const;  // part(0) and part(1), maybe on two threads
   void build_hard_bounds();
   void update_outer_inward_limit();
@@ -137,12 +145,15 @@ class ReducedProblem {
   Vertices inner_vertices_, outer_vertices_;
   Faces face_parts_[2];              // the faces cut in two fixed halves
   Eigen::Index vertex_split_[3] = {0, 0, 0};  // vertex halves [split[p], split[p + 1])
-  Eigen::MatrixXd inner_jacobian_[2], outer_jacobian_[2];  // integral_rows_ by #V, per face half
+  // integral_rows_ by #V, per face half; all +0 between evaluations (fill_vertex_rows clears them)
+  Eigen::MatrixXd inner_jacobian_[2], outer_jacobian_[2];
   Eigen::MatrixXd per_vertex_;
+  Eigen::VectorXd raw_inner_, raw_outer_;         // Γα and Γβ per vertex
   Eigen::VectorXd outer_slope_, inner_by_outer_;  // ∂δout/∂(Γβ) and ∂δin/∂(Γβ) per vertex
   Eigen::VectorXd overshoot_squares_;             // (raw − clamped)² per vertex (inner, outer)
   std::unique_ptr<WorkerPool> pool_;
   bool cache_valid_ = false;
+  bool cache_all_integrals_ = false;  // the cached evaluation has all ten integrals
 };
 
 }  // namespace offsetopt

@@ -153,25 +153,57 @@ TEST_CASE("directional Jacobian equals the dense Jacobian contracted with one di
 }
 
 TEST_CASE("fused integrals and directional Jacobian (10, 4 or 1 rows) are bit-identical to the two separate passes") {
+  // Origins: an arbitrary one, +0 (the kernel skips subtracting it; the mesh is moved off the
+  // origin so the coordinates are not small) and −0 (subtracted, as x − (−0) turns −0 into +0).
+  const Eigen::Vector3d origins[] = {{1.5, -2.0, 3.0}, {0.0, 0.0, 0.0}, {-0.0, 0.0, 0.0}};
   for (const char* name : {"top", "bottle"}) {
     CAPTURE(name);
     Mesh mesh = make_demo_mesh(name);
+    mesh.V.col(0).array() += 0.75;
+    mesh.V(0, 1) = -0.0;  // a signed zero coordinate
     Rng rng(12);
     Vertices directions(mesh.V.rows(), 3);
     for (Eigen::Index i = 0; i < mesh.V.rows(); ++i)
       directions.row(i) = Eigen::RowVector3d(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-    const Eigen::Vector3d origin(1.5, -2.0, 3.0);
-    const Vector10d separate = volume_integrals(mesh, origin).values;
-    const Eigen::Matrix<double, 10, Eigen::Dynamic> separate_J = volume_integrals_directional_jacobian(mesh, origin, directions);
-    for (int rows : {10, 4, 1}) {
-      CAPTURE(rows);
-      Vector10d integrals;
-      Eigen::MatrixXd J;
-      volume_integrals_and_directional_jacobian(mesh.V, mesh.F, origin, directions, integrals, J, rows);
-      for (int k = 0; k < 10; ++k) CHECK(integrals(k) == separate(k));
-      REQUIRE(J.rows() == rows);
-      REQUIRE(J.cols() == separate_J.cols());
-      CHECK((J.array() == separate_J.topRows(rows).array()).all());
+    for (const Eigen::Vector3d& origin : origins) {
+      CAPTURE(origin.transpose());
+      const Vector10d separate = volume_integrals(mesh, origin).values;
+      const Eigen::Matrix<double, 10, Eigen::Dynamic> separate_J =
+          volume_integrals_directional_jacobian(mesh, origin, directions);
+      for (int rows : {10, 4, 1})
+        for (int integral_count : {10, 4, 1}) {
+          CAPTURE(rows);
+          CAPTURE(integral_count);
+          Vector10d integrals;
+          Eigen::MatrixXd J;
+          volume_integrals_and_directional_jacobian(mesh.V, mesh.F, origin, directions, integrals, J, rows,
+                                                    integral_count);
+          // The integrals summed: the largest of 1, 4, 10 not above max(rows, count); the others NaN.
+          const int wanted = std::max(rows, integral_count);
+          const int summed = wanted >= 10 ? 10 : (wanted >= 4 ? 4 : 1);
+          for (int k = 0; k < 10; ++k) {
+            CAPTURE(k);
+            if (k < summed)
+              CHECK(integrals(k) == separate(k));
+            else
+              CHECK(std::isnan(integrals(k)));
+          }
+          REQUIRE(J.rows() == rows);
+          REQUIRE(J.cols() == separate_J.cols());
+          CHECK((J.array() == separate_J.topRows(rows).array()).all());
+          // A caller that keeps the matrix at +0 between passes gets the same Jacobian without the
+          // clearing; a wrong shape is cleared anyway.
+          J.setZero();
+          Eigen::MatrixXd wrong_shape = Eigen::MatrixXd::Constant(2, 3, 7.0);
+          Vector10d again, again_wrong;
+          volume_integrals_and_directional_jacobian(mesh.V, mesh.F, origin, directions, again, J, rows,
+                                                    integral_count, true);
+          volume_integrals_and_directional_jacobian(mesh.V, mesh.F, origin, directions, again_wrong, wrong_shape, rows,
+                                                    integral_count, true);
+          CHECK((J.array() == separate_J.topRows(rows).array()).all());
+          CHECK((wrong_shape.array() == separate_J.topRows(rows).array()).all());
+          for (int k = 0; k < summed; ++k) CHECK(again(k) == separate(k));
+        }
     }
   }
 }

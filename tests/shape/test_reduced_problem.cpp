@@ -192,3 +192,50 @@ TEST_CASE("with outer offsets, one and two threads give bit-identical evaluation
     CHECK((a.inequality_jacobian.array() == b.inequality_jacobian.array()).all());
   }
 }
+
+TEST_CASE("the solver's evaluations (only the integrals the goal reads) agree bit for bit with evaluate()") {
+  // The solver's closures sum only goal_integral_rows integrals; evaluate() sums all ten. Each is
+  // checked against a new problem's first evaluation at the same x (nothing reused), for goals
+  // reading 1, 4 and 10 integrals, with and without outer offsets, over several points so the
+  // work space kept between evaluations is exercised.
+  const Setup s = sphere_setup(8);
+  GoalSpec volume;
+  volume.kind = GoalKind::volume;
+  volume.target_volume = 0.2;
+  GoalSpec roly;
+  roly.kind = GoalKind::roly_poly;
+  roly.axis_point = {0.0, 0.0, 0.5};
+  for (const GoalSpec& goal : {volume, roly, filled_goal(), spin_goal()})
+    for (bool outer : {false, true}) {
+      CAPTURE(to_string(goal.kind));
+      CAPTURE(outer);
+      ReducedOptions options;
+      options.outer = outer;
+      options.threads = 1;
+      ReducedProblem kept(s.mesh, s.band, s.basis, false, goal, options);
+      const ConstrainedProblem solver_view = kept.constrained_problem();
+      Rng rng(31);
+      for (int trial = 0; trial < 3; ++trial) {
+        Eigen::VectorXd x = kept.start_point();
+        for (Eigen::Index j = 0; j < x.size(); ++j) x(j) += 0.05 * rng.uniform(-1.0, 1.0);
+        ReducedProblem fresh(s.mesh, s.band, s.basis, false, goal, options);
+        const ReducedProblem::Evaluation expected = fresh.evaluate(x);
+        Eigen::VectorXd gradient, equality, inequality;
+        Eigen::MatrixXd equality_jacobian, inequality_jacobian;
+        const double objective = solver_view.objective(x, gradient);
+        solver_view.equality(x, equality, equality_jacobian);
+        solver_view.inequality(x, inequality, inequality_jacobian);
+        CHECK(objective == expected.objective);
+        CHECK((gradient.array() == expected.objective_gradient.array()).all());
+        CHECK((equality.array() == expected.goal.equality.array()).all());
+        CHECK((inequality.array() == expected.goal.inequality.array()).all());
+        CHECK((equality_jacobian.array() == expected.equality_jacobian.array()).all());
+        CHECK((inequality_jacobian.array() == expected.inequality_jacobian.array()).all());
+        // evaluate() at the point the solver just saw: all ten integrals, not the solver's cache.
+        const ReducedProblem::Evaluation& full = kept.evaluate(x);
+        CHECK((full.inner_integrals.array() == expected.inner_integrals.array()).all());
+        CHECK((full.outer_integrals.array() == expected.outer_integrals.array()).all());
+        CHECK(full.objective == expected.objective);
+      }
+    }
+}
