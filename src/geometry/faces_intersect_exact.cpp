@@ -30,7 +30,7 @@ bool same_side_in_plane(const Eigen::Vector3d& u, const Eigen::Vector3d& w, cons
 
 // The closed segment p-q and the closed triangle t lie apart along a coordinate axis (their
 // bounding boxes are disjoint): then they share no point, decided by comparisons alone. Faces
-// on a common vertex of a surface fan out around it, so their far edges are mostly apart so.
+// on a common vertex of a surface fan out around it, so most far edges miss the other face so.
 bool boxes_apart(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d t[3]) {
   for (int k = 0; k < 3; ++k) {
     const double low = std::min(p[k], q[k]), high = std::max(p[k], q[k]);
