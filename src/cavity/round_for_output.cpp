@@ -67,7 +67,13 @@ class Repair {
   // `tree` the tree they were searched in.
   long long new_defects(std::vector<int>* faces, IntersectingFaces& found, std::shared_ptr<const TriangleBvh>& tree) const {
     tree = std::make_shared<const TriangleBvh>(mesh_.V, mesh_.F, tree_options());
-    found = self_intersections_in_parts(*tree, kPairCap, threads_);
+    // Which faces are collinear, from the tree's copy of the corners: the search needs it too.
+    std::vector<char> flat(static_cast<std::size_t>(mesh_.F.rows()));
+    for (Eigen::Index f = 0; f < mesh_.F.rows(); ++f) {
+      const int face = static_cast<int>(f);
+      flat[static_cast<std::size_t>(f)] = collinear_exact(tree->corner(face, 0), tree->corner(face, 1), tree->corner(face, 2)) ? 1 : 0;
+    }
+    found = self_intersections_in_parts(*tree, kPairCap, threads_, &flat);
     long long count = 0;
     for (const Pair& p : found.pairs)
       if (!std::binary_search(reference_.begin(), reference_.end(), p)) {
@@ -75,7 +81,7 @@ class Repair {
         if (faces) faces->insert(faces->end(), {p.first, p.second});
       }
     for (Eigen::Index f = 0; f < mesh_.F.rows(); ++f)
-      if (collinear(static_cast<int>(f), -1, Eigen::Vector3d::Zero()) && !was_collinear(static_cast<int>(f))) {
+      if (flat[static_cast<std::size_t>(f)] && !was_collinear(static_cast<int>(f))) {
         ++count;
         if (faces) faces->push_back(static_cast<int>(f));
       }

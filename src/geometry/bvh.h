@@ -114,17 +114,26 @@ class TriangleBvh {
 // Visits every (face of a, face of b) pair of leaves whose boxes overlap, below the node pairs
 // `start` (popped last first; {{0, 0}} for the whole trees). With `same` (a and b one tree) the
 // pairs (i, j) and (j, i) are visited once and no face meets itself. The larger box is split
-// first; the order is a function of the trees alone. visit(f, g) returns false to stop.
+// first; the order is a function of the trees alone. visit(f, g) returns false to stop. With
+// `skip_apart`, a face of a leaf of `a` whose own box misses the other leaf's box meets none of
+// its faces' boxes and is not visited with them (the visits left keep their order).
 template <class Visitor>
 void traverse_face_pairs(const TriangleBvh& a, const TriangleBvh& b, bool same, std::vector<std::pair<int, int>> start,
-                         Visitor&& visit) {
+                         Visitor&& visit, bool skip_apart = false) {
   if (a.empty() || b.empty()) return;
   const auto& na = a.nodes();
   const auto& nb = b.nodes();
+  // A stack written by index: each step pushes at most three pairs, and a descent of at most 61
+  // levels in each tree keeps it below `start` + 256 (grown if ever needed).
   std::vector<std::pair<int, int>> stack = std::move(start);
-  while (!stack.empty()) {
-    const auto [ia, ib] = stack.back();
-    stack.pop_back();
+  std::size_t top = stack.size();
+  stack.resize(top + 256);
+  auto push = [&stack, &top](int i, int j) {
+    if (top == stack.size()) stack.resize(2 * stack.size());
+    stack[top++] = {i, j};
+  };
+  while (top > 0) {
+    const auto [ia, ib] = stack[--top];
     const BvhNode& x = na[static_cast<std::size_t>(ia)];
     const BvhNode& y = nb[static_cast<std::size_t>(ib)];
     if (!x.box.overlaps(y.box)) continue;
@@ -134,25 +143,28 @@ void traverse_face_pairs(const TriangleBvh& a, const TriangleBvh& b, bool same, 
           for (int j = i + 1; j < x.first + x.count; ++j)
             if (!visit(a.leaf_faces()[static_cast<std::size_t>(i)], a.leaf_faces()[static_cast<std::size_t>(j)])) return;
       } else {
-        stack.emplace_back(x.right, x.right);
-        stack.emplace_back(x.left, x.right);
-        stack.emplace_back(x.left, x.left);
+        push(x.right, x.right);
+        push(x.left, x.right);
+        push(x.left, x.left);
       }
       continue;
     }
     if (x.is_leaf() && y.is_leaf()) {
-      for (int i = x.first; i < x.first + x.count; ++i)
+      for (int i = x.first; i < x.first + x.count; ++i) {
+        const int f = a.leaf_faces()[static_cast<std::size_t>(i)];
+        if (skip_apart && !a.face_box(f).overlaps(y.box)) continue;
         for (int j = y.first; j < y.first + y.count; ++j)
-          if (!visit(a.leaf_faces()[static_cast<std::size_t>(i)], b.leaf_faces()[static_cast<std::size_t>(j)])) return;
+          if (!visit(f, b.leaf_faces()[static_cast<std::size_t>(j)])) return;
+      }
       continue;
     }
     const bool split_a = !x.is_leaf() && (y.is_leaf() || (x.box.hi - x.box.lo).squaredNorm() >= (y.box.hi - y.box.lo).squaredNorm());
     if (split_a) {
-      stack.emplace_back(x.right, ib);
-      stack.emplace_back(x.left, ib);
+      push(x.right, ib);
+      push(x.left, ib);
     } else {
-      stack.emplace_back(ia, y.right);
-      stack.emplace_back(ia, y.left);
+      push(ia, y.right);
+      push(ia, y.left);
     }
   }
 }

@@ -28,7 +28,7 @@ bool collinear_exact(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const E
 
 // orient3d_sign(a, b, c, ·) for many points against one triangle's plane: (b − a) × (c − a) and
 // its part of the filter's error bound are computed once; what the filter leaves open goes to
-// orient3d_sign itself, so every sign is the same.
+// orient3d_sign's exact stages, so every sign is the same.
 class PlaneSide {
  public:
   PlaneSide(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
@@ -51,8 +51,9 @@ bool segment_meets_triangle_exact(const Eigen::Vector3d& a, const Eigen::Vector3
 // Triangles v-f1-f2 and v-g1-g2 (neither collinear) lying in one plane and sharing the corner v:
 // whether the edge f1-f2 meets the closed triangle g or the edge g1-g2 meets f (the rule for
 // faces on a common vertex, geometry/faces_intersect_exact.h). The same answer as the two
-// segment_meets_triangle_exact tests, from 10 orient2d signs in one projection instead of ~40:
-// the faces of a flat region meet their coplanar neighbours this way by the thousand.
+// segment_meets_triangle_exact tests, from 6 orient2d signs in one projection (whether the
+// faces' wedges at v share a ray) instead of ~40: the faces of a flat region meet their
+// coplanar neighbours this way by the thousand.
 bool coplanar_fan_pair_meets(const Eigen::Vector3d& v, const Eigen::Vector3d& f1, const Eigen::Vector3d& f2,
                              const Eigen::Vector3d& g1, const Eigen::Vector3d& g2);
 

@@ -28,6 +28,17 @@ bool same_side_in_plane(const Eigen::Vector3d& u, const Eigen::Vector3d& w, cons
   return false;
 }
 
+// The closed segment p-q and the closed triangle t lie apart along a coordinate axis (their
+// bounding boxes are disjoint): then they share no point, decided by comparisons alone. Faces
+// on a common vertex of a surface fan out around it, so most far edges miss the other face so.
+bool boxes_apart(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d t[3]) {
+  for (int k = 0; k < 3; ++k) {
+    const double low = std::min(p[k], q[k]), high = std::max(p[k], q[k]);
+    if (high < std::min({t[0][k], t[1][k], t[2][k]}) || low > std::max({t[0][k], t[1][k], t[2][k]})) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 bool faces_intersect_exact(const Eigen::Vector3d f[3], const int f_ids[3], const Eigen::Vector3d g[3], const int g_ids[3]) {
@@ -42,16 +53,26 @@ bool faces_intersect_exact(const Eigen::Vector3d f[3], const int f_ids[3], const
   if (shared == 0) return triangles_meet_exact(f, g);
   if (shared == 1) {
     const int i = in_f[0], j = in_g[0];
+    const Eigen::Vector3d &g1 = g[(j + 1) % 3], &g2 = g[(j + 2) % 3], &f1 = f[(i + 1) % 3], &f2 = f[(i + 2) % 3];
+    // A far edge whose box misses the other face needs no predicate; when both do, the faces
+    // meet only at the common corner (three in four neighbours on a vertex in the demo runs).
+    const bool g_edge_apart = boxes_apart(g1, g2, f), f_edge_apart = boxes_apart(f1, f2, g);
+    if (g_edge_apart && f_edge_apart) return false;
     // Each segment's ends against the other plane first (one normal per face, both ends): most
     // neighbours have both on one side and need nothing else.
-    const Eigen::Vector3d &g1 = g[(j + 1) % 3], &g2 = g[(j + 2) % 3], &f1 = f[(i + 1) % 3], &f2 = f[(i + 2) % 3];
-    const PlaneSide plane_f(f[0], f[1], f[2]);
-    const int side_g1 = plane_f(g1), side_g2 = plane_f(g2);
-    // g's far edge in f's plane puts all of g there (g has a plane): a flat region's neighbours.
-    if (side_g1 == 0 && side_g2 == 0) return coplanar_fan_pair_meets(f[i], f1, f2, g1, g2);
-    if (side_g1 * side_g2 <= 0 && segment_meets_triangle_exact(g1, g2, side_g1, side_g2, f[0], f[1], f[2])) return true;
+    if (!g_edge_apart) {
+      const PlaneSide plane_f(f[0], f[1], f[2]);
+      const int side_g1 = plane_f(g1), side_g2 = plane_f(g2);
+      // g's far edge in f's plane puts all of g there (g has a plane): a flat region's
+      // neighbours. The fan test answers for both far edges (f's misses g when apart).
+      if (side_g1 == 0 && side_g2 == 0) return coplanar_fan_pair_meets(f[i], f1, f2, g1, g2);
+      if (side_g1 * side_g2 <= 0 && segment_meets_triangle_exact(g1, g2, side_g1, side_g2, f[0], f[1], f[2])) return true;
+    }
+    if (f_edge_apart) return false;
     const PlaneSide plane_g(g[0], g[1], g[2]);
     const int side_f1 = plane_g(f1), side_f2 = plane_g(f2);
+    // Reached with g's far edge apart from f when coplanar (else it was decided above).
+    if (side_f1 == 0 && side_f2 == 0) return coplanar_fan_pair_meets(g[j], g1, g2, f1, f2);
     return side_f1 * side_f2 <= 0 && segment_meets_triangle_exact(f1, f2, side_f1, side_f2, g[0], g[1], g[2]);
   }
   // A common edge u-w; r and s the corners off it (the same corner for a duplicate face).

@@ -13,12 +13,34 @@ namespace offsetopt {
 
 namespace {
 
-// The rule for two faces whose corners are known not to be collinear.
+// The rule for two faces whose corners are known not to be collinear. Faces on exactly one
+// common corner whose far edges both lie apart from the other face's box are faces_intersect_exact's
+// first shortcut, taken here on the tree's packed corners and face boxes before anything is
+// copied: most pairs a search meets are such neighbours.
 bool planar_faces_intersect(const TriangleBvh& bvh, int f, int g) {
   const auto& F = bvh.faces();
+  const int ids_f[3] = {F(f, 0), F(f, 1), F(f, 2)}, ids_g[3] = {F(g, 0), F(g, 1), F(g, 2)};
+  int shared = 0, in_f = 0, in_g = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (ids_f[i] == ids_g[j]) {
+        ++shared;
+        in_f = i;
+        in_g = j;
+      }
+  if (shared == 1) {
+    // The far edge of `face` (its corners other than corner `c`) apart from the box of `other`.
+    auto far_edge_apart = [&bvh](int face, int c, int other) {
+      const Eigen::Vector3d p = bvh.corner(face, c == 0 ? 1 : 0), q = bvh.corner(face, c == 2 ? 1 : 2);
+      const Aabb& box = bvh.face_box(other);
+      return std::max(p.x(), q.x()) < box.lo.x() || std::min(p.x(), q.x()) > box.hi.x() ||
+             std::max(p.y(), q.y()) < box.lo.y() || std::min(p.y(), q.y()) > box.hi.y() ||
+             std::max(p.z(), q.z()) < box.lo.z() || std::min(p.z(), q.z()) > box.hi.z();
+    };
+    if (far_edge_apart(g, in_g, f) && far_edge_apart(f, in_f, g)) return false;
+  }
   const Eigen::Vector3d a[3] = {bvh.corner(f, 0), bvh.corner(f, 1), bvh.corner(f, 2)};
   const Eigen::Vector3d b[3] = {bvh.corner(g, 0), bvh.corner(g, 1), bvh.corner(g, 2)};
-  const int ids_f[3] = {F(f, 0), F(f, 1), F(f, 2)}, ids_g[3] = {F(g, 0), F(g, 1), F(g, 2)};
   return faces_intersect_exact(a, ids_f, b, ids_g);
 }
 
@@ -54,11 +76,13 @@ bool record_pair(IntersectingFaces& out, int f, int g, std::size_t max_pairs) {
   return false;
 }
 
-IntersectingFaces self_intersections_from(const TriangleBvh& bvh, std::vector<std::pair<int, int>> start, std::size_t max_pairs) {
+IntersectingFaces self_intersections_from(const TriangleBvh& bvh, std::vector<std::pair<int, int>> start, std::size_t max_pairs,
+                                          const std::vector<char>* known = nullptr) {
   IntersectingFaces out;
-  // Collinearity once per face, on demand (each face meets about 15 candidates).
-  std::vector<signed char> collinear(static_cast<std::size_t>(bvh.faces().rows()), -1);
+  // Collinearity once per face, on demand (each face meets about 15 candidates), unless known.
+  std::vector<signed char> collinear(known ? 0 : static_cast<std::size_t>(bvh.faces().rows()), -1);
   auto flat = [&](int f) {
+    if (known) return (*known)[static_cast<std::size_t>(f)] != 0;
     signed char& c = collinear[static_cast<std::size_t>(f)];
     if (c < 0) c = collinear_face(bvh, f) ? 1 : 0;
     return c == 1;
@@ -66,7 +90,7 @@ IntersectingFaces self_intersections_from(const TriangleBvh& bvh, std::vector<st
   traverse_face_pairs(bvh, bvh, true, std::move(start), [&](int f, int g) {
     if (!bvh.face_box(f).overlaps(bvh.face_box(g)) || flat(f) || flat(g) || !planar_faces_intersect(bvh, f, g)) return true;
     return record_pair(out, std::min(f, g), std::max(f, g), max_pairs);
-  });
+  }, true);
   std::sort(out.pairs.begin(), out.pairs.end());
   return out;
 }
@@ -77,13 +101,14 @@ IntersectingFaces self_intersections(const TriangleBvh& bvh, std::size_t max_pai
   return self_intersections_from(bvh, {{0, 0}}, max_pairs);
 }
 
-IntersectingFaces self_intersections_part(const TriangleBvh& bvh, int part, std::size_t max_pairs) {
+IntersectingFaces self_intersections_part(const TriangleBvh& bvh, int part, std::size_t max_pairs,
+                                          const std::vector<char>* collinear) {
   if (bvh.empty()) return {};
   const BvhNode& root = bvh.nodes().front();
-  if (root.is_leaf()) return part == 0 ? self_intersections(bvh, max_pairs) : IntersectingFaces{};
+  if (root.is_leaf()) return part == 0 ? self_intersections_from(bvh, {{0, 0}}, max_pairs, collinear) : IntersectingFaces{};
   // Popped last-in first-out, as self_intersections would descend from the root.
-  if (part == 0) return self_intersections_from(bvh, {{root.left, root.right}, {root.left, root.left}}, max_pairs);
-  return self_intersections_from(bvh, {{root.right, root.right}}, max_pairs);
+  if (part == 0) return self_intersections_from(bvh, {{root.left, root.right}, {root.left, root.left}}, max_pairs, collinear);
+  return self_intersections_from(bvh, {{root.right, root.right}}, max_pairs, collinear);
 }
 
 IntersectingFaces merge_intersections(const IntersectingFaces& a, const IntersectingFaces& b, std::size_t max_pairs) {
@@ -98,10 +123,11 @@ IntersectingFaces merge_intersections(const IntersectingFaces& a, const Intersec
   return out;
 }
 
-IntersectingFaces self_intersections_in_parts(const TriangleBvh& bvh, std::size_t max_pairs, int threads) {
+IntersectingFaces self_intersections_in_parts(const TriangleBvh& bvh, std::size_t max_pairs, int threads,
+                                              const std::vector<char>* collinear) {
   IntersectingFaces parts[2];
   WorkerPool pool(std::min(std::max(threads, 1), 2));
-  pool.run_parts(2, [&](int part) { parts[part] = self_intersections_part(bvh, part, max_pairs); });
+  pool.run_parts(2, [&](int part) { parts[part] = self_intersections_part(bvh, part, max_pairs, collinear); });
   return merge_intersections(parts[0], parts[1], max_pairs);
 }
 
@@ -116,7 +142,7 @@ IntersectingFaces intersecting_faces_from(const TriangleBvh& a, const TriangleBv
     const Eigen::Vector3d q[3] = {b.corner(g, 0), b.corner(g, 1), b.corner(g, 2)};
     if (!unrelated_faces_meet(p, q)) return true;
     return record_pair(out, f, g, max_pairs);
-  });
+  }, true);
   std::sort(out.pairs.begin(), out.pairs.end());
   return out;
 }

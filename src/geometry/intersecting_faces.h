@@ -27,15 +27,19 @@ IntersectingFaces self_intersections(const TriangleBvh& bvh, std::size_t max_pai
 // Part `part` (0 or 1) of self_intersections, to run the two on two threads: part 0 the pairs
 // within the root's left subtree and across its two subtrees, part 1 those within the right
 // subtree. Merged by merge_intersections they are self_intersections' pairs, unless truncated.
-IntersectingFaces self_intersections_part(const TriangleBvh& bvh, int part, std::size_t max_pairs = 1000);
+// `collinear`, when given, holds collinear_exact of each face's corners (1 or 0, one per face of
+// the tree's mesh), which the search would otherwise decide itself.
+IntersectingFaces self_intersections_part(const TriangleBvh& bvh, int part, std::size_t max_pairs = 1000,
+                                          const std::vector<char>* collinear = nullptr);
 
 // The sorted union of two disjoint results, at most `max_pairs` of them (truncated if either was).
 IntersectingFaces merge_intersections(const IntersectingFaces& a, const IntersectingFaces& b, std::size_t max_pairs);
 
 // self_intersections' pairs as its two parts merged, the parts on two threads when `threads` > 1:
 // the same result for any count (and self_intersections' own unless truncated, when the two
-// stop at different pairs).
-IntersectingFaces self_intersections_in_parts(const TriangleBvh& bvh, std::size_t max_pairs, int threads);
+// stop at different pairs). `collinear` as for self_intersections_part.
+IntersectingFaces self_intersections_in_parts(const TriangleBvh& bvh, std::size_t max_pairs, int threads,
+                                              const std::vector<char>* collinear = nullptr);
 
 // (face of a, face of b) pairs that intersect. Stops after `max_pairs` pairs.
 IntersectingFaces intersecting_faces(const TriangleBvh& a, const TriangleBvh& b, std::size_t max_pairs = 1000);

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -255,5 +256,70 @@ TEST_CASE("a tree built on two threads is the one-thread tree, node for node") {
         ++differing;
     }
     CHECK(differing == 0);
+  }
+}
+
+namespace {
+
+// The faces below a node, in leaf order.
+std::vector<int> faces_below(const TriangleBvh& bvh, int node) {
+  std::vector<int> out;
+  std::vector<int> stack{node};
+  while (!stack.empty()) {
+    const BvhNode& n = bvh.nodes()[static_cast<std::size_t>(stack.back())];
+    stack.pop_back();
+    if (n.is_leaf()) {
+      out.insert(out.end(), bvh.leaf_faces().begin() + n.first, bvh.leaf_faces().begin() + n.first + n.count);
+    } else {
+      stack.push_back(n.right);
+      stack.push_back(n.left);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("every split is the median split its header defines: the lower half by centroid, ties by face index") {
+  // The tree is a function of the mesh alone: whatever selection the build uses, each internal
+  // node's left child holds exactly the first half of its faces sorted by (centroid along the
+  // longest axis of their centroids' bounds, face index), and leaves are sorted. Checked here
+  // against a full sort, on a sphere large enough for long selections (centroids tied on every
+  // axis) and on the same sphere with its vertices snapped to a coarse grid (ties by thousands).
+  Mesh sphere = make_icosphere(1.0, 5);
+  for (int variant = 0; variant < 2; ++variant) {
+    if (variant == 1)
+      for (Eigen::Index i = 0; i < sphere.V.rows(); ++i)
+        for (int c = 0; c < 3; ++c) sphere.V(i, c) = std::round(sphere.V(i, c) * 8.0) / 8.0;
+    const TriangleBvh bvh(sphere.V, sphere.F);
+    std::vector<Eigen::Vector3d> centroids;
+    for (int f = 0; f < static_cast<int>(sphere.F.rows()); ++f)
+      centroids.push_back((bvh.corner(f, 0) + bvh.corner(f, 1) + bvh.corner(f, 2)) / 3.0);
+    auto centroid = [&](int f) { return centroids[static_cast<std::size_t>(f)]; };
+    int wrong = 0, splits = 0;
+    for (std::size_t index = 0; index < bvh.nodes().size(); ++index) {
+      const BvhNode& node = bvh.nodes()[index];
+      if (node.is_leaf()) {
+        if (!std::is_sorted(bvh.leaf_faces().begin() + node.first, bvh.leaf_faces().begin() + node.first + node.count)) ++wrong;
+        continue;
+      }
+      std::vector<int> faces = faces_below(bvh, static_cast<int>(index));
+      Aabb box;
+      for (int f : faces) box.extend(centroid(f));
+      const int axis = box.longest_axis();
+      std::sort(faces.begin(), faces.end(), [&](int a, int b) {
+        const double ca = centroid(a)[axis], cb = centroid(b)[axis];
+        return ca < cb || (ca == cb && a < b);
+      });
+      std::vector<int> lower(faces.begin(), faces.begin() + static_cast<std::ptrdiff_t>(faces.size() / 2));
+      std::vector<int> left = faces_below(bvh, node.left);
+      std::sort(lower.begin(), lower.end());
+      std::sort(left.begin(), left.end());
+      if (left != lower) ++wrong;
+      ++splits;
+    }
+    CAPTURE(variant);
+    CHECK(splits > 1000);
+    CHECK(wrong == 0);
   }
 }

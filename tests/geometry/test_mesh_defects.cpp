@@ -236,3 +236,48 @@ TEST_CASE("coplanar triangles: the 2-D separating-edge test agrees with the six 
   CHECK(meets > 1000);
   CHECK(misses > 1000);
 }
+
+TEST_CASE("faces on one vertex in space: the pair rule agrees with the two exact segment tests") {
+  // The rule's shortcuts (far edges whose boxes miss the other face, the 2-D fan test when the
+  // faces are coplanar) against its definition: f's far edge meets g or g's far edge meets f.
+  // Integer points of a small 3-D grid (touching, collinear, coplanar and axis-aligned cases by
+  // the thousand), of one tilted plane, and random points, around one corner at every position.
+  Rng rng(2613);
+  auto integer = [&](int n) { return static_cast<double>(static_cast<int>(rng.below(2 * n + 1)) - n); };
+  int meets = 0, misses = 0, coplanar = 0;
+  for (int trial = 0; trial < 60000; ++trial) {
+    const int kind = trial % 4;
+    V3 p[5];
+    const V3 u(1, 2, -1), w(-2, 1, 3);
+    for (V3& x : p) {
+      if (kind == 0) x = V3(integer(2), integer(2), integer(2));
+      else if (kind == 1) x = V3(integer(4), integer(4), integer(1));
+      else if (kind == 2) x = integer(3) * u + integer(3) * w;
+      else x = V3(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
+    }
+    const V3 &v = p[0], &f1 = p[1], &f2 = p[2], &g1 = p[3], &g2 = p[4];
+    if (collinear_exact(v, f1, f2) || collinear_exact(v, g1, g2)) continue;
+    // Exactly one common corner: the far corners differ from each other's.
+    if (f1 == g1 || f1 == g2 || f2 == g1 || f2 == g2) continue;
+    const bool slow = segment_meets_triangle_exact(g1, g2, v, f1, f2) || segment_meets_triangle_exact(f1, f2, v, g1, g2);
+    const int shift_f = trial % 3, shift_g = (trial / 3) % 3;
+    V3 a[3], b[3];
+    int ia[3], ib[3];
+    const V3 fa[3] = {v, f1, f2}, gb[3] = {v, g1, g2};
+    const int fi[3] = {0, 1, 2}, gi[3] = {0, 3, 4};
+    for (int k = 0; k < 3; ++k) {
+      a[k] = fa[(k + shift_f) % 3];
+      ia[k] = fi[(k + shift_f) % 3];
+      b[k] = gb[(k + shift_g) % 3];
+      ib[k] = gi[(k + shift_g) % 3];
+    }
+    CAPTURE(trial);
+    CHECK(faces_intersect_exact(a, ia, b, ib) == slow);
+    CHECK(faces_intersect_exact(b, ib, a, ia) == slow);
+    ++(slow ? meets : misses);
+    if (orient3d_sign(v, f1, f2, g1) == 0 && orient3d_sign(v, f1, f2, g2) == 0) ++coplanar;
+  }
+  CHECK(meets > 2000);
+  CHECK(misses > 2000);
+  CHECK(coplanar > 2000);
+}
