@@ -7,6 +7,7 @@
 #include "cavity/contour_cavity.h"
 #include "geometry/aabb.h"
 #include "mass/volume_integrals.h"
+#include "optim/transposed_product_10.h"
 #include "util/neumaier_sum.h"
 
 namespace offsetopt {
@@ -171,6 +172,7 @@ struct Partition {
   std::vector<FineCell> cells;
   std::vector<int> order;          // cells, block by block
   std::vector<Group> groups;
+  int splits = 0;                  // times the groups were replaced (Solver::moved_at's key)
   double h = 0.0;                  // cell side, normalised
   // cube_integrals(centre, h, 0), the same arithmetic inlined: the block splits evaluate it for
   // every cell of every block they look at.
@@ -191,6 +193,10 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
   const NodeGrid& g = cc.grid;
   const std::int64_t bx = (g.nx + block - 1) / block, by = (g.ny + block - 1) / block, bz = (g.nz + block - 1) / block;
   std::vector<std::int64_t> key;
+  const std::size_t total = voids.size() + band.size() + skin.size();
+  p.cells.reserve(total);
+  key.reserve(total);
+  const Eigen::Vector3d half = Eigen::Vector3d::Constant(0.5 * g.spacing);
   for (int sign : {-1, 1, -2}) {
     const std::vector<std::int64_t>& list = sign == -1 ? voids : sign == 1 ? band : skin;
     const int kind = sign == -1 ? 0 : sign == 1 ? 1 : 2;
@@ -198,7 +204,7 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
       const std::int64_t cell = list[s];
       const std::int64_t i = cell % g.nx, j = (cell / g.nx) % g.ny, k = cell / (g.nx * g.ny);
       FineCell fc;
-      fc.x = f.to_frame(f.rotation * cc.centre(cell));
+      fc.x = f.to_frame(f.rotation * (Eigen::Vector3d(g.x(i), g.y(j), g.z(k)) + half));  // cc.centre(cell)
       fc.i = static_cast<std::int32_t>(i);
       fc.j = static_cast<std::int32_t>(j);
       fc.k = static_cast<std::int32_t>(k);
@@ -269,10 +275,6 @@ double form_value(const Form& f, const Vector10d& P0, const Moved& m) {
   return sum.value();
 }
 
-double form_value(const Form& f, const Vector10d& P0, const Partition& p, const std::vector<double>& u) {
-  return form_value(f, P0, moved_integrals(p, u));
-}
-
 struct LpRun {
   LpStatus status = LpStatus::numerical;
   std::vector<double> u;           // per group
@@ -301,7 +303,7 @@ class Solver {
     std::vector<char> active(static_cast<std::size_t>(m), 0);
     auto values_at = [&](const std::vector<double>& u) {
       std::vector<double> v(static_cast<std::size_t>(m));
-      const Moved moved = moved_integrals(p, u);
+      const Moved& moved = moved_at(p, u);
       for (int k = 0; k < m; ++k) v[static_cast<std::size_t>(k)] = form_value(rows[static_cast<std::size_t>(k)], f_.P0, moved) / V0;
       return v;
     };
@@ -353,6 +355,20 @@ class Solver {
     }
   }
 
+  // moved_integrals(p, u), kept for the last (partition, its splits, u) asked: a programme's
+  // caller reads its rows at the same occupancy the row generation last did, and the next
+  // programme starts from it.
+  const Moved& moved_at(const Partition& p, const std::vector<double>& u) {
+    if (!(moved_partition_ == &p && moved_splits_ == p.splits && moved_groups_ == p.groups.size() && moved_u_ == u)) {
+      moved_ = moved_integrals(p, u);
+      moved_partition_ = &p;
+      moved_splits_ = p.splits;
+      moved_groups_ = p.groups.size();
+      moved_u_ = u;
+    }
+    return moved_;
+  }
+
   // `row_ids` names each row in the caller's full list (rows keep their names across Dinkelbach
   // steps and row generation), so that the last optimal basis can start the next programme.
   LpRun solve_rows(Partition& p, const std::vector<Form>& rows, const std::vector<int>& row_ids, int ratio_rows, bool with_z,
@@ -362,6 +378,11 @@ class Solver {
     run.ratio_rows = ratio_rows;
     const double V0 = f_.P0(kIntVolume);
     const int m = static_cast<int>(rows.size());
+    // The last round's columns and costs, and for each group the one it was there (−1: split
+    // since): a block split leaves most groups, and so their columns, as they were.
+    Eigen::MatrixXd kept_A;
+    Eigen::VectorXd kept_c;
+    std::vector<int> kept_from;
     for (int round = 0;; ++round) {
       const int G = static_cast<int>(p.groups.size());
       LinearProgram lp;
@@ -378,8 +399,19 @@ class Solver {
         lp.b(k) = -(rows[static_cast<std::size_t>(k)].constant + rows[static_cast<std::size_t>(k)].solid.dot(f_.P0)) / V0;
       }
       for (int g = 0; g < G; ++g) {
+        if (!kept_from.empty() && kept_from[static_cast<std::size_t>(g)] >= 0) {
+          const int was = kept_from[static_cast<std::size_t>(g)];
+          lp.A.col(g) = kept_A.col(was);
+          if (objective) lp.c(g) = kept_c(was);
+          continue;
+        }
         const Group& grp = p.groups[static_cast<std::size_t>(g)];
-        lp.A.col(g).noalias() = (grp.sign == -1 ? cv : cb).transpose() * grp.integrals;  // no temporary per column
+        const Eigen::Matrix<double, 10, Eigen::Dynamic>& coefficients = grp.sign == -1 ? cv : cb;
+        if (m == 1) {
+          lp.A.col(g).noalias() = coefficients.transpose() * grp.integrals;
+        } else {
+          transposed_product_10(coefficients, grp.integrals, lp.A.col(g).data());  // the product's bits
+        }
         if (grp.sign == -2) lp.A.col(g) = -lp.A.col(g);
         if (objective) lp.c(g) = form_on(*objective, grp.integrals, grp.sign) / V0;
       }
@@ -447,38 +479,54 @@ class Solver {
       }
       std::vector<Group> groups;
       std::vector<double> next_warm;
+      std::vector<int> from;
+      std::vector<int> octants, sorted;
       for (int g = 0; g < G; ++g) {
         const Group& grp = p.groups[static_cast<std::size_t>(g)];
         if (!split[static_cast<std::size_t>(g)]) {
           groups.push_back(grp);
           next_warm.push_back(run.u[static_cast<std::size_t>(g)]);
+          from.push_back(g);
           continue;
         }
         // Into its (up to) 8 octants, cells kept in order inside each.
         const Vector10d& w = weights_of(grp.sign);
         const int half = std::max(1, grp.side / 2);
-        auto octant = [&](int q) {
-          const FineCell& c = p.cells[static_cast<std::size_t>(p.order[static_cast<std::size_t>(q)])];
-          return (c.i / half) % 2 + 2 * ((c.j / half) % 2) + 4 * ((c.k / half) % 2);
-        };
-        std::vector<int> sorted;
-        for (int o = 0; o < 8; ++o)
-          for (int q = grp.begin; q < grp.end; ++q)
-            if (octant(q) == o) sorted.push_back(p.order[static_cast<std::size_t>(q)]);
+        // Each cell's octant once, then a stable counting sort by it.
+        const int count = grp.end - grp.begin;
+        octants.resize(static_cast<std::size_t>(count));
+        int first[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+        for (int q = 0; q < count; ++q) {
+          const FineCell& c = p.cells[static_cast<std::size_t>(p.order[static_cast<std::size_t>(grp.begin + q)])];
+          const int o = (c.i / half) % 2 + 2 * ((c.j / half) % 2) + 4 * ((c.k / half) % 2);
+          octants[static_cast<std::size_t>(q)] = o;
+          ++first[o + 1];
+        }
+        for (int o = 0; o < 8; ++o) first[o + 1] += first[o];
+        sorted.resize(static_cast<std::size_t>(count));
+        int next[8];
+        std::copy(first, first + 8, next);
+        for (int q = 0; q < count; ++q)
+          sorted[static_cast<std::size_t>(next[octants[static_cast<std::size_t>(q)]]++)] = p.order[static_cast<std::size_t>(grp.begin + q)];
         std::copy(sorted.begin(), sorted.end(), p.order.begin() + grp.begin);
-        for (int q = grp.begin; q < grp.end;) {
-          const int o = octant(q);
+        for (int o = 0; o < 8; ++o) {
+          if (first[o] == first[o + 1]) continue;
           Group child;
-          child.begin = q;
+          child.begin = grp.begin + first[o];
           child.sign = grp.sign;
           child.side = half;
-          while (q < grp.end && octant(q) == o) child.integrals += p.cell_integrals(p.order[static_cast<std::size_t>(q++)]);
-          child.end = q;
+          for (int q = child.begin; q < grp.begin + first[o + 1]; ++q) child.integrals += p.cell_integrals(p.order[static_cast<std::size_t>(q)]);
+          child.end = grp.begin + first[o + 1];
           groups.push_back(child);
           next_warm.push_back(w.dot(child.integrals) > 0.0 ? 1.0 : 0.0);
+          from.push_back(-1);
         }
       }
       p.groups = std::move(groups);
+      ++p.splits;
+      kept_A = std::move(lp.A);
+      kept_c = std::move(lp.c);
+      kept_from = std::move(from);
       warm = std::move(next_warm);
     }
   }
@@ -522,6 +570,11 @@ class Solver {
     int kind = 0;  // 0 group, 1 slack, 2 the margin column z
     int a = 0, b = 0;
   };
+  const Partition* moved_partition_ = nullptr;
+  int moved_splits_ = 0;
+  std::size_t moved_groups_ = 0;
+  std::vector<double> moved_u_;
+  Moved moved_;
   const Partition* basis_partition_ = nullptr;
   const Partition* active_partition_ = nullptr;
   std::vector<char> last_active_;
@@ -628,7 +681,7 @@ MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, con
     s.feasible = true;
     double t_new = kInf;
     int arg = -1;
-    const Moved moved = moved_integrals(p, run.u);
+    const Moved& moved = solver.moved_at(p, run.u);
     for (int j = 0; j < nr; ++j) {
       const double ratio = form_value(rows.numerators[static_cast<std::size_t>(j)], f.P0, moved) /
                            form_value(rows.denominators[static_cast<std::size_t>(j)], f.P0, moved);
@@ -730,7 +783,7 @@ std::optional<double> lowest_cz(Solver& solver, Partition& p, const GoalRows& ro
   const std::vector<Form> constraints = ratio_rows_at(rows, margin);
   const Form Z = solid_form(unit(kIntZ)), M = solid_form(unit(kIntVolume));
   std::vector<double> warm = u;
-  double theta = form_value(Z, f.P0, p, u) / form_value(M, f.P0, p, u);
+  double theta = form_value(Z, f.P0, solver.moved_at(p, u)) / form_value(M, f.P0, solver.moved_at(p, u));
   std::optional<double> best;
   for (int it = 0; it < cap; ++it) {
     Form obj;
@@ -738,7 +791,7 @@ std::optional<double> lowest_cz(Solver& solver, Partition& p, const GoalRows& ro
     // The ratio rows (at the margin) by row generation too: a round base has hundreds of edges.
     const LpRun run = solver.solve(p, constraints, static_cast<int>(rows.numerators.size()), false, &obj, warm);
     if (run.status != LpStatus::optimal) break;
-    const double next = form_value(Z, f.P0, p, run.u) / form_value(M, f.P0, p, run.u);
+    const double next = form_value(Z, f.P0, solver.moved_at(p, run.u)) / form_value(M, f.P0, solver.moved_at(p, run.u));
     if (!best || next < *best) {
       best = next;
       u = run.u;

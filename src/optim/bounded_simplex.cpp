@@ -1,12 +1,16 @@
 #include "optim/bounded_simplex.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include <Eigen/LU>
+
+#include "optim/paired_pricing.h"
 
 namespace offsetopt {
 
@@ -15,6 +19,51 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr std::size_t kCandidatesPerPass = 64;
 constexpr int kPricingWindow = 1024;  // columns priced per window, at least (an eighth of them when more)
+
+// A breakpoint of the dual ratio test: θ, −|α|, column, taken in lexicographic order (the same
+// comparisons as on an array of the three, fewer instructions).
+struct Breakpoint {
+  double theta, minus_alpha;
+  int column;
+  bool earlier(const Breakpoint& o) const {
+    if (theta < o.theta) return true;
+    if (o.theta < theta) return false;
+    if (minus_alpha < o.minus_alpha) return true;
+    if (o.minus_alpha < minus_alpha) return false;
+    return column < o.column;
+  }
+};
+
+// The breakpoints that surely hold the entering one, moved to the front; their count. The ratio
+// test takes breakpoints in increasing θ while `worst` less their |α|·range stays positive; those
+// whose θ has a binary exponent at most the one where that sum surely passes `worst` (summed by
+// exponent, with room for its rounding) come before all others in the test's order, so it takes
+// the same ones in the same order from a heap of these alone (most steps flip a tenth of the
+// breakpoints or fewer). All of them (breaks.size(), the order untouched) when the sum does not
+// surely pass or a θ is not finite. `weight` is scratch.
+std::size_t entering_prefix(std::vector<Breakpoint>& breaks, double worst, const std::vector<double>& lo, const std::vector<double>& hi,
+                            std::vector<double>& weight) {
+  const auto exponent = [](double theta) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &theta, sizeof bits);
+    return static_cast<int>((bits >> 52) & 0x7FF);  // θ >= 0 (or −0): the order of the exponents is θ's
+  };
+  weight.assign(2048, 0.0);
+  for (const Breakpoint& b : breaks) {
+    const int e = exponent(b.theta);
+    if (e == 0x7FF) return breaks.size();
+    weight[static_cast<std::size_t>(e)] -= b.minus_alpha * (hi[static_cast<std::size_t>(b.column)] - lo[static_cast<std::size_t>(b.column)]);
+  }
+  double total = 0.0;
+  int last = -1;
+  for (int e = 0; e < 0x7FF && last < 0; ++e) {
+    total += weight[static_cast<std::size_t>(e)];
+    if (total - worst > 1e-8 * (total + worst)) last = e;
+  }
+  if (last < 0) return breaks.size();
+  const auto end = std::partition(breaks.begin(), breaks.end(), [&](const Breakpoint& b) { return exponent(b.theta) <= last; });
+  return static_cast<std::size_t>(end - breaks.begin());
+}
 
 // The simplex state over n structural columns, m slacks and m artificials (index n + i and
 // n + m + i for row i).
@@ -254,12 +303,21 @@ class Simplex {
   // factorisation), or returns false: infeasible, stalled, or stopped on an artificial bound.
   bool solve_dual(LpResult& r, const std::vector<std::int8_t>* start, const std::vector<int>* start_basis) {
     constexpr double kArtificialBound = 1e3;
-    const std::vector<double> lo_saved = lo_, hi_saved = hi_;
+    // The variables with an infinite bound (few: a margin column, the slacks) and their own bounds.
+    struct Replaced {
+      int var;
+      double lo, hi;
+    };
+    std::vector<Replaced> replaced;
     const auto restore = [&] {
-      lo_ = lo_saved;
-      hi_ = hi_saved;
+      for (const Replaced& b : replaced) {
+        lo_[b.var] = b.lo;
+        hi_[b.var] = b.hi;
+      }
     };
     for (int var = 0; var < n_ + m_; ++var) {
+      if (std::isfinite(lo_[var]) && std::isfinite(hi_[var])) continue;
+      replaced.push_back({var, lo_[var], hi_[var]});
       if (!std::isfinite(lo_[var])) lo_[var] = -kArtificialBound;
       if (!std::isfinite(hi_[var])) hi_[var] = kArtificialBound;
     }
@@ -280,13 +338,18 @@ class Simplex {
         if (valid) seen[static_cast<std::size_t>(var)] = 1;
       }
       if (valid) {
-        const std::vector<double> placed = value_;
+        // refactor() sets the basic values only: those are the ones to put back if it fails.
+        std::vector<double> placed(static_cast<std::size_t>(m_));
+        for (int i = 0; i < m_; ++i) placed[static_cast<std::size_t>(i)] = value_[(*start_basis)[static_cast<std::size_t>(i)]];
         basis_.assign(static_cast<std::size_t>(m_), -1);
         for (int i = 0; i < m_; ++i) set_basic(i, (*start_basis)[static_cast<std::size_t>(i)]);
         started = refactor();
         if (!started) {
-          for (int i = 0; i < m_; ++i) position_[static_cast<std::size_t>((*start_basis)[static_cast<std::size_t>(i)])] = -1;
-          value_ = placed;
+          for (int i = 0; i < m_; ++i) {
+            const int var = (*start_basis)[static_cast<std::size_t>(i)];
+            position_[static_cast<std::size_t>(var)] = -1;
+            value_[var] = placed[static_cast<std::size_t>(i)];
+          }
         }
       }
     }
@@ -320,9 +383,12 @@ class Simplex {
     const int max_pivots = 20 * m_ + 200;
     int pivots = 0;
     std::vector<std::pair<double, int>> flips;   // (|α|, column) of the pass's breakpoints
-    std::vector<std::array<double, 3>> breaks;   // θ, −|α|, column
+    std::vector<Breakpoint> breaks;
+    std::vector<double> weight_by_exponent;
     Eigen::MatrixXd yr(m_, 2);
     Eigen::MatrixXd priced;
+    std::optional<PairedPricing> paired;  // packed at the first dual step (else Eigen's own product)
+    const bool pairs_priced = PairedPricing::eligible(m_, n_);
     for (;;) {
       if (r.iterations >= o_.max_iterations || pivots >= max_pivots) break;
       // The leaving row: the largest bound violation among the basic variables.
@@ -339,10 +405,9 @@ class Simplex {
       if (row < 0) {
         if (pivots_since_refactor_ == 0 && flips_since_refactor_ == 0) {
           // Feasible: no column may rest on an artificial bound.
-          for (int var = 0; var < n_ + m_; ++var)
-            if (position_[static_cast<std::size_t>(var)] < 0 &&
-                ((value_[var] == lo_[var] && !std::isfinite(lo_saved[var])) ||
-                 (value_[var] == hi_[var] && !std::isfinite(hi_saved[var])))) {
+          for (const Replaced& b : replaced)
+            if (position_[static_cast<std::size_t>(b.var)] < 0 &&
+                ((value_[b.var] == lo_[b.var] && !std::isfinite(b.lo)) || (value_[b.var] == hi_[b.var] && !std::isfinite(b.hi)))) {
               restore();
               return false;
             }
@@ -357,7 +422,12 @@ class Simplex {
       const double sigma = below ? -1.0 : 1.0;
       yr.col(0) = duals();
       yr.col(1) = binv_.row(row).transpose();
-      priced.noalias() = lp_.A.transpose() * yr;
+      if (pairs_priced && !paired) paired.emplace(lp_.A);
+      if (paired) {
+        paired->price(yr, priced);  // Aᵀ[y r], the product's bits
+      } else {
+        priced.noalias() = lp_.A.transpose() * yr;
+      }
       // Breakpoints: a column at its lower bound (reduced cost d ≤ 0) turns when σα > 0, one at
       // its upper bound when σα < 0; θ = |d| / |α|. Columns whose cost has the wrong sign
       // (rounding) are put on the right bound first.
@@ -378,7 +448,7 @@ class Simplex {
           continue;
         }
         const double s = sigma * a;
-        if (at_lower ? s > ptol : s < -ptol) breaks.push_back({std::max(at_lower ? -d : d, 0.0) / std::fabs(s), -std::fabs(s), static_cast<double>(var)});
+        if (at_lower ? s > ptol : s < -ptol) breaks.push_back({std::max(at_lower ? -d : d, 0.0) / std::fabs(s), -std::fabs(s), var});
       }
       if (corrected > 0) {
         const Eigen::VectorXd shift = binv_ * moved;
@@ -390,18 +460,28 @@ class Simplex {
       if (breaks.empty()) break;  // no column can restore the row: infeasible (the primal method proves it)
       // In increasing θ (ties: the larger |α|, then the lower index), flip while the violation left
       // stays positive; the column where it would not enters.
-      const auto later = [](const std::array<double, 3>& a, const std::array<double, 3>& b) { return a > b; };
-      std::make_heap(breaks.begin(), breaks.end(), later);
+      const auto later = [](const Breakpoint& a, const Breakpoint& b) { return b.earlier(a); };
+      const std::size_t prefix = entering_prefix(breaks, worst, lo_, hi_, weight_by_exponent);
+      std::size_t heap_begin = 0, heap_end = prefix;  // the heap: breaks[heap_begin, heap_end)
+      bool rest_left = prefix < breaks.size();
+      std::make_heap(breaks.begin(), breaks.begin() + static_cast<std::ptrdiff_t>(prefix), later);
       double slope = worst;
       int enter = -1;
       moved.setZero();
       int flipped = 0;
-      while (!breaks.empty()) {
-        std::pop_heap(breaks.begin(), breaks.end(), later);
-        const std::array<double, 3> b = breaks.back();
-        breaks.pop_back();
-        const int var = static_cast<int>(b[2]);
-        const double range = hi_[var] - lo_[var], next = slope + b[1] * range;
+      for (;;) {
+        if (heap_end == heap_begin) {
+          if (!rest_left) break;
+          rest_left = false;  // (not expected) the others, all later in the order
+          heap_begin = prefix;
+          heap_end = breaks.size();
+          std::make_heap(breaks.begin() + static_cast<std::ptrdiff_t>(heap_begin), breaks.end(), later);
+        }
+        std::pop_heap(breaks.begin() + static_cast<std::ptrdiff_t>(heap_begin), breaks.begin() + static_cast<std::ptrdiff_t>(heap_end),
+                      later);
+        const Breakpoint b = breaks[--heap_end];
+        const int var = b.column;
+        const double range = hi_[var] - lo_[var], next = slope + b.minus_alpha * range;
         if (next <= 0.0) {
           enter = var;
           break;
@@ -515,6 +595,10 @@ class Simplex {
   int window_start_ = 0;
 };
 
+// A's entries all finite: x · 0 is 0 for a finite x and NaN for an infinite or NaN one, and NaN
+// stays in the sum (allFinite() compares A − A with itself, a temporary of A's size).
+bool all_finite(const Eigen::MatrixXd& A) { return (A.array() * 0.0).sum() == 0.0; }
+
 }  // namespace
 
 const char* to_string(LpStatus status) {
@@ -548,7 +632,7 @@ LpResult bounded_simplex(const LinearProgram& lp, const BoundedSimplexOptions& o
     problem = "the sizes of A, b, sense, c, lower, upper (and start) disagree";
   for (Eigen::Index j = 0; problem.empty() && j < n; ++j)
     if (!(lp.lower(j) <= lp.upper(j)) || lp.lower(j) == kInf || lp.upper(j) == -kInf) problem = "a column has empty bounds";
-  if (problem.empty() && (!lp.A.allFinite() || !lp.b.allFinite() || !lp.c.allFinite())) problem = "A, b and c must be finite";
+  if (problem.empty() && (!all_finite(lp.A) || !lp.b.allFinite() || !lp.c.allFinite())) problem = "A, b and c must be finite";
   if (!problem.empty()) {
     r.status = LpStatus::numerical;
     r.message = problem;
