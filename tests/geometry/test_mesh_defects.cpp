@@ -92,6 +92,26 @@ long long pairs_of(const std::vector<V3>& points, const std::vector<std::array<i
   return find_self_intersections(m).pairs;
 }
 
+// Faces (v, f1, f2) and (v, g1, g2) as faces_intersect_exact takes them (corners and their
+// vertex indices 0..4), each turned so the shared corner v stands at position `shift_f` of the
+// first face and `shift_g` of the second.
+struct FacePair {
+  V3 a[3], b[3];
+  int ia[3], ib[3];
+};
+FacePair turned_pair(const V3& v, const V3& f1, const V3& f2, const V3& g1, const V3& g2, int shift_f, int shift_g) {
+  FacePair pair;
+  const V3 fa[3] = {v, f1, f2}, gb[3] = {v, g1, g2};
+  const int fi[3] = {0, 1, 2}, gi[3] = {0, 3, 4};
+  for (int k = 0; k < 3; ++k) {
+    pair.a[k] = fa[(k + shift_f) % 3];
+    pair.ia[k] = fi[(k + shift_f) % 3];
+    pair.b[k] = gb[(k + shift_g) % 3];
+    pair.ib[k] = gi[(k + shift_g) % 3];
+  }
+  return pair;
+}
+
 }  // namespace
 
 TEST_CASE("check's pair rule on hand-built pairs: touching along an edge or at a corner, or coplanar and adjacent, is no pair, crossing, folding and touching apart are") {
@@ -187,18 +207,8 @@ TEST_CASE("coplanar faces on one vertex: the 2-D fan test agrees with the two ex
     CAPTURE(trial);
     CHECK(coplanar_fan_pair_meets(v, f1, f2, g1, g2) == slow);
     // Through the pair rule, with the shared corner at every position of either face.
-    const int shift_f = trial % 3, shift_g = (trial / 3) % 3;
-    V3 a[3], b[3];
-    int ia[3], ib[3];
-    const V3 fa[3] = {v, f1, f2}, gb[3] = {v, g1, g2};
-    const int fi[3] = {0, 1, 2}, gi[3] = {0, 3, 4};
-    for (int k = 0; k < 3; ++k) {
-      a[k] = fa[(k + shift_f) % 3];
-      ia[k] = fi[(k + shift_f) % 3];
-      b[k] = gb[(k + shift_g) % 3];
-      ib[k] = gi[(k + shift_g) % 3];
-    }
-    if (f1 != g1 && f1 != g2 && f2 != g1 && f2 != g2) CHECK(faces_intersect_exact(a, ia, b, ib) == slow);
+    const FacePair t = turned_pair(v, f1, f2, g1, g2, trial % 3, (trial / 3) % 3);
+    if (f1 != g1 && f1 != g2 && f2 != g1 && f2 != g2) CHECK(faces_intersect_exact(t.a, t.ia, t.b, t.ib) == slow);
     ++(slow ? meets : misses);
   }
   CHECK(meets > 1000);
@@ -260,20 +270,10 @@ TEST_CASE("faces on one vertex in space: the pair rule agrees with the two exact
     // Exactly one common corner: the far corners differ from each other's.
     if (f1 == g1 || f1 == g2 || f2 == g1 || f2 == g2) continue;
     const bool slow = segment_meets_triangle_exact(g1, g2, v, f1, f2) || segment_meets_triangle_exact(f1, f2, v, g1, g2);
-    const int shift_f = trial % 3, shift_g = (trial / 3) % 3;
-    V3 a[3], b[3];
-    int ia[3], ib[3];
-    const V3 fa[3] = {v, f1, f2}, gb[3] = {v, g1, g2};
-    const int fi[3] = {0, 1, 2}, gi[3] = {0, 3, 4};
-    for (int k = 0; k < 3; ++k) {
-      a[k] = fa[(k + shift_f) % 3];
-      ia[k] = fi[(k + shift_f) % 3];
-      b[k] = gb[(k + shift_g) % 3];
-      ib[k] = gi[(k + shift_g) % 3];
-    }
+    const FacePair t = turned_pair(v, f1, f2, g1, g2, trial % 3, (trial / 3) % 3);
     CAPTURE(trial);
-    CHECK(faces_intersect_exact(a, ia, b, ib) == slow);
-    CHECK(faces_intersect_exact(b, ib, a, ia) == slow);
+    CHECK(faces_intersect_exact(t.a, t.ia, t.b, t.ib) == slow);
+    CHECK(faces_intersect_exact(t.b, t.ib, t.a, t.ia) == slow);
     ++(slow ? meets : misses);
     if (orient3d_sign(v, f1, f2, g1) == 0 && orient3d_sign(v, f1, f2, g2) == 0) ++coplanar;
   }
