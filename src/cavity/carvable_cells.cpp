@@ -174,6 +174,11 @@ Eigen::Vector3d CarvableCells::centre(std::int64_t cell) const {
   return grid.position(cell) + Eigen::Vector3d(half, half, half);
 }
 
+Eigen::Vector3d CarvableCells::centre(std::int64_t i, std::int64_t j, std::int64_t k) const {
+  const double half = 0.5 * grid.spacing;
+  return grid.position(i, j, k) + Eigen::Vector3d(half, half, half);
+}
+
 Vector10d cube_integrals(const Eigen::Vector3d& centre, double h, const Eigen::Vector3d& origin) {
   const Eigen::Vector3d p = centre - origin;
   const double v = h * h * h, s = h * h / 12.0;

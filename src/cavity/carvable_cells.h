@@ -76,6 +76,7 @@ struct CarvableCells {
   std::int64_t distance_queries = 0;                 // points whose distance was computed (blocks not counted)
 
   Eigen::Vector3d centre(std::int64_t cell) const;
+  Eigen::Vector3d centre(std::int64_t i, std::int64_t j, std::int64_t k) const;  // of the cell whose lowest node is (i, j, k)
   double cell_volume() const { return grid.spacing * grid.spacing * grid.spacing; }
 };
 

@@ -196,7 +196,6 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
   const std::size_t total = voids.size() + band.size() + skin.size();
   p.cells.reserve(total);
   key.reserve(total);
-  const Eigen::Vector3d half = Eigen::Vector3d::Constant(0.5 * g.spacing);
   for (int sign : {-1, 1, -2}) {
     const std::vector<std::int64_t>& list = sign == -1 ? voids : sign == 1 ? band : skin;
     const int kind = sign == -1 ? 0 : sign == 1 ? 1 : 2;
@@ -204,7 +203,7 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
       const std::int64_t cell = list[s];
       const std::int64_t i = cell % g.nx, j = (cell / g.nx) % g.ny, k = cell / (g.nx * g.ny);
       FineCell fc;
-      fc.x = f.to_frame(f.rotation * (Eigen::Vector3d(g.x(i), g.y(j), g.z(k)) + half));  // cc.centre(cell)
+      fc.x = f.to_frame(f.rotation * cc.centre(i, j, k));
       fc.i = static_cast<std::int32_t>(i);
       fc.j = static_cast<std::int32_t>(j);
       fc.k = static_cast<std::int32_t>(k);

@@ -20,9 +20,9 @@ struct NodeGrid {
   double x(std::int64_t i) const { return origin.x() + spacing * static_cast<double>(i); }
   double y(std::int64_t j) const { return origin.y() + spacing * static_cast<double>(j); }
   double z(std::int64_t k) const { return origin.z() + spacing * static_cast<double>(k); }
+  Eigen::Vector3d position(std::int64_t i, std::int64_t j, std::int64_t k) const { return Eigen::Vector3d(x(i), y(j), z(k)); }
   Eigen::Vector3d position(std::int64_t node) const {
-    const std::int64_t i = node % nx, j = (node / nx) % ny, k = node / (nx * ny);
-    return Eigen::Vector3d(x(i), y(j), z(k));
+    return position(node % nx, (node / nx) % ny, node / (nx * ny));
   }
 };
 
