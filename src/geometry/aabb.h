@@ -2,6 +2,7 @@
 // ([lo, hi] per axis); an empty box has lo = +inf, hi = -inf so `extend` works from it.
 #pragma once
 #include <Eigen/Core>
+#include <algorithm>
 #include <limits>
 #include <utility>
 
@@ -27,6 +28,13 @@ struct Aabb {
   bool contains(const Eigen::Vector3d& p) const {
     return lo.x() <= p.x() && p.x() <= hi.x() && lo.y() <= p.y() && p.y() <= hi.y() && lo.z() <= p.z() &&
            p.z() <= hi.z();
+  }
+  // Whether the closed segment p-q lies strictly beyond the box along one axis: then they share
+  // no point, decided by comparisons alone.
+  bool apart_from_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const {
+    for (int a = 0; a < 3; ++a)
+      if (std::max(p[a], q[a]) < lo[a] || std::min(p[a], q[a]) > hi[a]) return true;
+    return false;
   }
   Eigen::Vector3d center() const { return 0.5 * (lo + hi); }
   // Squared distance from p to the box (0 inside): the bound of a nearest-face walk.

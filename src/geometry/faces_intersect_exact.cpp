@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 
+#include "geometry/aabb.h"
 #include "geometry/convex_hull_2d.h"
 #include "geometry/convex_hull_3d.h"
 #include "geometry/exact_triangle_intersection.h"
@@ -28,15 +29,13 @@ bool same_side_in_plane(const Eigen::Vector3d& u, const Eigen::Vector3d& w, cons
   return false;
 }
 
-// The closed segment p-q and the closed triangle t lie apart along a coordinate axis (their
-// bounding boxes are disjoint): then they share no point, decided by comparisons alone. Faces
-// on a common vertex of a surface fan out around it, so most far edges miss the other face so.
+// The closed segment p-q and the closed triangle t lie apart along a coordinate axis (beyond t's
+// box): faces on a common vertex of a surface fan out around it, so most far edges miss the
+// other face so.
 bool boxes_apart(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d t[3]) {
-  for (int k = 0; k < 3; ++k) {
-    const double low = std::min(p[k], q[k]), high = std::max(p[k], q[k]);
-    if (high < std::min({t[0][k], t[1][k], t[2][k]}) || low > std::max({t[0][k], t[1][k], t[2][k]})) return true;
-  }
-  return false;
+  Aabb box;
+  for (int k = 0; k < 3; ++k) box.extend(t[k]);
+  return box.apart_from_segment(p, q);
 }
 
 }  // namespace

@@ -31,11 +31,7 @@ bool planar_faces_intersect(const TriangleBvh& bvh, int f, int g) {
   if (shared == 1) {
     // The far edge of `face` (its corners other than corner `c`) apart from the box of `other`.
     auto far_edge_apart = [&bvh](int face, int c, int other) {
-      const Eigen::Vector3d p = bvh.corner(face, c == 0 ? 1 : 0), q = bvh.corner(face, c == 2 ? 1 : 2);
-      const Aabb& box = bvh.face_box(other);
-      return std::max(p.x(), q.x()) < box.lo.x() || std::min(p.x(), q.x()) > box.hi.x() ||
-             std::max(p.y(), q.y()) < box.lo.y() || std::min(p.y(), q.y()) > box.hi.y() ||
-             std::max(p.z(), q.z()) < box.lo.z() || std::min(p.z(), q.z()) > box.hi.z();
+      return bvh.face_box(other).apart_from_segment(bvh.corner(face, c == 0 ? 1 : 0), bvh.corner(face, c == 2 ? 1 : 2));
     };
     if (far_edge_apart(g, in_g, f) && far_edge_apart(f, in_f, g)) return false;
   }
