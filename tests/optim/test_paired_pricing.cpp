@@ -77,3 +77,36 @@ TEST_CASE("transposed_product_10: C^T x as Eigen's row-major product sums it") {
       CHECK(same_bits(out.data(), expected.data(), m));
     }
 }
+
+TEST_CASE("transposed_product_10: a row of 10 weights times 10 rows, and the sum of two, as Eigen sums them") {
+  // The reduced problem's chain rule (shape/reduced_problem.cpp) had g.head(k) = w_in * A and
+  // g.tail(k) = w_out * B + w_in * C with fixed 1 x 10 weights; it now sums them with this function.
+  Rng rng(11);
+  for (int k = 2; k <= 40; ++k)
+    for (int trial = 0; trial < 20; ++trial) {
+      Eigen::Matrix<double, 10, Eigen::Dynamic> A(10, k), B(10, k), C(10, k);
+      Eigen::Matrix<double, 1, 10> w_in, w_out;
+      for (int j = 0; j < k; ++j)
+        for (int i = 0; i < 10; ++i) {
+          A(i, j) = entry(rng);
+          B(i, j) = entry(rng);
+          C(i, j) = entry(rng);
+        }
+      for (int i = 0; i < 10; ++i) {
+        w_in(i) = entry(rng);
+        w_out(i) = entry(rng);
+      }
+      if (trial == 0) w_out.setZero();
+      if (trial == 1) B.col(0).setZero();
+      Eigen::RowVectorXd expected(2 * k);
+      expected.head(k) = w_in * A;
+      expected.tail(k) = w_out * B + w_in * C;
+      Eigen::RowVectorXd head(k), outer_part(k), inner_part(k);
+      transposed_product_10(A, w_in.transpose(), head.data());
+      transposed_product_10(B, w_out.transpose(), outer_part.data());
+      transposed_product_10(C, w_in.transpose(), inner_part.data());
+      const Eigen::RowVectorXd tail = outer_part + inner_part;
+      CHECK(same_bits(head.data(), expected.data(), k));
+      CHECK(same_bits(tail.data(), expected.data() + k, k));
+    }
+}
