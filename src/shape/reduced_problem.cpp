@@ -18,12 +18,6 @@ namespace {
 // solve takes 0.048 s on two threads and 0.038 s on one; the 3,010-vertex top's 0.117 s on two
 // and 0.132 s on one. The parts are the same either way.
 constexpr double kMinParallelVertices = 2000;
-// Polling before sleeping, in pauses (about 28 ns each on the 2-core machine): an evaluation of a
-// 3k-vertex mesh takes about a millisecond, and a wake through the kernel on the virtual machine
-// tens of microseconds a side. Between phases the wait is the halves' imbalance; between
-// evaluations, the solver's own work.
-constexpr int kPhaseSpin = 2000;
-constexpr int kPoolSpin = 10000;
 
 }  // namespace
 
@@ -61,7 +55,7 @@ ReducedProblem::ReducedProblem(const Mesh& mesh, const OffsetBand& band, const E
   vertex_split_[2] = mesh_.V.rows();
   if (execution_policy(options_.threads, static_cast<double>(mesh_.V.rows()), kMinParallelVertices) ==
       ExecutionPolicy::parallel)
-    pool_ = std::make_unique<WorkerPool>(2, kPoolSpin);
+    pool_ = std::make_unique<WorkerPool>(2);
 }
 
 void ReducedProblem::run_parts(const std::function<void(int)>& part) const {
@@ -71,23 +65,6 @@ void ReducedProblem::run_parts(const std::function<void(int)>& part) const {
     part(0);
     part(1);
   }
-}
-
-void ReducedProblem::run_phases(const std::function<void(int)>& first, const std::function<void(int)>& second,
-                                const std::function<void(int)>& third) const {
-  if (!phase_barrier_) {
-    run_parts(first);
-    run_parts(second);
-    run_parts(third);
-    return;
-  }
-  pool_->run([&](int part) {
-    first(part);
-    phase_barrier_->arrive_and_wait();
-    second(part);
-    phase_barrier_->arrive_and_wait();
-    third(part);
-  });
 }
 
 ReducedProblem::~ReducedProblem() = default;
@@ -239,8 +216,7 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const 
   // The raw offsets Γα (and Γβ), then the offsets through the clamp, their slopes (by Γα, and by
   // the outer offset through lo), the surfaces, and the overshoot term μ/n Σ (raw − clamped)² with
   // its derivative: vertex by vertex, in the two fixed vertex halves. A vertex reads only its own
-  // raw offsets, so one pass over the parts does it all. This pass, the faces' and the projection
-  // are one run of the pool (run_phases).
+  // raw offsets, so one pass over the parts does it all (one wake of the pool, not three).
   auto vertex_part = [&](int part) {
     apply_basis_part(inner_coefficients, part, raw_inner_);
     if (outer) apply_basis_part(outer_coefficients, part, raw_outer_);
@@ -297,6 +273,9 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const 
       }
     }
   };
+  run_parts(vertex_part);
+  double overshoot = 0.0;  // summed in vertex order, whatever ran the parts
+  for (Eigen::Index j = 0; j < overshoot_squares_.size(); ++j) overshoot += overshoot_squares_(j);
 
   // The surfaces' integrals and ∂I/∂(offset) per vertex (one pass over the faces), then
   // ∂I/∂(coefficients) through the clamp's slopes projected onto Γ. The work is always cut into
@@ -316,6 +295,9 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const 
                                                 outer_part_integrals[part], outer_jacobian_[part], integral_rows_,
                                                 integral_count, true);
   };
+  run_parts(surface_part);
+  e.inner_integrals = inner_part_integrals[0] + inner_part_integrals[1];
+  e.outer_integrals = outer ? Vector10d(outer_part_integrals[0] + outer_part_integrals[1]) : fixed_outer_integrals_;
 
   Eigen::MatrixXd projected_part[2];
   auto projection_part = [&](int part) {
@@ -327,11 +309,7 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const 
     }
     projected_part[part] = project_rows(per_vertex_, begin, end);
   };
-  run_phases(vertex_part, surface_part, projection_part);
-  double overshoot = 0.0;  // summed in vertex order, whatever ran the parts
-  for (Eigen::Index j = 0; j < overshoot_squares_.size(); ++j) overshoot += overshoot_squares_(j);
-  e.inner_integrals = inner_part_integrals[0] + inner_part_integrals[1];
-  e.outer_integrals = outer ? Vector10d(outer_part_integrals[0] + outer_part_integrals[1]) : fixed_outer_integrals_;
+  run_parts(projection_part);
   const Eigen::MatrixXd projected = projected_part[0] + projected_part[1];
   // The goal's derivatives by the integrals it does not use are exactly 0: those rows stay 0.
   Eigen::Matrix<double, 10, Eigen::Dynamic> inner_by_alpha = Eigen::Matrix<double, 10, Eigen::Dynamic>::Zero(10, k_);
@@ -348,7 +326,7 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const 
   const int nv = num_variables();
   // w_in · ∂I_in/∂α, and with outer offsets w_out · ∂I_out/∂β + w_in · ∂I_in/∂β, summed as Eigen's
   // row-vector products sum them (transposed_product_10) but without a temporary per row: a goal
-  // has up to about 130 rows, and this runs serially between the parallel phases.
+  // has up to about 130 rows, and this part of an evaluation runs on one thread.
   Eigen::Matrix<double, 1, Eigen::Dynamic> by_alpha(k_), by_outer(k_), by_inner(k_);
   auto chain = [&](const Eigen::Matrix<double, 1, 20>& weights, auto&& g) {
     const Eigen::Matrix<double, 10, 1> w_out = weights.head<10>().transpose(), w_in = weights.tail<10>().transpose();

@@ -34,7 +34,6 @@
 namespace offsetopt {
 
 class WorkerPool;
-class PhaseBarrier;
 
 // Per-vertex offset directions and bounds in the mesh's frame.
 struct OffsetBand {
@@ -125,10 +124,6 @@ class ReducedProblem {
   template <int Rows>
   void fill_vertex_rows(Eigen::Index begin, Eigen::Index end);
   void run_parts(const std::function<void(int)>& part) const;  // part(0) and part(1), maybe on two threads
-  // first(p), then second(p), then third(p) for both parts p: with two threads in one run of the
-  // pool, the phases apart by a PhaseBarrier, else three runs_parts. The same parts either way.
-  void run_phases(const std::function<void(int)>& first, const std::function<void(int)>& second,
-                  const std::function<void(int)>& third) const;
   void build_hard_bounds();
   void update_outer_inward_limit();
 
@@ -157,7 +152,6 @@ class ReducedProblem {
   Eigen::VectorXd outer_slope_, inner_by_outer_;  // ∂δout/∂(Γβ) and ∂δin/∂(Γβ) per vertex
   Eigen::VectorXd overshoot_squares_;             // (raw − clamped)² per vertex (inner, outer)
   std::unique_ptr<WorkerPool> pool_;
-  std::unique_ptr<PhaseBarrier> phase_barrier_;  // with a pool of two threads
   bool cache_valid_ = false;
   bool cache_all_integrals_ = false;  // the cached evaluation has all ten integrals
 };

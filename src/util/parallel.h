@@ -16,7 +16,6 @@
 // of the fixed partition, the decision only changes speed, never a result.
 #pragma once
 #include <algorithm>
-#include <atomic>
 #include <condition_variable>
 #include <functional>
 #include <future>
@@ -30,12 +29,8 @@ namespace offsetopt {
 class WorkerPool {
  public:
   // `threads` >= 1 in total, the calling thread included; fewer when the system refuses to start
-  // more (see size()). `spin`: how many pauses a thread polls for the next run (a worker) or for
-  // the others to finish (the caller) before it sleeps; for a pool run many times a millisecond
-  // apart with little between, where a wake through the kernel (tens of microseconds on a virtual
-  // machine) is a large part of a run. 0 sleeps at once, which is right for a pool whose threads
-  // share the cores with other tasks.
-  explicit WorkerPool(int threads, int spin = 0);
+  // more (see size()).
+  explicit WorkerPool(int threads);
   ~WorkerPool();
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;
@@ -56,27 +51,9 @@ class WorkerPool {
   std::mutex mutex_;
   std::condition_variable start_, done_;
   const std::function<void(int)>* task_ = nullptr;
-  std::atomic<unsigned long> generation_{0};
-  std::atomic<int> pending_{0};
+  unsigned long generation_ = 0;
+  int pending_ = 0;
   bool stop_ = false;
-  const int spin_;
-};
-
-// Lets a fixed number of threads wait for each other between the phases of one WorkerPool run:
-// each phase's writes are seen by every thread after the wait. Polls `spin` pauses, then sleeps.
-// For phases far shorter than a wake through the kernel; every thread of the run must call it
-// the same number of times, so the run must have exactly `threads` threads.
-class PhaseBarrier {
- public:
-  PhaseBarrier(int threads, int spin) : threads_(threads), spin_(spin) {}
-  void arrive_and_wait();
-
- private:
-  const int threads_, spin_;
-  std::atomic<int> arrived_{0};
-  std::atomic<unsigned long> phase_{0};
-  std::mutex mutex_;
-  std::condition_variable next_;
 };
 
 // Splits [0, count) into `parts` contiguous ranges, sizes differing by at most `granule`

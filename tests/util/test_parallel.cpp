@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
-#include <thread>
 #include <future>
 #include <vector>
 
@@ -35,49 +33,6 @@ TEST_CASE("worker pool: run gives each of its threads one part") {
   for (auto& r : runs) r = 0;
   pool.run([&](int part) { ++runs[static_cast<std::size_t>(part)]; });
   for (auto& r : runs) CHECK(r == 1);
-}
-
-TEST_CASE("worker pool: a pool that polls before it sleeps runs every part exactly once, run after run") {
-  for (int spin : {1, 100, 4000}) {
-    CAPTURE(spin);
-    WorkerPool pool(2, spin);
-    std::vector<std::atomic<int>> runs(3);
-    for (auto& r : runs) r = 0;
-    // Back to back, so the worker mostly finds the next run while polling; every tenth run after
-    // a pause longer than the poll, so it has gone to sleep.
-    for (int repeat = 0; repeat < 2000; ++repeat) {
-      pool.run_parts(3, [&](int part) { ++runs[static_cast<std::size_t>(part)]; });
-      if (repeat % 10 == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
-    }
-    for (auto& r : runs) CHECK(r == 2000);
-  }
-}
-
-TEST_CASE("phase barrier: after each wait every thread reads what every other wrote in the phase before") {
-  for (int threads : {2, 3}) {
-    for (int spin : {0, 50, 5000}) {
-      CAPTURE(threads);
-      CAPTURE(spin);
-      WorkerPool pool(threads);
-      if (pool.size() != threads) continue;  // the system gave fewer threads: a barrier would wait forever
-      PhaseBarrier barrier(threads, spin);
-      std::vector<std::atomic<long>> slot(static_cast<std::size_t>(threads));
-      std::vector<long> stale(static_cast<std::size_t>(threads), 0);
-      const long phases = 3000;
-      pool.run([&](int part) {
-        for (long phase = 1; phase <= phases; ++phase) {
-          // Relaxed: only the barrier orders the write before the others' reads.
-          slot[static_cast<std::size_t>(part)].store(phase, std::memory_order_relaxed);
-          barrier.arrive_and_wait();
-          for (int other = 0; other < threads; ++other)
-            if (slot[static_cast<std::size_t>(other)].load(std::memory_order_relaxed) != phase)
-              ++stale[static_cast<std::size_t>(part)];
-          barrier.arrive_and_wait();  // nobody writes the next phase before all have read this one
-        }
-      });
-      for (long count : stale) CHECK(count == 0);
-    }
-  }
 }
 
 TEST_CASE("split_point: contiguous ranges from 0 to count, each ending on a granule multiple but the last") {
