@@ -35,6 +35,10 @@ double rounding_hair(double wall, const Aabb& outer_box) {
 }
 constexpr int kBlock = 4;              // nodes per block side in the distance pass
 constexpr int kParts = 2;              // every parallel loop is cut into this many fixed parts
+// but the distance pass, the vertex placement and the wall check, whose cost varies by region (the
+// wall binds on part of the cavity only): 32 parts taken by whichever thread is free. On the buoy's
+// quadric void two halves left one thread idle a third of the time.
+constexpr int kBalancedParts = 32;
 constexpr int kRaiseRounds = 8;        // rounds that lift the vertices of faces below the wall
 constexpr int kDemotions = 3;          // contours again with the void nodes of faces that stayed below
 constexpr int kRootSteps = 48;         // cap on the distance queries that put one vertex on the wall
@@ -383,12 +387,12 @@ std::vector<double> face_deficits(const TriangleBvh& outer_bvh, const Mesh& mesh
       deficit[static_cast<std::size_t>(i)] = wall - best;
     }
   };
-  pool.run_parts(kParts, [&](int part) {
+  pool.run_parts_balanced(kBalancedParts, [&](int part) {
     std::vector<long> run;
     std::vector<OuterFace> nearby;
     Aabb run_box;
     const long count = static_cast<long>(faces.size());
-    for (long i = split_point(count, kParts, part); i < split_point(count, kParts, part + 1); ++i) {
+    for (long i = split_point(count, kBalancedParts, part); i < split_point(count, kBalancedParts, part + 1); ++i) {
       const int f = faces[static_cast<std::size_t>(i)];
       const Eigen::Vector3d a = corner(f, 0), b = corner(f, 1), c = corner(f, 2);
       const double longest = std::max({(a - b).norm(), (b - c).norm(), (c - a).norm()});
@@ -419,9 +423,9 @@ std::int64_t keep_nodes_at_level(const TriangleBvh& outer_bvh, const NodeGrid& g
   const std::int64_t bx = (grid.nx + kBlock - 1) / kBlock, by = (grid.ny + kBlock - 1) / kBlock,
                      bz = (grid.nz + kBlock - 1) / kBlock;
   const double rounding = 1e-9 * grid.spacing;  // what a Lipschitz bound gives away to rounding
-  std::int64_t per_node[kParts] = {0, 0};
-  pool.run_parts(kParts, [&](int part) {
-    for (std::int64_t kb = split_point(bz, kParts, part); kb < split_point(bz, kParts, part + 1); ++kb)
+  std::int64_t per_node[kBalancedParts] = {};
+  pool.run_parts_balanced(kBalancedParts, [&](int part) {
+    for (std::int64_t kb = split_point(bz, kBalancedParts, part); kb < split_point(bz, kBalancedParts, part + 1); ++kb)
       for (std::int64_t jb = 0; jb < by; ++jb)
         for (std::int64_t ib = 0; ib < bx; ++ib) {
           const std::int64_t i0 = ib * kBlock, j0 = jb * kBlock, k0 = kb * kBlock;
@@ -461,7 +465,9 @@ std::int64_t keep_nodes_at_level(const TriangleBvh& outer_bvh, const NodeGrid& g
               }
         }
   });
-  return per_node[0] + per_node[1];
+  std::int64_t queried_nodes = 0;
+  for (const std::int64_t count : per_node) queried_nodes += count;
+  return queried_nodes;
 }
 
 // Cells whose nodes disagree, in index order.
@@ -737,9 +743,9 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
     on_wall[i] = placed.on_wall;
   };
   std::vector<char> remembered(static_cast<std::size_t>(vertex_count), 0);
-  pool.run_parts(kParts, [&](int part) {
+  pool.run_parts_balanced(kBalancedParts, [&](int part) {
     FaceShortlist near;
-    for (long v = split_point(vertex_count, kParts, part); v < split_point(vertex_count, kParts, part + 1); ++v) {
+    for (long v = split_point(vertex_count, kBalancedParts, part); v < split_point(vertex_count, kBalancedParts, part + 1); ++v) {
       const std::size_t i = static_cast<std::size_t>(v);
       if (const PassMemory::Vertex* was = previous.find(contour.positive_node[i], contour.negative_node[i])) {
         mesh.V.row(v) = was->position.transpose();
@@ -796,10 +802,10 @@ std::vector<int> place_vertices(const TriangleBvh& outer_bvh, const InnerField& 
     for (long v = 0; v < vertex_count; ++v)
       if (lifted[static_cast<std::size_t>(v)] != raise[static_cast<std::size_t>(v)]) moved.push_back(v);
     raise = std::move(lifted);
-    pool.run_parts(kParts, [&](int part) {
+    pool.run_parts_balanced(kBalancedParts, [&](int part) {
       const long count = static_cast<long>(moved.size());
       FaceShortlist near;
-      for (long m = split_point(count, kParts, part); m < split_point(count, kParts, part + 1); ++m)
+      for (long m = split_point(count, kBalancedParts, part); m < split_point(count, kBalancedParts, part + 1); ++m)
         place(moved[static_cast<std::size_t>(m)], near);
     });
     check.clear();

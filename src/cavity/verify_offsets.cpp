@@ -139,10 +139,10 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   TriangleBvh outer_whole;
   if (any_fixed) outer_whole = TriangleBvh(outer.V, outer.F);
   const TriangleBvh& outer_full = any_fixed ? outer_whole : outer_bvh;
-  // Two halves of the vertices, in vertex order within each, on two threads when there are. In
-  // each, the thinnest wall found so far prunes every later search, and so does `seed`, the
-  // thinnest of a few vertices spread over all of them: without it a half starting in a thick
-  // region searches wide balls until it reaches a thin one (halves without a seed took 0.22 s on
+  // Ranges of the vertices (kWallParts from 1,024 vertices on), in vertex order within each, on two
+  // threads when there are. In each, the thinnest wall found so far prunes every later search, and
+  // so does `seed`, the thinnest of a few vertices spread over all of them: without it a range
+  // starting in a thick region searches wide balls until it reaches a thin one (halves without a seed took 0.22 s on
   // a 100k-vertex bottle where the one pass took 0.055). The last vertex searched is an anchor:
   // the distance is 1-Lipschitz, so a vertex whose bound from the anchor's (exact, or the search
   // radius when nothing was nearer) reaches the radius needs no search. Searching twice the
@@ -151,10 +151,10 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   //
   // Why the split changes nothing: the seed is some vertex's distance, so at least the thinnest
   // wall m. A vertex skipped or not found is farther than the pruning radius, which is at least
-  // thin_below and at least min(seed, the half's thinnest so far) >= m: it is neither thin nor
+  // thin_below and at least min(seed, the range's thinnest so far) >= m: it is neither thin nor
   // the first vertex at m. Every other vertex's distance is closest_point's whatever the bound,
-  // and is recorded when below thin_below or the half's thinnest so far (not the seed: the seed's
-  // own vertex may be the thinnest). The merge takes the first half's vertex on a tie and joins
+  // and is recorded when below thin_below or the range's thinnest so far (not the seed: the seed's
+  // own vertex may be the thinnest). The merge takes the first range's vertex on a tie and joins
   // the thin lists in order: the one pass's result for any split and any seed.
   struct WallScan {
     double thinnest = std::numeric_limits<double>::infinity();
@@ -190,6 +190,7 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   };
   // Below this many vertices a thread costs more than the half it saves.
   constexpr Eigen::Index kWallSplitVertices = 1024;
+  constexpr int kWallParts = 16;
   constexpr int kWallSeedVertices = 16;
   const Eigen::Index count = inner.V.rows(), middle = count >= kWallSplitVertices ? count / 2 : count;
   double seed = std::numeric_limits<double>::infinity();
@@ -200,13 +201,19 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
       const ClosestPoint c = closest_point(outer_full, inner.V.row(i).transpose(), seed);
       if (c.found) seed = c.distance;
     }
-  WallScan halves[2];
-  pool.run_parts(2, [&](int part) { halves[part] = part == 0 ? scan(0, middle, seed) : scan(middle, count, seed); });
-  const WallScan& won = halves[1].thinnest < halves[0].thinnest ? halves[1] : halves[0];
-  d.thinnest_wall = won.thinnest;
-  d.thinnest_vertex = won.vertex;
-  d.thin_wall_vertices = halves[0].thin;
-  d.thin_wall_vertices.insert(d.thin_wall_vertices.end(), halves[1].thin.begin(), halves[1].thin.end());
+  // With two threads, kWallParts ranges taken by whichever thread is free: the wall binds on part
+  // of a cavity only, and two fixed halves left one thread idle at the end (the buoy's quadric void).
+  const int parts = middle < count ? kWallParts : 1;
+  std::vector<WallScan> scanned(static_cast<std::size_t>(parts));
+  pool.run_parts_balanced(parts, [&](int part) {
+    scanned[static_cast<std::size_t>(part)] = scan(split_point(count, parts, part), split_point(count, parts, part + 1), seed);
+  });
+  const WallScan* won = &scanned[0];
+  for (const WallScan& w : scanned)
+    if (w.thinnest < won->thinnest) won = &w;  // the first range's vertex on a tie
+  d.thinnest_wall = won->thinnest;
+  d.thinnest_vertex = won->vertex;
+  for (const WallScan& w : scanned) d.thin_wall_vertices.insert(d.thin_wall_vertices.end(), w.thin.begin(), w.thin.end());
   return d;
 }
 

@@ -47,6 +47,13 @@ void WorkerPool::run_parts(int parts, const std::function<void(int)>& task) {
   });
 }
 
+void WorkerPool::run_parts_balanced(int parts, const std::function<void(int)>& task) {
+  std::atomic<int> next{0};
+  run([&](int) {
+    for (int part = next.fetch_add(1); part < parts; part = next.fetch_add(1)) task(part);
+  });
+}
+
 void WorkerPool::work(int part) {
   unsigned long seen = 0;
   while (true) {

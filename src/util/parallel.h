@@ -16,6 +16,7 @@
 // of the fixed partition, the decision only changes speed, never a result.
 #pragma once
 #include <algorithm>
+#include <atomic>
 #include <condition_variable>
 #include <functional>
 #include <future>
@@ -43,6 +44,11 @@ class WorkerPool {
   // are done. For work cut into a fixed number of parts, which must all run even when the pool
   // got fewer threads than asked for. Tasks must not throw.
   void run_parts(int parts, const std::function<void(int)>& task);
+  // Runs task(p) once for every p in [0, parts), each part on whichever thread is free next. For
+  // parts whose cost varies (regions of a mesh) and whose outputs do not depend on the thread
+  // that ran them: then the result is run_parts' and the threads finish together. Tasks must not
+  // throw.
+  void run_parts_balanced(int parts, const std::function<void(int)>& task);
 
  private:
   void work(int part);

@@ -35,6 +35,21 @@ TEST_CASE("worker pool: run gives each of its threads one part") {
   for (auto& r : runs) CHECK(r == 1);
 }
 
+TEST_CASE("worker pool: run_parts_balanced runs every part exactly once, whichever thread takes it") {
+  for (int threads : {1, 2, 3}) {
+    CAPTURE(threads);
+    WorkerPool pool(threads);
+    for (int parts : {0, 1, 2, 5, 32, 100}) {
+      CAPTURE(parts);
+      std::vector<std::atomic<int>> runs(static_cast<std::size_t>(parts));
+      for (auto& r : runs) r = 0;
+      for (int repeat = 0; repeat < 3; ++repeat)
+        pool.run_parts_balanced(parts, [&](int part) { ++runs[static_cast<std::size_t>(part)]; });
+      for (int p = 0; p < parts; ++p) CHECK(runs[static_cast<std::size_t>(p)] == 3);
+    }
+  }
+}
+
 TEST_CASE("split_point: contiguous ranges from 0 to count, each ending on a granule multiple but the last") {
   for (long count : {0L, 1L, 7L, 100L, 1001L})
     for (int parts : {1, 2, 3, 8})
