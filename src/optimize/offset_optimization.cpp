@@ -780,7 +780,10 @@ void contour_offset_void(const OptimizeOptions& options, const Frame& f, const B
         problem = "the cavity could not be contoured: " + contoured.message;
         break;
       }
-      const Vector10d delta = integrals_in_frame(f, contoured.cavity) - solve.eval.inner_integrals;
+      // The contour's integrals in the frame beside the goal's check, which sums them again from
+      // another origin: each reads the cavity alone and is one sum in face order, so the same bits.
+      std::future<Vector10d> contoured_integrals =
+          start_task(options.threads > 1, [&f, &contoured] { return integrals_in_frame(f, contoured.cavity); });
       VerifyInput contour_input = verify_input;
       contour_input.outer = &solve.outer;
       contour_input.inner = &contoured.cavity;
@@ -791,6 +794,7 @@ void contour_offset_void(const OptimizeOptions& options, const Frame& f, const B
       // no validity search (on a 10^5-face cavity the costliest part of a round).
       contour_input.goal_only = true;
       c.verification = verify_offsets(contour_input);
+      const Vector10d delta = contoured_integrals.get() - solve.eval.inner_integrals;
       const bool will_correct = !c.verification.goal_met && solve.constraints_met && round < options.max_correction_rounds;
       VerifiedCavity written;
       if (!will_correct) {
