@@ -142,12 +142,12 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   // Ranges of the vertices (kWallParts from 1,024 vertices on), in vertex order within each, on two
   // threads when there are. In each, the thinnest wall found so far prunes every later search, and
   // so does `seed`, the thinnest of a few vertices spread over all of them: without it a range
-  // starting in a thick region searches wide balls until it reaches a thin one (halves without a seed took 0.22 s on
-  // a 100k-vertex bottle where the one pass took 0.055). The last vertex searched is an anchor:
-  // the distance is 1-Lipschitz, so a vertex whose bound from the anchor's (exact, or the search
-  // radius when nothing was nearer) reaches the radius needs no search. Searching twice the
-  // radius makes anchors that cover the next vertices (neighbours on a contoured cavity lie a
-  // fraction of the wall apart) and still prunes the BVH.
+  // starting in a thick region searches wide balls until it reaches a thin one (halves without a
+  // seed took 0.22 s on a 100k-vertex bottle where the one pass took 0.055). The last vertex
+  // searched is an anchor: the distance is 1-Lipschitz, so a vertex whose bound from the anchor's
+  // (exact, or the search radius when nothing was nearer) reaches the radius needs no search.
+  // Searching twice the radius makes anchors that cover the next vertices (neighbours on a
+  // contoured cavity lie a fraction of the wall apart) and still prunes the BVH.
   //
   // Why the split changes nothing: the seed is some vertex's distance, so at least the thinnest
   // wall m. A vertex skipped or not found is farther than the pruning radius, which is at least
@@ -188,13 +188,14 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
     }
     return w;
   };
-  // Below this many vertices a thread costs more than the half it saves.
+  // Below this many vertices a thread costs more than the share it saves.
   constexpr Eigen::Index kWallSplitVertices = 1024;
   constexpr int kWallParts = 16;
   constexpr int kWallSeedVertices = 16;
-  const Eigen::Index count = inner.V.rows(), middle = count >= kWallSplitVertices ? count / 2 : count;
+  const Eigen::Index count = inner.V.rows();
+  const bool split = count >= kWallSplitVertices;
   double seed = std::numeric_limits<double>::infinity();
-  if (middle < count)
+  if (split)
     for (int k = 0; k < kWallSeedVertices; ++k) {
       const Eigen::Index i = count * k / kWallSeedVertices;
       if (!measured_vertex(i)) continue;
@@ -203,7 +204,7 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
     }
   // With two threads, kWallParts ranges taken by whichever thread is free: the wall binds on part
   // of a cavity only, and two fixed halves left one thread idle at the end (the buoy's quadric void).
-  const int parts = middle < count ? kWallParts : 1;
+  const int parts = split ? kWallParts : 1;
   std::vector<WallScan> scanned(static_cast<std::size_t>(parts));
   pool.run_parts_balanced(parts, [&](int part) {
     scanned[static_cast<std::size_t>(part)] = scan(split_point(count, parts, part), split_point(count, parts, part + 1), seed);
