@@ -9,6 +9,7 @@
 #   GOAL: stand filled top rolypoly buoy sphere (bench/optimize/run.sh's cases)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
+source "$root/bench/optimize/demo_goals.sh"
 a=$(readlink -f "$1")
 b=$(readlink -f "$2")
 runs=$3
@@ -17,15 +18,7 @@ meshes=$root/meshes
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 for name in "$@"; do
-  case $name in
-    stand) args=("$meshes/bottle.obj" --goal stand) ;;
-    filled) args=("$meshes/bottle.obj" --goal stand-filled --fill-density 0.8 --outer) ;;
-    top) args=("$meshes/top.obj" --goal spin) ;;
-    rolypoly) args=("$meshes/rolypoly.obj" --goal roly-poly) ;;
-    buoy) args=("$meshes/buoy.obj" --goal float --fluid-density 0.806) ;;
-    sphere) args=("$meshes/sphere.obj" --goal volume --target-volume 20000) ;;
-    *) echo "unknown goal name '$name'" >&2; exit 2 ;;
-  esac
+  demo_goal_args "$name" "$meshes" || exit 2
   for ((i = 0; i < runs; ++i)); do
     for which in A B; do
       binary=$a

@@ -8,6 +8,7 @@
 #   OUTDIR keeps each goal's callgrind profile (NAME.out, for callgrind_annotate) and solid.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
+source "$root/bench/optimize/demo_goals.sh"
 binary=$(readlink -f "$1")
 out=$2
 shift 2
@@ -17,15 +18,7 @@ names=("$@")
 [[ ${#names[@]} -gt 0 ]] || names=(stand filled top rolypoly buoy sphere)
 stages='PROGRAM TOTALS|:offsetopt::(contour_cavity|verify_written_cavity|round_for_output|manifold_harmonics|reachability_stage|laplacian_contraction|self_intersections|verify_offsets|find_surface_defects|load_input|carvable_cells|write_quadric_void|offset_field|write_mesh)\(|OffsetSolve::run\(|TriangleBvh::TriangleBvh\('
 for name in "${names[@]}"; do
-  case $name in
-    stand) args=("$meshes/bottle.obj" --goal stand) ;;
-    filled) args=("$meshes/bottle.obj" --goal stand-filled --fill-density 0.8 --outer) ;;
-    top) args=("$meshes/top.obj" --goal spin) ;;
-    rolypoly) args=("$meshes/rolypoly.obj" --goal roly-poly) ;;
-    buoy) args=("$meshes/buoy.obj" --goal float --fluid-density 0.806) ;;
-    sphere) args=("$meshes/sphere.obj" --goal volume --target-volume 20000) ;;
-    *) echo "unknown goal name '$name'" >&2; exit 2 ;;
-  esac
+  demo_goal_args "$name" "$meshes" || exit 2
   rm -f "$out/$name.stl" "$out/$name.out"
   valgrind --tool=callgrind --callgrind-out-file="$out/$name.out" "$binary" optimize "${args[@]}" \
     -o "$out/$name.stl" --quiet --threads 1 >/dev/null 2>&1 || true
