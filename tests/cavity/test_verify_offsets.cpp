@@ -129,7 +129,7 @@ TEST_CASE("verify_offsets counts a moved outer surface's self-intersections that
   CHECK_FALSE(verify_offsets(in).validity->outer_new_self_intersections.has_value());
 }
 
-TEST_CASE("find_surface_defects' wall scan in two halves: every vertex's closest point, the thinnest by lowest index") {
+TEST_CASE("find_surface_defects' wall scan in ranges: every vertex's closest point, the thinnest by lowest index") {
   // An off-centre sphere in a sphere: walls from 1.3 to 4.7, thinnest near one pole, and a
   // threshold that makes a few hundred vertices thin; above the split's size (1024 vertices).
   const Mesh outer = make_icosphere(10.0, 4);
@@ -155,7 +155,7 @@ TEST_CASE("find_surface_defects' wall scan in two halves: every vertex's closest
   };
   measure_every_vertex();
   // The thinnest vertex (in the second half) copied to the first place: an exact tie across the
-  // halves, which the lower index wins.
+  // ranges the scan is cut into, which the lower index wins.
   const int first_thinnest = thinnest_vertex;
   REQUIRE(first_thinnest >= inner.V.rows() / 2);
   inner.V.row(0) = inner.V.row(first_thinnest);
