@@ -6,7 +6,7 @@
 # test; on the shared 2-core machine a difference under about 5% is noise.
 #
 # usage: bench/optimize/ab_stages.sh BINARY_A BINARY_B RUNS GOAL...
-#   GOAL: stand filled top rolypoly buoy sphere (bench/optimize/run.sh's cases)
+#   GOAL: a short name from bench/optimize/demo_goals.sh (stand filled top rolypoly buoy sphere)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 source "$root/bench/optimize/demo_goals.sh"

@@ -6,17 +6,12 @@
 # usage: bench/optimize/defaults.sh [BINARY]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
+source "$root/bench/optimize/demo_goals.sh"
 binary=${1:-$root/build/offsetopt}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-cases=(
-  "bottle.obj|--goal stand"
-  "bottle.obj|--goal stand-filled --fill-density 0.8 --outer"
-  "top.obj|--goal spin"
-  "rolypoly.obj|--goal roly-poly"
-  "buoy.obj|--goal float --fluid-density 0.806"
-  "sphere.obj|--goal volume --target-volume 20000"
-)
+cases=()
+for goal in "${demo_goals[@]}"; do cases+=("${goal#*|}"); done  # mesh|options
 printf '%-9s %3s %-14s %-44s %4s %10s %6s %7s\n' basis k mesh options met objective evals solve_s
 for basis in mass laplacian; do
   for k in 16 24 36 48; do

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The six demo goals (bench/optimize/run.sh's cases) end to end, against a reference build: the
+# The six demo goals (bench/optimize/demo_goals.sh) end to end, against a reference build: the
 # best of N wall-clock runs of each (two threads), their ratio, and with CALLGRIND=1 the
 # instructions of one run each under valgrind --tool=callgrind with --threads 1 (deterministic,
 # so comparable on a busy machine; about 50 times slower). Also says whether the two builds wrote
@@ -10,6 +10,7 @@
 # usage: bench/optimize/demo_speed.sh BINARY [REFERENCE_BINARY] [RUNS=5]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
+source "$root/bench/optimize/demo_goals.sh"
 binary=$(readlink -f "${1:-$root/build/offsetopt}")
 reference=${2:-}
 [[ -n $reference ]] && reference=$(readlink -f "$reference")
@@ -17,14 +18,7 @@ runs=${3:-5}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 meshes=$root/meshes
-cases=(
-  "stand|bottle.obj|--goal stand"
-  "stand-filled --outer|bottle.obj|--goal stand-filled --fill-density 0.8 --outer"
-  "spin|top.obj|--goal spin"
-  "roly-poly|rolypoly.obj|--goal roly-poly"
-  "float|buoy.obj|--goal float --fluid-density 0.806"
-  "volume|sphere.obj|--goal volume --target-volume 20000"
-)
+cases=("${demo_goals[@]}")  # name|mesh|options
 
 best_wall() {  # binary mesh options... -> best of $runs seconds; leaves the last output in $out/o.stl
   local bin=$1 mesh=$2

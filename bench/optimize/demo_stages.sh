@@ -15,7 +15,9 @@ shift 2
 mkdir -p "$out"
 meshes=$root/meshes
 names=("$@")
-[[ ${#names[@]} -gt 0 ]] || names=(stand filled top rolypoly buoy sphere)
+if [[ ${#names[@]} -eq 0 ]]; then
+  for goal in "${demo_goals[@]}"; do names+=("${goal%%|*}"); done
+fi
 stages='PROGRAM TOTALS|:offsetopt::(contour_cavity|verify_written_cavity|round_for_output|manifold_harmonics|reachability_stage|laplacian_contraction|self_intersections|verify_offsets|find_surface_defects|load_input|carvable_cells|write_quadric_void|offset_field|write_mesh)\(|OffsetSolve::run\(|TriangleBvh::TriangleBvh\('
 for name in "${names[@]}"; do
   demo_goal_args "$name" "$meshes" || exit 2

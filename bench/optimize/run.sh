@@ -7,18 +7,13 @@
 # usage: bench/optimize/run.sh [BINARY]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
+source "$root/bench/optimize/demo_goals.sh"
 binary=${1:-$root/build/offsetopt}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
-cases=(
-  "bottle.obj|--goal stand"
-  "bottle.obj|--goal stand-filled --fill-density 0.8 --outer"
-  "top.obj|--goal spin"
-  "rolypoly.obj|--goal roly-poly"
-  "buoy.obj|--goal float --fluid-density 0.806"
-  "sphere.obj|--goal volume --target-volume 20000"
-)
+cases=()
+for goal in "${demo_goals[@]}"; do cases+=("${goal#*|}"); done  # mesh|options
 # About 100k vertices: the bottle sampled 5.5 times finer (101,730 vertices), a goal it can meet.
 "$binary" generate bottle --detail 5.5 -o "$out/bottle100k.obj"
 cases+=("$out/bottle100k.obj|--goal stand")
