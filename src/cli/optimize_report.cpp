@@ -316,6 +316,7 @@ Json reachability_json(const ReachabilitySummary& r) {
   Json j = Json::object();
   j["reachable"] = r.reachable;
   j["decided"] = r.decided;
+  j["evidence"] = r.evidence.empty() ? Json() : Json(r.evidence);
   j["best_margin"] = optional_number(r.best_margin);
   j["best_margin_upper"] = optional_number(r.best_margin_upper);
   j["binding"] = r.binding.empty() ? Json() : Json(r.binding);

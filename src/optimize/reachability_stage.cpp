@@ -181,6 +181,7 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
   s.programme = programme;
   s.reachable = r.reachable;
   s.decided = r.decided;
+  s.evidence = r.reachable ? "programme" : r.decided ? "certificate" : "";
   s.best_margin = r.best_margin;
   s.best_margin_upper = r.best_margin_upper;
   s.binding = r.binding;

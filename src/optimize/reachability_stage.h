@@ -35,6 +35,11 @@ struct ReachabilityRemedy {
 
 struct ReachabilitySummary {
   bool reachable = false, decided = false;
+  // What decided it: "programme" (a void of mid cells reaches the goal), "certificate" (a checked
+  // certificate proves no void does), "written solid" (the programme could not tell, or found less,
+  // and the run's verified solid meets the goal: optimize sets this after the verification), or
+  // empty (undecided).
+  std::string evidence;
   std::optional<double> best_margin, best_margin_upper;
   std::string binding;
   std::optional<double> lowest_cz;
