@@ -172,7 +172,9 @@ def main():
                     if 'mid' in parts:
                         fractions.append(parts['mid'])
             counts[row] = counts.get(row, 0) + 1
-            print(f'{mesh}\t{goal}\t{code}\t{verdict}\t{tool_margin}\t' + '\t'.join(cells) +
+            # A verified solid is the tool's evidence where its programme could not tell (--outer).
+            shown = verdict + (' (written solid)' if (reach or {}).get('evidence') == 'written solid' else '')
+            print(f'{mesh}\t{goal}\t{code}\t{shown}\t{tool_margin}\t' + '\t'.join(cells) +
                   f'\t{row}\t{fraction}\t{tool_s:.1f}\t{carve_s:.1f}', flush=True)
     shutil.rmtree(work, ignore_errors=True)
     summary = ', '.join(f'{k} {v}' for k, v in sorted(counts.items()))
