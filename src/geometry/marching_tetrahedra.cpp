@@ -158,8 +158,9 @@ void contour_range(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
     // odd i + j + k: the central tetrahedron is on those corners.
     const std::int64_t i = cell % grid.nx, j = (cell / grid.nx) % grid.ny, k = cell / (grid.nx * grid.ny);
     const int central = static_cast<int>((i + j + k + 1) & 1);
-    // The vertex on the edge between cube corners a and b (either order). A face diagonal is shared by
-    // two tetrahedra of the cell: the cell's own table answers them before the shared map.
+    // The vertex on the edge between cube corners a and b (either order). A face diagonal is
+    // shared by two tetrahedra of the cell: the cell's own table answers the second before the
+    // shared map.
     int in_cell[8][8];
     for (auto& row : in_cell) std::fill(std::begin(row), std::end(row), -1);
     auto edge = [&](int a, int b) {

@@ -114,7 +114,8 @@ TEST_CASE("marching tetrahedra on random fields gives closed, oriented, embedded
     CHECK(diagonals[1] > 0);
     // The solid-angle winding number of the contour is 1 exactly at the non-negative nodes, with
     // the vertices where marching tetrahedra put them and anywhere else strictly inside their
-    // edges (at either end of the range the cavity's placement may use): the surface stays embedded.
+    // edges (also at either end of the range the cavity's placement uses): the surface stays
+    // embedded.
     Mesh moved = contour.mesh;
     for (Eigen::Index v = 0; v < moved.V.rows(); ++v) {
       const std::size_t u = static_cast<std::size_t>(v);
