@@ -44,7 +44,7 @@ constexpr int kDemotions = 3;          // contours again with the void nodes of 
 constexpr int kRootSteps = 48;         // cap on the distance queries that put one vertex on the wall
 // Void nodes keep the target plus this many cells: room to lift a vertex towards its node where a
 // face dips below the wall (on real meshes 1% of the faces dip by 2–6% of the wall, the deepest by
-// 10–15%), and more than the kMinFraction of an edge (at most √3 h) that a vertex always keeps
+// 10–15%), and more than the kMinFraction of an edge (at most √2 h) that a vertex always keeps
 // from its node. Nodes this close to the wall are material, so the contour passes near them: the
 // price is at most this much of h, on part of the surface (a face parallel to a grid plane can
 // sit that high all over). Faces a lift cannot mend are contoured again instead, which costs a
@@ -903,9 +903,9 @@ ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, con
   const double h = grid.spacing;
   // Where the outer surface binds, vertices sit at `target`: the wall (plus the margin asked for),
   // and a hair above it that covers rounding to float32 in a written file. Never nearer than
-  // 1.01 h: every point of a contoured triangle (diameter <= √3 h) is within h of one of its
-  // vertices, so no triangle then reaches the outer surface, however coarse the node cap makes
-  // the grid. Void nodes keep target + kNodeRoom·h (cavity_node_level).
+  // 1.01 h: every point of a contoured triangle (diameter <= √2 h, a face diagonal) is within
+  // h of one of its vertices, so no triangle then reaches the outer surface, however coarse the
+  // node cap makes the grid. Void nodes keep target + kNodeRoom·h (cavity_node_level).
   const double hair = rounding_hair(wall, outer_box);
   const double target = std::max(wall + options.margin_cells * h, 1.01 * h) + hair;
   const double level = cavity_node_level(wall, h, options.margin_cells, outer_box);

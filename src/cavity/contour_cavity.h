@@ -21,7 +21,8 @@
 //   within 10⁻⁴ of the wall above T), so the wall-bound part of the cavity sits at the requested
 //   wall, not a margin above it;
 // - every point of a contoured triangle lies within h of one of its vertices (its diameter is at
-//   most √3 h), and T >= 1.01 h, so no shell reaches the outer surface;
+//   most √2 h, a face diagonal: the five-tetrahedra cut has no body diagonal), and T >= 1.01 h,
+//   so no shell reaches the outer surface;
 // - faces that dip below the wall between their vertices (at concave parts of the outer surface)
 //   are found by exact triangle distances and their vertices lifted along their edges; where that
 //   is not enough, their void nodes become material and the contour is made again;

@@ -14,22 +14,37 @@ namespace offsetopt {
 
 namespace {
 
-// Cube corners as bit masks: x = 1, y = 2, z = 4. Kuhn tetrahedra: 0 -> a -> a|b -> 7 for every
-// order of the three axes, each stored with positive orientation.
-struct KuhnTable {
-  std::array<std::array<int, 4>, 6> tets;
-  KuhnTable() {
-    const int axes[6][3] = {{1, 2, 4}, {1, 4, 2}, {2, 1, 4}, {2, 4, 1}, {4, 1, 2}, {4, 2, 1}};
-    for (int t = 0; t < 6; ++t) {
-      std::array<int, 4> tet = {0, axes[t][0], axes[t][0] | axes[t][1], 7};
-      auto corner = [](int c) { return Eigen::Vector3d(c & 1, (c >> 1) & 1, (c >> 2) & 1); };
-      const Eigen::Vector3d a = corner(tet[0]);
-      const double orientation = (corner(tet[1]) - a).cross(corner(tet[2]) - a).dot(corner(tet[3]) - a);
-      if (orientation < 0) std::swap(tet[1], tet[2]);
-      tets[static_cast<std::size_t>(t)] = tet;
+// Cube corners as bit masks: x = 1, y = 2, z = 4. The alternating five-tetrahedra cut: the four
+// corners of one parity class (an even or an odd number of bits) span the central tetrahedron,
+// whose six edges are one diagonal of each face; each corner of the other class, with its three
+// neighbours along the cube's edges, spans a corner tetrahedron. tets[c] is the cut whose central
+// tetrahedron has the corners with (bit count & 1) == c, central first, each tetrahedron stored
+// with positive orientation.
+struct FiveTetTable {
+  std::array<std::array<std::array<int, 4>, 5>, 2> tets;
+  FiveTetTable() {
+    auto corner = [](int c) { return Eigen::Vector3d(c & 1, (c >> 1) & 1, (c >> 2) & 1); };
+    auto bit_parity = [](int c) { return (c ^ (c >> 1) ^ (c >> 2)) & 1; };
+    for (int central = 0; central < 2; ++central) {
+      std::array<std::array<int, 4>, 5>& cut = tets[static_cast<std::size_t>(central)];
+      int at = 0, filled = 1;
+      for (int c = 0; c < 8; ++c)
+        if (bit_parity(c) == central) cut[0][static_cast<std::size_t>(at++)] = c;
+      for (int c = 0; c < 8; ++c)
+        if (bit_parity(c) != central) cut[static_cast<std::size_t>(filled++)] = {c, c ^ 1, c ^ 2, c ^ 4};
+      for (std::array<int, 4>& tet : cut) {
+        const Eigen::Vector3d a = corner(tet[0]);
+        const double orientation = (corner(tet[1]) - a).cross(corner(tet[2]) - a).dot(corner(tet[3]) - a);
+        if (orientation < 0) std::swap(tet[1], tet[2]);
+      }
     }
   }
 };
+
+// An edge's key: its lower node (by index) times kDirectionCodes plus the code of the step to its
+// upper node, (dx + 1) + 3 (dy + 1) + 9 (dz + 1) with each step in {-1, 0, 1}. Face diagonals run
+// both ways across the grid (x + y and x - y), so the key names the node pair, not a cube's corner.
+constexpr std::int64_t kDirectionCodes = 32;
 
 // An even permutation of (0, 1, 2, 3) that starts with `first` (and, when second >= 0, continues
 // with `second`): even permutations keep a positively oriented tetrahedron positive.
@@ -115,7 +130,7 @@ namespace {
 // The cells [begin, end) contoured alone, their vertices numbered from 0 in visiting order.
 void contour_range(const NodeGrid& grid, const std::vector<std::int64_t>& cells, const std::vector<double>& corner_values,
                    double min_fraction, std::size_t begin, std::size_t end, RangeContour& out) {
-  static const KuhnTable kuhn;
+  static const FiveTetTable five_tets;
   std::vector<Eigen::Vector3d>& vertices = out.vertices;
   std::vector<std::array<int, 3>>& faces = out.faces;
   out.edge_vertex = EdgeVertexMap((end - begin) * 3);
@@ -139,15 +154,22 @@ void contour_range(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
       (values[static_cast<std::size_t>(c)] >= 0.0 ? any_positive : any_negative) = true;
     }
     if (!any_positive || !any_negative) continue;
-    // The vertex on the edge between cube corners a and b (either order). Up to six tetrahedra of
-    // the cell share an edge: the cell's own table answers them before the shared map.
+    // Neighbouring cubes cut their common face along the diagonal that joins its two nodes with an
+    // odd i + j + k: the central tetrahedron is on those corners.
+    const std::int64_t i = cell % grid.nx, j = (cell / grid.nx) % grid.ny, k = cell / (grid.nx * grid.ny);
+    const int central = static_cast<int>((i + j + k + 1) & 1);
+    // The vertex on the edge between cube corners a and b (either order). A face diagonal is
+    // shared by two tetrahedra of the cell: the cell's own table answers the second before the
+    // shared map.
     int in_cell[8][8];
     for (auto& row : in_cell) std::fill(std::begin(row), std::end(row), -1);
     auto edge = [&](int a, int b) {
-      const int low = (a & b) == a ? a : b, high = low == a ? b : a;  // Kuhn edges: low ⊂ high
-      int& local = in_cell[low][high ^ low];
+      int& local = in_cell[std::min(a, b)][std::max(a, b)];
       if (local >= 0) return local;
-      const std::int64_t key = (cell + corner_offset[low]) * 8 + (high ^ low);
+      const int low = corner_offset[a] < corner_offset[b] ? a : b, high = low == a ? b : a;
+      const int step = ((high & 1) - (low & 1) + 1) + 3 * (((high >> 1) & 1) - ((low >> 1) & 1) + 1) +
+                       9 * (((high >> 2) & 1) - ((low >> 2) & 1) + 1);
+      const std::int64_t key = (cell + corner_offset[low]) * kDirectionCodes + step;
       const int found = edge_vertex.find(key);
       if (found >= 0) return local = found;
       const bool a_positive = values[static_cast<std::size_t>(a)] >= 0.0;
@@ -165,7 +187,7 @@ void contour_range(const NodeGrid& grid, const std::vector<std::int64_t>& cells,
       edge_vertex.insert(key, index);
       return local = index;
     };
-    for (const auto& tet : kuhn.tets) {
+    for (const auto& tet : five_tets.tets[static_cast<std::size_t>(central)]) {
       int positives = 0, first_positive = -1, second_positive = -1, first_negative = -1;
       for (int v = 0; v < 4; ++v) {
         if (values[static_cast<std::size_t>(tet[static_cast<std::size_t>(v)])] >= 0.0) {
@@ -235,7 +257,7 @@ TetContour marching_tetrahedra(const NodeGrid& grid, const std::vector<std::int6
     const std::int64_t reach = first_cell < cells.size() ? cells[first_cell] + 1 + grid.nx + grid.nx * grid.ny : 0;
     for (std::size_t v = 0; v < r.vertices.size(); ++v) {
       int earlier = -1;
-      for (int before = 0; before < part && earlier < 0 && r.key[v] / 8 < reach; ++before) {
+      for (int before = 0; before < part && earlier < 0 && r.key[v] / kDirectionCodes < reach; ++before) {
         const int local = range[static_cast<std::size_t>(before)].edge_vertex.find(r.key[v]);
         if (local >= 0) earlier = global[static_cast<std::size_t>(before)][static_cast<std::size_t>(local)];
       }

@@ -1,10 +1,18 @@
 // Marching tetrahedra on a regular grid (Doi and Koide 1991; Treece, Prager and Gee 1999): the
-// boundary of { value >= 0 } over the cells listed, each cube cut into the six Kuhn tetrahedra
-// around its main diagonal. Unlike marching cubes there is no ambiguous case, and the Kuhn cut is
-// the same in every cube, so neighbouring cubes cut their common face the same way. A value
-// equal to 0 counts as positive, so no vertex ever sits on a node.
+// boundary of { value >= 0 } over the cells listed, each cube cut into five tetrahedra by the
+// alternating (checkerboard) decomposition: the four corners whose node (i, j, k) has an odd
+// sum i + j + k span a central tetrahedron, and each of the other four corners spans a corner
+// tetrahedron with its three neighbours along the cube's edges. Adjacent cubes then have
+// mirror-image cuts, and the diagonal of every face joins its two nodes of odd sum, so
+// neighbouring cubes cut their common face the same way. Unlike marching cubes there is no
+// ambiguous case. Against the six tetrahedra around a main diagonal (Kuhn's cut), there is no
+// body diagonal and a node has 6 grid edges on average instead of 7: about a fifth fewer
+// vertices and triangles, and every triangle fits in a tetrahedron whose longest edge is a face
+// diagonal (√2 h). A value equal to 0 counts as positive, so no vertex ever sits on a node.
 //
 // What the output is, whatever the values (tests/geometry/test_marching_tetrahedra.cpp):
+// - the grid edges cut are the axis edges and the face diagonals between two nodes with an odd
+//   i + j + k, never a body diagonal;
 // - every vertex lies strictly inside one grid edge, between a positive and a negative node, and
 //   is shared by every triangle that uses that edge, so every shell is closed and 2-manifold;
 // - triangles are oriented with their right-hand normal pointing from the positive side to the

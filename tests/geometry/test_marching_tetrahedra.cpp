@@ -1,6 +1,8 @@
 // Marching tetrahedra and grid winding numbers against independent answers: on random fields the
-// contour is closed, consistently oriented and embedded, and the exact solid-angle winding number
-// of the contour is 1 at every node with a value >= 0 and 0 at every other node; grid winding
+// contour is closed, consistently oriented and embedded, cuts only axis edges and the face
+// diagonals between odd nodes, stays embedded wherever its vertices move along their edges, and
+// the exact solid-angle winding number of the contour is 1 at every node with a value >= 0 and 0
+// at every other node; grid winding
 // numbers equal the solid-angle ones, also where grid rows run exactly through mesh vertices and
 // edges, and count a doubly covered region twice.
 #include <doctest/doctest.h>
@@ -8,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "../mesh_checks.h"
@@ -89,14 +93,49 @@ TEST_CASE("marching tetrahedra on random fields gives closed, oriented, embedded
       CHECK(contour.fraction[u] >= 1e-3);
       CHECK(contour.fraction[u] <= 1.0 - 1e-3);
     }
-    // The solid-angle winding number of the contour is 1 exactly at the non-negative nodes.
-    int mismatches = 0;
-    for (std::int64_t n = 0; n < grid.node_count(); ++n) {
-      const double w = winding_number(contour.mesh, grid.position(n));
-      const double expected = value[static_cast<std::size_t>(n)] >= 0.0 ? 1.0 : 0.0;
-      mismatches += std::fabs(w - expected) > 1e-6;
+    // The edges cut: an axis edge, or a face diagonal between two nodes with an odd i + j + k (so
+    // both cubes on a face cut it the same way); each edge carries one vertex.
+    std::set<std::pair<std::int64_t, std::int64_t>> edges;
+    int bad_edges = 0, diagonals[2] = {0, 0};
+    for (Eigen::Index v = 0; v < contour.mesh.V.rows(); ++v) {
+      const std::int64_t a = contour.positive_node[static_cast<std::size_t>(v)], b = contour.negative_node[static_cast<std::size_t>(v)];
+      const std::int64_t ia = a % grid.nx, ja = (a / grid.nx) % grid.ny, ka = a / (grid.nx * grid.ny);
+      const std::int64_t ib = b % grid.nx, jb = (b / grid.nx) % grid.ny, kb = b / (grid.nx * grid.ny);
+      const std::int64_t di = std::abs(ia - ib), dj = std::abs(ja - jb), dk = std::abs(ka - kb);
+      const bool step = std::max({di, dj, dk}) == 1;
+      const std::int64_t axes = di + dj + dk;
+      const bool odd_ends = ((ia + ja + ka) & 1) == 1 && ((ib + jb + kb) & 1) == 1;
+      bad_edges += !(step && (axes == 1 || (axes == 2 && odd_ends)));
+      if (axes == 2) ++diagonals[(ia - ib) * (ja - jb) + (ja - jb) * (ka - kb) + (ia - ib) * (ka - kb) > 0];
+      CHECK(edges.insert({std::min(a, b), std::max(a, b)}).second);
     }
-    CHECK(mismatches == 0);
+    CHECK(bad_edges == 0);
+    CHECK(diagonals[0] > 0);  // both directions of face diagonal (x + y and x - y) occur
+    CHECK(diagonals[1] > 0);
+    // The solid-angle winding number of the contour is 1 exactly at the non-negative nodes, with
+    // the vertices where marching tetrahedra put them and anywhere else strictly inside their
+    // edges (also at either end of the range the cavity's placement uses): the surface stays
+    // embedded.
+    Mesh moved = contour.mesh;
+    for (Eigen::Index v = 0; v < moved.V.rows(); ++v) {
+      const std::size_t u = static_cast<std::size_t>(v);
+      const double r = rng.uniform();
+      const double t = r < 0.25 ? 1e-3 : r < 0.5 ? 1.0 - 1e-3 : rng.uniform(1e-3, 1.0 - 1e-3);
+      const Eigen::Vector3d p = grid.position(contour.positive_node[u]), q = grid.position(contour.negative_node[u]);
+      moved.V.row(v) = (p + t * (q - p)).transpose();
+    }
+    const TriangleBvh moved_bvh(moved.V, moved.F);
+    CHECK(self_intersections(moved_bvh, 10).pairs.empty());
+    const Mesh* placements[2] = {&contour.mesh, &moved};
+    for (const Mesh* mesh : placements) {
+      int mismatches = 0;
+      for (std::int64_t n = 0; n < grid.node_count(); ++n) {
+        const double w = winding_number(*mesh, grid.position(n));
+        const double expected = value[static_cast<std::size_t>(n)] >= 0.0 ? 1.0 : 0.0;
+        mismatches += std::fabs(w - expected) > 1e-6;
+      }
+      CHECK(mismatches == 0);
+    }
   }
 }
 
