@@ -18,9 +18,10 @@ constexpr int kMaxLeastViolationRestarts = 10;
 
 double clamp_to(double v, double lo, double hi) { return std::min(hi, std::max(lo, v)); }
 
-// Evaluates f, ∇f and all nonlinear constraints with their Jacobian at one point (A x is added by
-// linear_pass), and keeps the last point so the outer loop reads the values at the subproblem's
-// solution for free.
+// Evaluates f and all nonlinear constraints at one point, with ∇f and their Jacobian (`at`) or,
+// when the problem has `values` and `weighted_gradient`, without them (`values_at`, then
+// `gradient` for one combination). A x is added by linear_pass. Keeps the last point, so the
+// outer loop reads the values at the subproblem's solution for free.
 class Evaluator {
  public:
   Evaluator(const ConstrainedProblem& p, int n, int num_linear)
@@ -34,13 +35,15 @@ class Evaluator {
         ce_(p.num_equality),
         ci_(p.num_inequality),
         je_(p.num_equality, n),
-        ji_(p.num_inequality, n) {}
+        ji_(p.num_inequality, n),
+        combined_(p.values && p.weighted_gradient) {}
 
-  // Returns whether everything is finite at x.
+  // Everything at x, derivatives included. Returns whether everything is finite.
   bool at(const Eigen::VectorXd& point) {
-    if (valid_ && point.size() == x.size() && point == x) return finite;
+    if (valid_ && full_ && point.size() == x.size() && point == x) return finite;
     x = point;
     valid_ = true;
+    full_ = true;
     ++count;
     f = p_.objective(x, grad);
     if (ne_ > 0) {
@@ -62,22 +65,54 @@ class Evaluator {
     return finite;
   }
 
+  // f and the rows at x (everything, when the problem has no `values`). Returns whether they are
+  // finite.
+  bool values_at(const Eigen::VectorXd& point) {
+    if (!combined_) return at(point);
+    if (valid_ && point.size() == x.size() && point == x) return finite;
+    x = point;
+    valid_ = true;
+    full_ = false;
+    ++count;
+    f = p_.values(x, c);
+    finite = std::isfinite(f) && c.allFinite();
+    linear_done = false;
+    return finite;
+  }
+
+  // objective_weight ∇f + J^T w at the last point, into out; false when not finite.
+  bool gradient(double objective_weight, const Eigen::VectorXd& w, Eigen::VectorXd& out) {
+    if (full_) {
+      if (objective_weight == 0.0) {
+        out.setZero();
+      } else {
+        out = objective_weight * grad;
+      }
+      if (ne_ + ni_ > 0) out.noalias() += jac.transpose() * w;
+      return true;  // `at` checked them
+    }
+    p_.weighted_gradient(x, objective_weight, w, out);
+    return out.allFinite();
+  }
+
   int count = 0;
   Eigen::VectorXd x;
   double f = 0.0;
   bool finite = false;
   bool linear_done = false;  // ax holds A x for this x (written by linear_pass)
-  Eigen::VectorXd grad;
-  Eigen::VectorXd c;    // nonlinear rows: equalities then inequalities
-  Eigen::MatrixXd jac;  // their Jacobian
-  Eigen::VectorXd ax;   // linear rows, A x (valid when linear_done)
+  Eigen::VectorXd grad;      // ∇f, valid after `at`
+  Eigen::VectorXd c;         // nonlinear rows: equalities then inequalities
+  Eigen::MatrixXd jac;       // their Jacobian, valid after `at`
+  Eigen::VectorXd ax;        // linear rows, A x (valid when linear_done)
 
  private:
   const ConstrainedProblem& p_;
   int ne_, ni_;
   bool valid_ = false;
+  bool full_ = false;  // grad and jac belong to x
   Eigen::VectorXd ce_, ci_;
   Eigen::MatrixXd je_, ji_;
+  bool combined_;
 };
 
 // One pass over A in blocks of rows: ax = A x, then with row weights w_j = weight(j, (A x)_j)
@@ -177,6 +212,8 @@ std::string problem_error(const ConstrainedProblem& problem, const Eigen::Vector
   if (msg.empty() && (ne < 0 || ni < 0)) msg = "negative constraint count";
   if (msg.empty() && ne > 0 && !problem.equality) msg = "num_equality > 0 without a function";
   if (msg.empty() && ni > 0 && !problem.inequality) msg = "num_inequality > 0 without a function";
+  if (msg.empty() && static_cast<bool>(problem.values) != static_cast<bool>(problem.weighted_gradient))
+    msg = "values and weighted_gradient come together";
   if (msg.empty() && ((problem.lower.size() != 0 && problem.lower.size() != n) ||
                       (problem.upper.size() != 0 && problem.upper.size() != n)))
     msg = "bounds must be empty or of length num_variables";
@@ -373,13 +410,12 @@ AlResult AugmentedLagrangian::fill_result(AlStatus status, const Measures& meas)
 
 // The subproblem: the scaled augmented Lagrangian, minimised over the box.
 double AugmentedLagrangian::subproblem(const Eigen::VectorXd& xs, Eigen::VectorXd& grad) {
-  if (!ev_.at(xs)) {
+  if (!ev_.values_at(xs)) {
     grad.setConstant(kNaN);
     return kNaN;
   }
   const Eigen::VectorXd& lin_lo = problem_.linear_lower;
   const Eigen::VectorXd& lin_hi = problem_.linear_upper;
-  grad = sf_ * ev_.grad;
   NeumaierSum sum;  // the linear block adds up to 10⁶ penalty terms per evaluation
   sum.add(sf_ * ev_.f);
   for (int i = 0; i < nn_; ++i) {
@@ -389,7 +425,10 @@ double AugmentedLagrangian::subproblem(const Eigen::VectorXd& xs, Eigen::VectorX
     sum.add(0.5 * rho_ * dv * dv);
     w_nl_(i) = rho_ * dv * s;
   }
-  if (nn_ > 0) grad.noalias() += ev_.jac.transpose() * w_nl_;
+  if (!ev_.gradient(sf_, w_nl_, grad)) {
+    grad.setConstant(kNaN);
+    return kNaN;
+  }
   if (m_ > 0) {
     linear_pass(*a_, xs, ev_.ax, grad, [&](Eigen::Index j, double value) {
       const double s = rows_.lin_scale(j);
@@ -410,13 +449,12 @@ double AugmentedLagrangian::subproblem(const Eigen::VectorXd& xs, Eigen::VectorX
 
 // ½ Σ (s_i dist(c_i, [lo_i, hi_i]))²: minimised over the box to find a least-violation point.
 double AugmentedLagrangian::violation(const Eigen::VectorXd& xs, Eigen::VectorXd& grad) {
-  if (!ev_.at(xs)) {
+  if (!ev_.values_at(xs)) {
     grad.setConstant(kNaN);
     return kNaN;
   }
   const Eigen::VectorXd& lin_lo = problem_.linear_lower;
   const Eigen::VectorXd& lin_hi = problem_.linear_upper;
-  grad.setZero();
   NeumaierSum sum;  // the linear block adds up to 10⁶ penalty terms per evaluation
   for (int i = 0; i < nn_; ++i) {
     const double s = rows_.scale(i);
@@ -424,7 +462,10 @@ double AugmentedLagrangian::violation(const Eigen::VectorXd& xs, Eigen::VectorXd
     sum.add(0.5 * dv * dv);
     w_nl_(i) = dv * s;
   }
-  if (nn_ > 0) grad.noalias() += ev_.jac.transpose() * w_nl_;
+  if (!ev_.gradient(0.0, w_nl_, grad)) {
+    grad.setConstant(kNaN);
+    return kNaN;
+  }
   if (m_ > 0) {
     linear_pass(*a_, xs, ev_.ax, grad, [&](Eigen::Index j, double value) {
       const double s = rows_.lin_scale(j);
@@ -442,9 +483,10 @@ double AugmentedLagrangian::violation(const Eigen::VectorXd& xs, Eigen::VectorXd
   return sum.value();
 }
 
-// Everything at point xs, including A x (when the last evaluation there did not compute it).
+// The values at point xs (f and every row), including A x (when the last evaluation there did not
+// compute it); no derivatives.
 bool AugmentedLagrangian::evaluate_all(const Eigen::VectorXd& xs) {
-  const bool ok = ev_.at(xs);
+  const bool ok = ev_.values_at(xs);
   if (m_ > 0 && !ev_.linear_done) {
     ev_.ax.noalias() = (*a_) * xs;
     ev_.linear_done = true;

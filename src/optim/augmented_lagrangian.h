@@ -63,6 +63,17 @@ struct ConstrainedProblem {
   // the matrix must outlive the call. Bounds of length m, ±infinity allowed.
   const Eigen::MatrixXd* linear_matrix = nullptr;
   Eigen::VectorXd linear_lower, linear_upper;
+  // Optional, both or neither, for a problem whose rows share one costly chain rule (the reduced
+  // problem: every row reads 20 integrals, and their derivatives cost O(#V·k) to project, so one
+  // combined projection costs what one row's does). `values`: f and every nonlinear row
+  // (equalities, then inequalities) into `rows` (sized), no derivatives. `weighted_gradient`, at
+  // the point of the last `values` call: the gradient of objective_weight·f + Σ_i row_weights_i·row_i
+  // into `grad` (sized). With them the subproblems ask for nothing else; the callbacks above are
+  // still required, for the row scales at the start point.
+  std::function<double(const Eigen::VectorXd& x, Eigen::VectorXd& rows)> values;
+  std::function<void(const Eigen::VectorXd& x, double objective_weight, const Eigen::VectorXd& row_weights,
+                     Eigen::VectorXd& grad)>
+      weighted_gradient;
 };
 
 // Reported after every outer iteration (for progress output; the solver itself never prints).

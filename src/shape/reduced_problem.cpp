@@ -40,6 +40,7 @@ ReducedProblem::ReducedProblem(const Mesh& mesh, const OffsetBand& band, const E
       k_(identity_basis ? static_cast<int>(mesh.V.rows()) : static_cast<int>(basis.cols())),
       goal_(goal),
       integral_rows_(goal_integral_rows(goal)),
+      goal_equality_count_(static_cast<Eigen::Index>(goal_equality_names(goal).size())),
       options_(options) {
   if (!identity_basis_)
     for (Eigen::Index i = 0; i < mesh_.V.rows(); ++i)
@@ -178,9 +179,13 @@ void ReducedProblem::build_hard_bounds() {
 
 const ReducedProblem::Evaluation& ReducedProblem::evaluate(const Eigen::VectorXd& x) { return evaluate_with_integrals(x, true); }
 
-const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const Eigen::VectorXd& x, bool all_integrals) {
-  if (cache_valid_ && cache_.x.size() == x.size() && cache_.x == x && (cache_all_integrals_ || !all_integrals))
-    return cache_;
+bool ReducedProblem::values_at(const Eigen::VectorXd& x, bool all_integrals) const {
+  return values_valid_ && cache_.x.size() == x.size() && cache_.x == x && (cache_all_integrals_ || !all_integrals);
+}
+
+void ReducedProblem::evaluate_values(const Eigen::VectorXd& x, bool all_integrals) {
+  cache_valid_ = false;
+  values_valid_ = false;
   const Eigen::Index n = mesh_.V.rows();
   const bool clamp = options_.bounds == BoundsMode::clamp;
   const bool outer = options_.outer;
@@ -286,18 +291,42 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const 
   // the others are not summed there (they are NaN); an evaluation that leaves this class has all ten.
   const int integral_count = all_integrals ? 10 : integral_rows_;
   Vector10d inner_part_integrals[2], outer_part_integrals[2];
+  // The derivative columns hold +0 unless the last evaluation's were never read (a solver asked
+  // for values alone there): then the kernel clears them itself.
+  const bool columns_zero = !derivatives_pending_;
   auto surface_part = [&](int part) {
     volume_integrals_and_directional_jacobian(inner_vertices_, face_parts_[part], origin, band_.inner_direction,
                                               inner_part_integrals[part], inner_jacobian_[part], integral_rows_,
-                                              integral_count, true);
+                                              integral_count, columns_zero);
     if (outer)
       volume_integrals_and_directional_jacobian(outer_vertices_, face_parts_[part], origin, band_.outer_direction,
                                                 outer_part_integrals[part], outer_jacobian_[part], integral_rows_,
-                                                integral_count, true);
+                                                integral_count, columns_zero);
   };
   run_parts(surface_part);
+  derivatives_pending_ = true;
   e.inner_integrals = inner_part_integrals[0] + inner_part_integrals[1];
   e.outer_integrals = outer ? Vector10d(outer_part_integrals[0] + outer_part_integrals[1]) : fixed_outer_integrals_;
+  e.goal = evaluate_goal(goal_, e.outer_integrals, Vector10d(e.inner_integrals + inner_integral_shift_));
+  e.objective = e.goal.objective;
+  if (outer && options_.outer_penalty > 0.0) {
+    const double beta1 = x(k_);
+    e.objective += options_.outer_penalty * beta1 * beta1;
+  }
+  if (overshoot_term) e.objective += overshoot_weight * overshoot;
+  values_valid_ = true;
+  cache_all_integrals_ = all_integrals;
+}
+
+const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const Eigen::VectorXd& x, bool all_integrals) {
+  if (cache_valid_ && values_at(x, all_integrals)) return cache_;
+  if (!values_at(x, all_integrals) || !derivatives_pending_) evaluate_values(x, all_integrals);
+  Evaluation& e = cache_;
+  const bool outer = options_.outer;
+  const Eigen::Index R = integral_rows_;
+  const Eigen::Index jacobian_rows = outer ? 3 * R : R;
+  const Eigen::Index overshoot_row = jacobian_rows;
+  const bool overshoot_term = options_.bounds == BoundsMode::clamp && options_.overshoot_weight > 0.0;
 
   Eigen::MatrixXd projected_part[2];
   auto projection_part = [&](int part) {
@@ -310,6 +339,7 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const 
     projected_part[part] = project_rows(per_vertex_, begin, end);
   };
   run_parts(projection_part);
+  derivatives_pending_ = false;
   const Eigen::MatrixXd projected = projected_part[0] + projected_part[1];
   // The goal's derivatives by the integrals it does not use are exactly 0: those rows stay 0.
   Eigen::Matrix<double, 10, Eigen::Dynamic> inner_by_alpha = Eigen::Matrix<double, 10, Eigen::Dynamic>::Zero(10, k_);
@@ -321,7 +351,6 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const 
     inner_by_beta.topRows(R) = projected.middleRows(R, R);
     outer_by_beta.topRows(R) = projected.middleRows(2 * R, R);
   }
-  e.goal = evaluate_goal(goal_, e.outer_integrals, Vector10d(e.inner_integrals + inner_integral_shift_));
 
   const int nv = num_variables();
   // w_in · ∂I_in/∂α, and with outer offsets w_out · ∂I_out/∂β + w_in · ∂I_in/∂β, summed as Eigen's
@@ -337,16 +366,10 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const 
     transposed_product_10(inner_by_beta, w_in, by_inner.data());
     g.tail(k_) = by_outer + by_inner;
   };
-  e.objective = e.goal.objective;
   e.objective_gradient.resize(nv);
   chain(e.goal.objective_gradient.transpose(), e.objective_gradient.transpose());
-  if (outer && options_.outer_penalty > 0.0) {
-    const double beta1 = x(k_);
-    e.objective += options_.outer_penalty * beta1 * beta1;
-    e.objective_gradient(k_) += 2.0 * options_.outer_penalty * beta1;
-  }
+  if (outer && options_.outer_penalty > 0.0) e.objective_gradient(k_) += 2.0 * options_.outer_penalty * x(k_);
   if (overshoot_term) {
-    e.objective += overshoot_weight * overshoot;
     e.objective_gradient.head(k_) += projected.row(overshoot_row).transpose();
     if (outer) e.objective_gradient.tail(k_) += projected.row(overshoot_row + 1).transpose();
   }
@@ -356,8 +379,70 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const 
   for (Eigen::Index r = 0; r < e.goal.inequality.size(); ++r)
     chain(e.goal.inequality_jacobian.row(r), e.inequality_jacobian.row(r));
   cache_valid_ = true;
-  cache_all_integrals_ = all_integrals;
   return e;
+}
+
+template <int Rows>
+void ReducedProblem::combine_vertex_rows(const Vector20d& weights, double objective_weight, Eigen::Index begin,
+                                         Eigen::Index end) {
+  using Column = Eigen::Matrix<double, Rows, 1>;
+  const bool outer = options_.outer;
+  const Column w_out = weights.head<Rows>(), w_in = weights.segment<Rows>(10);
+  const Eigen::Index overshoot_row = outer ? 3 * integral_rows_ : integral_rows_;
+  const bool overshoot_term = options_.bounds == BoundsMode::clamp && options_.overshoot_weight > 0.0;
+  // Like fill_vertex_rows, the face halves' columns are cleared once read.
+  for (Eigen::Index i = begin; i < end; ++i) {
+    Eigen::Map<Column> inner_a(inner_jacobian_[0].col(i).data()), inner_b(inner_jacobian_[1].col(i).data());
+    const double along_inner = w_in.dot(Column(inner_a + inner_b));
+    inner_a.setZero();
+    inner_b.setZero();
+    double by_alpha = along_inner * cache_.inner_slope(i);
+    if (overshoot_term) by_alpha += objective_weight * per_vertex_(overshoot_row, i);
+    combined_(0, i) = by_alpha;
+    if (!outer) continue;
+    Eigen::Map<Column> outer_a(outer_jacobian_[0].col(i).data()), outer_b(outer_jacobian_[1].col(i).data());
+    const double along_outer = w_out.dot(Column(outer_a + outer_b));
+    outer_a.setZero();
+    outer_b.setZero();
+    double by_beta = along_inner * inner_by_outer_(i) + along_outer * outer_slope_(i);
+    if (overshoot_term) by_beta += objective_weight * per_vertex_(overshoot_row + 1, i);
+    combined_(1, i) = by_beta;
+  }
+}
+
+void ReducedProblem::weighted_gradient(const Eigen::VectorXd& x, double objective_weight, const Eigen::VectorXd& row_weights,
+                                       Eigen::VectorXd& grad) {
+  const Eigen::Index ne = goal_equality_count_;
+  if (cache_valid_ && values_at(x, false)) {  // every row's derivatives are there already
+    grad = objective_weight * cache_.objective_gradient;
+    grad.noalias() += cache_.equality_jacobian.transpose() * row_weights.head(ne);
+    grad.noalias() += cache_.inequality_jacobian.transpose() * row_weights.tail(row_weights.size() - ne);
+    return;
+  }
+  if (!values_at(x, false) || !derivatives_pending_) evaluate_values(x, false);
+  const GoalValues& goal = cache_.goal;
+  Vector20d weights = objective_weight * goal.objective_gradient;
+  for (Eigen::Index r = 0; r < goal.equality.size(); ++r) weights += row_weights(r) * goal.equality_jacobian.row(r).transpose();
+  for (Eigen::Index r = 0; r < goal.inequality.size(); ++r)
+    weights += row_weights(ne + r) * goal.inequality_jacobian.row(r).transpose();
+  const bool outer = options_.outer;
+  combined_.resize(outer ? 2 : 1, mesh_.V.rows());
+  Eigen::MatrixXd projected_part[2];
+  run_parts([&](int part) {
+    const Eigen::Index begin = vertex_split_[part], end = vertex_split_[part + 1];
+    switch (integral_rows_) {
+      case 1: combine_vertex_rows<1>(weights, objective_weight, begin, end); break;
+      case 4: combine_vertex_rows<4>(weights, objective_weight, begin, end); break;
+      default: combine_vertex_rows<10>(weights, objective_weight, begin, end); break;
+    }
+    projected_part[part] = project_rows(combined_, begin, end);
+  });
+  derivatives_pending_ = false;
+  const Eigen::MatrixXd projected = projected_part[0] + projected_part[1];  // 1 or 2 rows by k
+  grad.resize(num_variables());
+  grad.head(k_) = projected.row(0).transpose();
+  if (outer) grad.tail(k_) = projected.row(1).transpose();
+  if (outer && options_.outer_penalty > 0.0) grad(k_) += objective_weight * 2.0 * options_.outer_penalty * x(k_);
 }
 
 void ReducedProblem::set_inner_integral_shift(const Vector10d& shift) {
@@ -412,6 +497,15 @@ ConstrainedProblem ReducedProblem::constrained_problem() {
     values = e.goal.inequality;
     jacobian = e.inequality_jacobian;
   };
+  // Inside the subproblems: the values, then one combined gradient (weighted_gradient).
+  p.values = [this, eq](const Eigen::VectorXd& x, Eigen::VectorXd& rows) {
+    if (!values_at(x, false)) evaluate_values(x, false);
+    rows.head(static_cast<Eigen::Index>(eq)) = cache_.goal.equality;
+    rows.tail(rows.size() - static_cast<Eigen::Index>(eq)) = cache_.goal.inequality;
+    return cache_.objective;
+  };
+  p.weighted_gradient = [this](const Eigen::VectorXd& x, double objective_weight, const Eigen::VectorXd& row_weights,
+                               Eigen::VectorXd& grad) { weighted_gradient(x, objective_weight, row_weights, grad); };
   if (options_.bounds == BoundsMode::hard && identity_basis_ && !options_.outer) {
     // Per vertex (paper eq. 1) the rows δl ≤ δ ≤ hi are bounds on the variables themselves:
     // L-BFGS-B keeps them exactly, with no multipliers to find. In a part left solid (δl > hi)

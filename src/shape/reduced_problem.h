@@ -15,7 +15,9 @@
 //   inner surface  x_in,i  = x_i + δin_i v_i,   outer surface  x_out,i = x_i + δout_i w_i.
 // The goal (shape/goal.h) is evaluated on the volume integrals of both surfaces (measured from the
 // frame origin) and its derivatives are chained exactly:
-//   ∂row/∂α = (∂row/∂I_in) (∂I_in/∂δin) diag(∂δin/∂(Γα)) Γ,   O(#F + 10·#V·k) per evaluation.
+//   ∂row/∂α = (∂row/∂I_in) (∂I_in/∂δin) diag(∂δin/∂(Γα)) Γ,   O(#F + 10·#V·k) per evaluation
+// with every row's derivatives (evaluate); the solver asks for one weighted sum of them per point
+// (constrained_problem's values and weighted_gradient), O(#F + #V·k).
 // The outer penalty wp·β₁² (paper 5.2: the first coefficient, the DC term) and, in clamp mode,
 // the overshoot term (ReducedOptions::overshoot_weight) are added to f.
 #pragma once
@@ -113,6 +115,21 @@ class ReducedProblem {
   // all_integrals = false (the solver's own calls): only the integrals the goal reads are summed,
   // the others are NaN; every other output is the same as evaluate(x)'s, bit for bit.
   const Evaluation& evaluate_with_integrals(const Eigen::VectorXd& x, bool all_integrals);
+  // Everything at x but what needs the projection onto Γ (objective_gradient and the Jacobians):
+  // the offsets, surfaces, integrals, goal and objective; the integrals' per-vertex derivatives
+  // stay in inner_jacobian_ / outer_jacobian_ (derivatives_pending_) for one projection to read.
+  void evaluate_values(const Eigen::VectorXd& x, bool all_integrals);
+  bool values_at(const Eigen::VectorXd& x, bool all_integrals) const;  // evaluate_values' cache holds x
+  // objective_weight ∇f + Σ_r row_weights_r ∇row_r (rows: equalities, then inequalities) at x. The
+  // rows and f read the same 20 integrals, so their weights are combined first and one row per
+  // vertex (two with outer offsets) is projected onto Γ: O(#V·k) instead of O(R·#V·k) for R
+  // integrals, and no per-row chain rule. Agrees with the Jacobians of evaluate(x) to rounding.
+  void weighted_gradient(const Eigen::VectorXd& x, double objective_weight, const Eigen::VectorXd& row_weights,
+                         Eigen::VectorXd& grad);
+  // Columns [begin, end) of combined_: the face halves' derivative columns summed, weighted and
+  // through the vertex's slopes (as fill_vertex_rows, but one weighted row), overshoot included.
+  template <int Rows>
+  void combine_vertex_rows(const Vector20d& weights, double objective_weight, Eigen::Index begin, Eigen::Index end);
   // Rows [vertex_split_[part], vertex_split_[part + 1]) of Γ c into `out` (#V).
   void apply_basis_part(const Eigen::VectorXd& coefficients, int part, Eigen::VectorXd& out) const;
   // Columns [begin, end) of a (rows by #V) matrix times the same rows of Γ: rows by k, one
@@ -134,6 +151,7 @@ class ReducedProblem {
   int k_;
   GoalSpec goal_;
   int integral_rows_;                // goal_integral_rows(goal_)
+  Eigen::Index goal_equality_count_;  // the goal's equality rows
   ReducedOptions options_;
   Vector10d fixed_outer_integrals_;  // the input's integrals, when there is no outer offset
   Vector10d inner_integral_shift_ = Vector10d::Zero();
@@ -152,7 +170,10 @@ class ReducedProblem {
   Eigen::VectorXd outer_slope_, inner_by_outer_;  // ∂δout/∂(Γβ) and ∂δin/∂(Γβ) per vertex
   Eigen::VectorXd overshoot_squares_;             // (raw − clamped)² per vertex (inner, outer)
   std::unique_ptr<WorkerPool> pool_;
-  bool cache_valid_ = false;
+  Eigen::MatrixXd combined_;          // 1 (2 with outer offsets) by #V: weighted_gradient's rows
+  bool cache_valid_ = false;          // cache_ is complete (evaluate's) for cache_.x
+  bool values_valid_ = false;         // cache_ has evaluate_values' outputs for cache_.x
+  bool derivatives_pending_ = false;  // the per-vertex derivatives of cache_.x are unread (not +0)
   bool cache_all_integrals_ = false;  // the cached evaluation has all ten integrals
 };
 

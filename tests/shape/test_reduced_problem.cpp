@@ -22,10 +22,11 @@ struct Setup {
 };
 
 // A unit sphere resting on z = 0, radial directions, a smooth random basis (low-order
-// polynomials of the position, orthonormalised), a few fixed vertices at the top.
-Setup sphere_setup(int k) {
+// polynomials of the position, orthonormalised), a few fixed vertices at the top. Subdivision 4
+// (2,562 vertices) is large enough for an evaluation to run its parts on two threads.
+Setup sphere_setup(int k, int subdivisions = 2) {
   Setup s;
-  s.mesh = make_icosphere(0.5, 2);
+  s.mesh = make_icosphere(0.5, subdivisions);
   s.mesh.V.col(2).array() += 0.5;
   const Eigen::Index n = s.mesh.V.rows();
   s.band.inner_direction.resize(n, 3);
@@ -238,4 +239,86 @@ TEST_CASE("the solver's evaluations (only the integrals the goal reads) agree bi
         CHECK(full.objective == expected.objective);
       }
     }
+}
+
+TEST_CASE("the solver's combined gradient agrees with the Jacobians of evaluate() and is the same on one and two threads") {
+  // Inside its subproblems the solver asks for the values alone, then for one combination
+  // objective_weight ∇f + Σ w_r ∇row_r, which the problem projects onto Γ as one row per vertex.
+  // Checked against the dense product with evaluate()'s Jacobians on a fresh problem, for goals
+  // reading 1, 4 and 10 integrals, every bounds mode, with and without outer offsets, and the
+  // identity basis (on the small sphere: its hard mode is dense #V by #V); values-only calls at
+  // other points come in between, as a line search makes them.
+  const Setup large = sphere_setup(8, 4), small = sphere_setup(8);
+  GoalSpec volume;
+  volume.kind = GoalKind::volume;
+  volume.target_volume = 0.2;
+  GoalSpec roly;
+  roly.kind = GoalKind::roly_poly;
+  roly.axis_point = {0.0, 0.0, 0.5};
+  for (const GoalSpec& goal : {volume, roly, filled_goal(), spin_goal()})
+    for (bool outer : {false, true})
+      for (BoundsMode bounds : {BoundsMode::clamp, BoundsMode::hard})
+        for (bool identity : {false, true}) {
+          CAPTURE(to_string(goal.kind));
+          CAPTURE(outer);
+          CAPTURE(static_cast<int>(bounds));
+          CAPTURE(identity);
+          const Setup& s = identity ? small : large;
+          ReducedOptions options;
+          options.outer = outer;
+          options.outer_penalty = 0.5;
+          options.bounds = bounds;
+          options.ramp_width = 0.02;
+          const Eigen::MatrixXd basis = identity ? Eigen::MatrixXd() : s.basis;
+          ReducedOptions two_threads = options;
+          options.threads = 1;
+          two_threads.threads = 2;
+          ReducedProblem kept(s.mesh, s.band, basis, identity, goal, options);
+          ReducedProblem kept2(s.mesh, s.band, basis, identity, goal, two_threads);
+          const ConstrainedProblem view = kept.constrained_problem(), view2 = kept2.constrained_problem();
+          REQUIRE(view.values);
+          REQUIRE(view.weighted_gradient);
+          const Eigen::Index rows = view.num_equality + view.num_inequality;
+          Rng rng(41);
+          for (int trial = 0; trial < 3; ++trial) {
+            Eigen::VectorXd x = kept.start_point(), elsewhere = x;
+            for (Eigen::Index j = 0; j < x.size(); ++j) {
+              x(j) += 0.05 * rng.uniform(-1.0, 1.0);
+              elsewhere(j) += 0.05 * rng.uniform(-1.0, 1.0);
+            }
+            const double objective_weight = trial == 1 ? 0.0 : rng.uniform(0.5, 2.0);
+            Eigen::VectorXd weights(rows);
+            for (Eigen::Index r = 0; r < rows; ++r) weights(r) = rng.uniform(-1.0, 1.0);
+            ReducedProblem fresh(s.mesh, s.band, basis, identity, goal, options);
+            const ReducedProblem::Evaluation expected = fresh.evaluate(x);
+            Eigen::VectorXd dense = objective_weight * expected.objective_gradient;
+            const Eigen::Index ne = expected.goal.equality.size();
+            dense += expected.equality_jacobian.transpose() * weights.head(ne);
+            dense += expected.inequality_jacobian.transpose() * weights.tail(rows - ne);
+            double scale = std::fabs(objective_weight) * expected.objective_gradient.cwiseAbs().maxCoeff();
+            for (Eigen::Index r = 0; r < ne; ++r) scale += std::fabs(weights(r)) * expected.equality_jacobian.row(r).cwiseAbs().maxCoeff();
+            for (Eigen::Index r = ne; r < rows; ++r)
+              scale += std::fabs(weights(r)) * expected.inequality_jacobian.row(r - ne).cwiseAbs().maxCoeff();
+
+            Eigen::VectorXd values(rows), values2(rows), gradient(x.size()), gradient2(x.size());
+            if (trial == 2) {  // a values-only call elsewhere first: its derivatives are never read
+              view.values(elsewhere, values);
+              view2.values(elsewhere, values2);
+            }
+            const double objective = view.values(x, values);
+            view.weighted_gradient(x, objective_weight, weights, gradient);
+            const double objective2 = view2.values(x, values2);
+            view2.weighted_gradient(x, objective_weight, weights, gradient2);
+            CHECK(objective == expected.objective);
+            CHECK((values.head(ne).array() == expected.goal.equality.array()).all());
+            CHECK((values.tail(rows - ne).array() == expected.goal.inequality.array()).all());
+            CHECK((gradient - dense).cwiseAbs().maxCoeff() <= 1e-12 * (1.0 + scale));
+            CHECK(objective2 == objective);
+            CHECK((gradient2.array() == gradient.array()).all());
+            // And evaluate() right after, at the point the solver saw: every row's own derivative.
+            const ReducedProblem::Evaluation& full = kept.evaluate(x);
+            CHECK((full.objective_gradient.array() == expected.objective_gradient.array()).all());
+            CHECK((full.inequality_jacobian.array() == expected.inequality_jacobian.array()).all());
+          }
+        }
 }
