@@ -219,6 +219,83 @@ TEST_CASE("augmented-lagrangian: KKT residual with the returned multipliers (HS0
   }
 }
 
+TEST_CASE("augmented-lagrangian: values and one weighted gradient per point give the run of the full callbacks") {
+  // The same HS071-like problem offered both ways. The weighted gradient is formed here exactly
+  // as the solver forms it from the full callbacks (w_f ∇f, then + J^T w), so the two runs must
+  // take the same iterates bit for bit; and with values offered, the full callbacks (every row's
+  // gradient) are asked for at the start point only, for the row scales.
+  ConstrainedProblem p;
+  p.num_variables = 4;
+  p.objective = [](const VectorXd& x, VectorXd& g) {
+    const double s = x(0) + x(1) + x(2);
+    g << x(3) * s + x(0) * x(3), x(0) * x(3), x(0) * x(3) + 1.0, x(0) * s;
+    return x(0) * x(3) * s + x(2);
+  };
+  p.num_equality = 1;
+  p.equality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
+    c(0) = x.squaredNorm() - 40.0;
+    j.row(0) = 2.0 * x.transpose();
+  };
+  p.num_inequality = 1;
+  p.inequality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
+    c(0) = 25.0 - x(0) * x(1) * x(2) * x(3);
+    j << -x(1) * x(2) * x(3), -x(0) * x(2) * x(3), -x(0) * x(1) * x(3), -x(0) * x(1) * x(2);
+  };
+  MatrixXd a(1, 4);
+  a << 0.0, 1.0, -1.0, 0.0;
+  p.linear_matrix = &a;
+  p.linear_lower = VectorXd::Constant(1, -kInf);
+  p.linear_upper = VectorXd::Constant(1, 0.8);
+  p.lower = VectorXd::Constant(4, 1.0);
+  p.upper = VectorXd::Constant(4, 5.0);
+  VectorXd x0(4);
+  x0 << 1.0, 5.0, 5.0, 1.0;
+  const AlResult plain = augmented_lagrangian_minimize(p, x0);
+  REQUIRE(plain.status == AlStatus::converged);
+
+  ConstrainedProblem combined = p;
+  int full_calls = 0;
+  const ObjectiveFunction objective = p.objective;
+  combined.objective = [&full_calls, objective](const VectorXd& x, VectorXd& g) {
+    ++full_calls;
+    return objective(x, g);
+  };
+  combined.values = [&p](const VectorXd& x, VectorXd& rows) {
+    VectorXd g(4), ce(1), ci(1);
+    MatrixXd je(1, 4), ji(1, 4);
+    p.equality(x, ce, je);
+    p.inequality(x, ci, ji);
+    rows << ce(0), ci(0);
+    return p.objective(x, g);
+  };
+  combined.weighted_gradient = [&p](const VectorXd& x, double objective_weight, const VectorXd& w, VectorXd& grad) {
+    VectorXd g(4), ce(1), ci(1);
+    MatrixXd je(1, 4), ji(1, 4), jac(2, 4);
+    p.objective(x, g);
+    p.equality(x, ce, je);
+    p.inequality(x, ci, ji);
+    jac << je, ji;
+    if (objective_weight == 0.0) {
+      grad.setZero();
+    } else {
+      grad = objective_weight * g;
+    }
+    grad.noalias() += jac.transpose() * w;
+  };
+  const AlResult r = augmented_lagrangian_minimize(combined, x0);
+  MESSAGE(describe(r));
+  CHECK(r.status == plain.status);
+  CHECK(r.evaluations == plain.evaluations);
+  CHECK(r.inner_iterations == plain.inner_iterations);
+  CHECK((r.x.array() == plain.x.array()).all());
+  CHECK(full_calls == 1);
+
+  ConstrainedProblem half = p;
+  half.values = combined.values;
+  const AlResult refused = augmented_lagrangian_minimize(half, x0);
+  CHECK(refused.status == AlStatus::invalid_input);
+}
+
 TEST_CASE("augmented-lagrangian: a noisy gradient ends Stalled at a feasible point, not in a loop") {
   // (x1 − 1)² + (x2 − 2)² on x1 + x2 = 1 (solution (0, 1)), with a deterministic gradient error
   // of 1e-6 that makes the stationarity tolerance 1e-8 unreachable.
