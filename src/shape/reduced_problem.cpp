@@ -202,11 +202,9 @@ void ReducedProblem::evaluate_values(const Eigen::VectorXd& x, bool all_integral
   // Per-vertex rows, projected onto Γ in one pass: the derivatives of the integrals the goal
   // uses (R of the 10), inner by α; with outer offsets also inner by β (through lo) and outer by
   // β; then the overshoot term's derivative by Γα (and by Γβ).
-  const bool overshoot_term = clamp && options_.overshoot_weight > 0.0;
-  const Eigen::Index R = integral_rows_;
-  const Eigen::Index jacobian_rows = outer ? 3 * R : R;
-  const Eigen::Index overshoot_row = jacobian_rows;
-  const Eigen::Index rows = jacobian_rows + (overshoot_term ? (outer ? 2 : 1) : 0);
+  const bool overshoot_term = has_overshoot_term();
+  const Eigen::Index overshoot_row = first_overshoot_row();
+  const Eigen::Index rows = overshoot_row + (overshoot_term ? (outer ? 2 : 1) : 0);
   per_vertex_.resize(rows, n);
   e.inner_offset.resize(n);
   e.inner_slope.resize(n);
@@ -324,9 +322,8 @@ const ReducedProblem::Evaluation& ReducedProblem::evaluate_with_integrals(const 
   Evaluation& e = cache_;
   const bool outer = options_.outer;
   const Eigen::Index R = integral_rows_;
-  const Eigen::Index jacobian_rows = outer ? 3 * R : R;
-  const Eigen::Index overshoot_row = jacobian_rows;
-  const bool overshoot_term = options_.bounds == BoundsMode::clamp && options_.overshoot_weight > 0.0;
+  const Eigen::Index overshoot_row = first_overshoot_row();
+  const bool overshoot_term = has_overshoot_term();
 
   Eigen::MatrixXd projected_part[2];
   auto projection_part = [&](int part) {
@@ -388,8 +385,8 @@ void ReducedProblem::combine_vertex_rows(const Vector20d& weights, double object
   using Column = Eigen::Matrix<double, Rows, 1>;
   const bool outer = options_.outer;
   const Column w_out = weights.head<Rows>(), w_in = weights.segment<Rows>(10);
-  const Eigen::Index overshoot_row = outer ? 3 * integral_rows_ : integral_rows_;
-  const bool overshoot_term = options_.bounds == BoundsMode::clamp && options_.overshoot_weight > 0.0;
+  const Eigen::Index overshoot_row = first_overshoot_row();
+  const bool overshoot_term = has_overshoot_term();
   // Like fill_vertex_rows, the face halves' columns are cleared once read.
   for (Eigen::Index i = begin; i < end; ++i) {
     Eigen::Map<Column> inner_a(inner_jacobian_[0].col(i).data()), inner_b(inner_jacobian_[1].col(i).data());

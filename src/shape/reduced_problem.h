@@ -140,6 +140,10 @@ class ReducedProblem {
   // the vertex's slope. Each entry (a + b) · slope, whatever Rows.
   template <int Rows>
   void fill_vertex_rows(Eigen::Index begin, Eigen::Index end);
+  // The overshoot term is on (clamp mode with a weight), and its rows of per_vertex_ (by Γα, then
+  // by Γβ) follow the integrals' Jacobian rows: R of them, 3R with outer offsets.
+  bool has_overshoot_term() const { return options_.bounds == BoundsMode::clamp && options_.overshoot_weight > 0.0; }
+  Eigen::Index first_overshoot_row() const { return options_.outer ? 3 * integral_rows_ : integral_rows_; }
   void run_parts(const std::function<void(int)>& part) const;  // part(0) and part(1), maybe on two threads
   void build_hard_bounds();
   void update_outer_inward_limit();

@@ -56,6 +56,40 @@ ConstrainedProblem rosenbrock_on_sphere() {
   return p;
 }
 
+// min x1 x4 (x1+x2+x3) + x3, Σx² = 40, x1x2x3x4 ≥ 25, the linear row `a` (x2 − x3) ≤ 0.8,
+// 1 ≤ x ≤ 5. The problem refers to `a`, which must outlive it.
+MatrixXd hs071_like_linear_row() {
+  MatrixXd a(1, 4);
+  a << 0.0, 1.0, -1.0, 0.0;
+  return a;
+}
+
+ConstrainedProblem hs071_like(const MatrixXd& a) {
+  ConstrainedProblem p;
+  p.num_variables = 4;
+  p.objective = [](const VectorXd& x, VectorXd& g) {
+    const double s = x(0) + x(1) + x(2);
+    g << x(3) * s + x(0) * x(3), x(0) * x(3), x(0) * x(3) + 1.0, x(0) * s;
+    return x(0) * x(3) * s + x(2);
+  };
+  p.num_equality = 1;
+  p.equality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
+    c(0) = x.squaredNorm() - 40.0;
+    j.row(0) = 2.0 * x.transpose();
+  };
+  p.num_inequality = 1;
+  p.inequality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
+    c(0) = 25.0 - x(0) * x(1) * x(2) * x(3);
+    j << -x(1) * x(2) * x(3), -x(0) * x(2) * x(3), -x(0) * x(1) * x(3), -x(0) * x(1) * x(2);
+  };
+  p.linear_matrix = &a;
+  p.linear_lower = VectorXd::Constant(1, -kInf);
+  p.linear_upper = VectorXd::Constant(1, 0.8);  // active: x2 − x3 = 0.92 at HS071's solution
+  p.lower = VectorXd::Constant(4, 1.0);
+  p.upper = VectorXd::Constant(4, 5.0);
+  return p;
+}
+
 }  // namespace
 
 TEST_CASE("augmented-lagrangian: 100,000 linear rows, 36 variables, solution known by construction") {
@@ -174,30 +208,8 @@ TEST_CASE("augmented-lagrangian: KKT residual with the returned multipliers (HS0
   // min x1 x4 (x1+x2+x3) + x3, Σx² = 40, x1x2x3x4 ≥ 25, a linear row x2 − x3 ≤ 0.8,
   // 1 ≤ x ≤ 5. The stationarity of the Lagrangian with the returned (unscaled) multipliers is
   // checked on the variables strictly inside their bounds.
-  ConstrainedProblem p;
-  p.num_variables = 4;
-  p.objective = [](const VectorXd& x, VectorXd& g) {
-    const double s = x(0) + x(1) + x(2);
-    g << x(3) * s + x(0) * x(3), x(0) * x(3), x(0) * x(3) + 1.0, x(0) * s;
-    return x(0) * x(3) * s + x(2);
-  };
-  p.num_equality = 1;
-  p.equality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
-    c(0) = x.squaredNorm() - 40.0;
-    j.row(0) = 2.0 * x.transpose();
-  };
-  p.num_inequality = 1;
-  p.inequality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
-    c(0) = 25.0 - x(0) * x(1) * x(2) * x(3);
-    j << -x(1) * x(2) * x(3), -x(0) * x(2) * x(3), -x(0) * x(1) * x(3), -x(0) * x(1) * x(2);
-  };
-  MatrixXd a(1, 4);
-  a << 0.0, 1.0, -1.0, 0.0;
-  p.linear_matrix = &a;
-  p.linear_lower = VectorXd::Constant(1, -kInf);
-  p.linear_upper = VectorXd::Constant(1, 0.8);  // active: x2 − x3 = 0.92 at HS071's solution
-  p.lower = VectorXd::Constant(4, 1.0);
-  p.upper = VectorXd::Constant(4, 5.0);
+  const MatrixXd a = hs071_like_linear_row();
+  const ConstrainedProblem p = hs071_like(a);
   VectorXd x0(4);
   x0 << 1.0, 5.0, 5.0, 1.0;
   const AlResult r = augmented_lagrangian_minimize(p, x0);
@@ -224,30 +236,8 @@ TEST_CASE("augmented-lagrangian: values and one weighted gradient per point give
   // as the solver forms it from the full callbacks (w_f ∇f, then + J^T w), so the two runs must
   // take the same iterates bit for bit; and with values offered, the full callbacks (every row's
   // gradient) are asked for at the start point only, for the row scales.
-  ConstrainedProblem p;
-  p.num_variables = 4;
-  p.objective = [](const VectorXd& x, VectorXd& g) {
-    const double s = x(0) + x(1) + x(2);
-    g << x(3) * s + x(0) * x(3), x(0) * x(3), x(0) * x(3) + 1.0, x(0) * s;
-    return x(0) * x(3) * s + x(2);
-  };
-  p.num_equality = 1;
-  p.equality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
-    c(0) = x.squaredNorm() - 40.0;
-    j.row(0) = 2.0 * x.transpose();
-  };
-  p.num_inequality = 1;
-  p.inequality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
-    c(0) = 25.0 - x(0) * x(1) * x(2) * x(3);
-    j << -x(1) * x(2) * x(3), -x(0) * x(2) * x(3), -x(0) * x(1) * x(3), -x(0) * x(1) * x(2);
-  };
-  MatrixXd a(1, 4);
-  a << 0.0, 1.0, -1.0, 0.0;
-  p.linear_matrix = &a;
-  p.linear_lower = VectorXd::Constant(1, -kInf);
-  p.linear_upper = VectorXd::Constant(1, 0.8);
-  p.lower = VectorXd::Constant(4, 1.0);
-  p.upper = VectorXd::Constant(4, 5.0);
+  const MatrixXd a = hs071_like_linear_row();
+  const ConstrainedProblem p = hs071_like(a);
   VectorXd x0(4);
   x0 << 1.0, 5.0, 5.0, 1.0;
   const AlResult plain = augmented_lagrangian_minimize(p, x0);

@@ -61,6 +61,20 @@ GoalSpec spin_goal() {
   return g;
 }
 
+GoalSpec volume_goal() {
+  GoalSpec g;
+  g.kind = GoalKind::volume;
+  g.target_volume = 0.2;
+  return g;
+}
+
+GoalSpec roly_goal() {
+  GoalSpec g;
+  g.kind = GoalKind::roly_poly;
+  g.axis_point = {0.0, 0.0, 0.5};
+  return g;
+}
+
 GoalSpec filled_goal() {
   GoalSpec g;
   g.kind = GoalKind::stand_filled;
@@ -200,13 +214,7 @@ TEST_CASE("the solver's evaluations (only the integrals the goal reads) agree bi
   // reading 1, 4 and 10 integrals, with and without outer offsets, over several points so the
   // work space kept between evaluations is exercised.
   const Setup s = sphere_setup(8);
-  GoalSpec volume;
-  volume.kind = GoalKind::volume;
-  volume.target_volume = 0.2;
-  GoalSpec roly;
-  roly.kind = GoalKind::roly_poly;
-  roly.axis_point = {0.0, 0.0, 0.5};
-  for (const GoalSpec& goal : {volume, roly, filled_goal(), spin_goal()})
+  for (const GoalSpec& goal : {volume_goal(), roly_goal(), filled_goal(), spin_goal()})
     for (bool outer : {false, true}) {
       CAPTURE(to_string(goal.kind));
       CAPTURE(outer);
@@ -249,13 +257,7 @@ TEST_CASE("the solver's combined gradient agrees with the Jacobians of evaluate(
   // identity basis (on the small sphere: its hard mode is dense #V by #V); values-only calls at
   // other points come in between, as a line search makes them.
   const Setup large = sphere_setup(8, 4), small = sphere_setup(8);
-  GoalSpec volume;
-  volume.kind = GoalKind::volume;
-  volume.target_volume = 0.2;
-  GoalSpec roly;
-  roly.kind = GoalKind::roly_poly;
-  roly.axis_point = {0.0, 0.0, 0.5};
-  for (const GoalSpec& goal : {volume, roly, filled_goal(), spin_goal()})
+  for (const GoalSpec& goal : {volume_goal(), roly_goal(), filled_goal(), spin_goal()})
     for (bool outer : {false, true})
       for (BoundsMode bounds : {BoundsMode::clamp, BoundsMode::hard})
         for (bool identity : {false, true}) {
