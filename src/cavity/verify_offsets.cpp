@@ -88,7 +88,7 @@ long long unmatched_edges(const Mesh& mesh) {
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
                                     const std::vector<char>& left_solid, double thin_below, int threads,
                                     const IntersectingFaces* inner_self, const TriangleBvh* inner_tree,
-                                    const TriangleBvh* outer_tree) {
+                                    const TriangleBvh* outer_tree, const WallBounds& wall_bounds) {
   // The two trees, then the two intersection searches, on two threads when there are: the same
   // result either way.
   WorkerPool pool(std::min(std::max(threads, 1), 2));
@@ -149,6 +149,9 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
   // Searching twice the radius makes anchors that cover the next vertices (neighbours on a
   // contoured cavity lie a fraction of the wall apart) and still prunes the BVH.
   //
+  // A vertex whose known lower bound (WallBounds, less its slack) reaches the radius is skipped the
+  // same way: it is known to be farther.
+  //
   // Why the split changes nothing: the seed is some vertex's distance, so at least the thinnest
   // wall m. A vertex skipped or not found is farther than the pruning radius, which is at least
   // thin_below and at least min(seed, the range's thinnest so far) >= m: it is neither thin nor
@@ -162,6 +165,10 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
     std::vector<int> thin;
   };
   const double rounding = 1e-12 * outer_full.diagonal();
+  const bool bounds_fit = wall_bounds.known && wall_bounds.known->size() == static_cast<std::size_t>(inner.V.rows());
+  const std::vector<double>* known_lower = bounds_fit ? wall_bounds.known : nullptr;
+  std::vector<double>* record = wall_bounds.record;
+  if (record) record->assign(static_cast<std::size_t>(inner.V.rows()), 0.0);
   auto measured_vertex = [&](Eigen::Index i) {
     const std::size_t u = static_cast<std::size_t>(i);
     return !is_fixed(u) && !is_left_solid(u);
@@ -175,10 +182,17 @@ SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const 
       // Only distances below the thinnest so far or below thin_below matter.
       const double radius = std::max(thin_below, std::min(seed, w.thinnest));
       const Eigen::Vector3d p = inner.V.row(i).transpose();
-      if (anchor_distance - (p - anchor).norm() >= radius + rounding) continue;
+      const std::size_t u = static_cast<std::size_t>(i);
+      if (known_lower && (*known_lower)[u] - wall_bounds.slack >= radius + rounding) continue;
+      const double from_anchor = anchor_distance - (p - anchor).norm();
+      if (from_anchor >= radius + rounding) {
+        if (record) (*record)[u] = from_anchor;
+        continue;
+      }
       const ClosestPoint c = closest_point(outer_full, p, 2.0 * radius);
       anchor = p;
       anchor_distance = c.found ? c.distance : 2.0 * radius;
+      if (record) (*record)[u] = anchor_distance;
       if (!c.found || !(c.distance < std::max(thin_below, w.thinnest))) continue;
       if (c.distance < w.thinnest) {
         w.thinnest = c.distance;
@@ -336,7 +350,8 @@ Verification verify_offsets(const VerifyInput& in) {
   const SurfaceDefects defects =
       find_surface_defects(outer, inner, in.fixed, {}, thin_below, in.threads, searched ? &in.rounding->inner_pairs : nullptr,
                            searched ? in.rounding->inner_tree.get() : nullptr,
-                           searched && in.outer == &in.rounding->outer ? in.rounding->outer_tree.get() : nullptr);
+                           searched && in.outer == &in.rounding->outer ? in.rounding->outer_tree.get() : nullptr,
+                           in.wall_bounds);
   ValidityFigures& v = out.validity.emplace();
   v.inner_self_intersections = static_cast<long long>(defects.self_intersection_pairs);
   v.inner_outer_crossings = static_cast<long long>(defects.crossing_pairs);

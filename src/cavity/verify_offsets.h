@@ -31,6 +31,18 @@ struct SurfaceDefects {
   int thinnest_vertex = -1;
   bool empty() const { return intersecting_vertices.empty() && thin_wall_vertices.empty(); }
 };
+// Per inner vertex, lower bounds of its distance to the outer surface, carried from one check of
+// two surfaces to a check of the same surfaces rounded for output (round_for_output.h): `record`,
+// when set, receives the first check's bounds (exact where a vertex was searched; 0 for the vertices
+// not measured); `known`, when set, holds such bounds for the meshes now checked once `slack` (what
+// rounding can change a distance, rounding_wall_margin) is taken off, and a vertex they put clear
+// of every distance still to be found is not searched again. The result is the same with or
+// without them (see the wall scan in verify_offsets.cpp).
+struct WallBounds {
+  const std::vector<double>* known = nullptr;
+  double slack = 0.0;
+  std::vector<double>* record = nullptr;
+};
 // `threads` (>= 1) splits the tree builds and the intersection searches; the result is the same
 // for any count.
 // `inner_self` and `inner_tree`, when given, are inner's own self-intersection search
@@ -40,7 +52,7 @@ struct SurfaceDefects {
 SurfaceDefects find_surface_defects(const Mesh& outer, const Mesh& inner, const std::vector<char>& fixed,
                                     const std::vector<char>& left_solid, double thin_below, int threads = 2,
                                     const IntersectingFaces* inner_self = nullptr, const TriangleBvh* inner_tree = nullptr,
-                                    const TriangleBvh* outer_tree = nullptr);
+                                    const TriangleBvh* outer_tree = nullptr, const WallBounds& wall_bounds = {});
 
 struct VerifyInput {
   const Mesh* outer = nullptr;  // outer surface (the input itself without outer offsets)
@@ -67,6 +79,8 @@ struct VerifyInput {
   // stand-filled: the liquid, when an opening keeps it below the void's top (cavity/open_cavity.h);
   // its integrals replace the void's in the filled figures. Null: the whole void is filled.
   const Mesh* liquid = nullptr;
+  // The wall's per-vertex bounds to record from this check or to start it from (WallBounds above).
+  WallBounds wall_bounds;
 };
 
 // Whether the solid stands on its support polygon (mass/stability.h), input units.

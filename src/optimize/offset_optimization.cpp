@@ -669,15 +669,23 @@ Cavity verify_offset_surfaces(const OptimizeOptions& options, const Frame& f, co
   verify_input.goal_only = goal_only;
   const auto& tick = options.on_stage_progress;
   if (tick) tick("verify", -1.0);
+  // The wall's per-vertex bounds, for the check of the rounded surfaces: they move each distance
+  // by at most the rounding's margin, so only the vertices near the thinnest are searched again.
+  std::vector<double> wall_lower;
+  const bool rounded_check = options.output_precision != StoredPrecision::exact;
+  if (rounded_check) verify_input.wall_bounds.record = &wall_lower;
   c.verification = verify_offsets(verify_input);
   // As written: rounded to the output's precision and verified again (only when it can pass:
   // on real meshes the offset surface rarely verifies even unrounded).
   RoundedForOutput offset_written;
-  if (options.output_precision != StoredPrecision::exact && c.verification.goal_met && c.verification.valid) {
+  if (rounded_check && c.verification.goal_met && c.verification.valid) {
     offset_written = round_for_output(outer, inner, b.band.fixed, options.output_precision, options.threads);
     verify_input.outer = &offset_written.outer;
     verify_input.inner = &offset_written.inner;
     verify_input.rounding = &offset_written;
+    const double largest = std::max(outer.V.size() ? outer.V.cwiseAbs().maxCoeff() : 0.0,
+                                    inner.V.size() ? inner.V.cwiseAbs().maxCoeff() : 0.0);
+    verify_input.wall_bounds = WallBounds{&wall_lower, rounding_wall_margin(largest, options.output_precision), nullptr};
     c.verification = verify_offsets(verify_input);
   } else {
     offset_written.outer = outer;

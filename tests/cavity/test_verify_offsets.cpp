@@ -7,7 +7,9 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "../mass/geometry_checks.h"
@@ -177,5 +179,90 @@ TEST_CASE("find_surface_defects' wall scan in ranges: every vertex's closest poi
     CHECK(thick.thinnest_wall == thinnest);
     CHECK(thick.thinnest_vertex == thinnest_vertex);
     CHECK(thick.thin_wall_vertices.empty());
+  }
+}
+
+TEST_CASE("find_surface_defects from an earlier scan's bounds: the walls of the moved surfaces as measuring every vertex finds them") {
+  // The off-centre sphere pair above, scanned once recording its bounds; then the inner surface
+  // is moved by at most delta per coordinate (as rounding for output moves it, only more) so that
+  // the second-thinnest vertex becomes the thinnest, and the moved pair is scanned from the
+  // recorded bounds with the slack such a move allows (2√3 delta: the vertex and the surface
+  // point each move at most √3 delta).
+  // Vertex 0 is made a thinnest one, so the scan's seed (vertex 0 among its samples) is the
+  // thinnest wall and every range prunes at it from its first vertex: a bound taken without its
+  // slack would skip the runner-up.
+  const Mesh outer = make_icosphere(10.0, 4);
+  Mesh inner = make_icosphere(7.0, 4);
+  inner.V.col(0).array() += 1.7;
+  const TriangleBvh bvh(outer.V, outer.F);
+  std::vector<double> distance(static_cast<std::size_t>(inner.V.rows()));
+  auto measure = [&] {
+    for (Eigen::Index i = 0; i < inner.V.rows(); ++i)
+      distance[static_cast<std::size_t>(i)] = closest_point(bvh, inner.V.row(i).transpose()).distance;
+  };
+  measure();
+  inner.V.row(0) = inner.V.row(std::min_element(distance.begin(), distance.end()) - distance.begin());
+  measure();
+  std::vector<int> order(distance.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return std::make_pair(distance[static_cast<std::size_t>(a)], a) < std::make_pair(distance[static_cast<std::size_t>(b)], b);
+  });
+  const int thinnest = order[0];
+  int runner_up = -1;  // the nearest vertex clearly farther than the thinnest (symmetric ones tie)
+  for (const int v : order)
+    if (distance[static_cast<std::size_t>(v)] > distance[static_cast<std::size_t>(thinnest)] + 1e-6) {
+      runner_up = v;
+      break;
+    }
+  REQUIRE(runner_up >= 0);
+  const double gap = distance[static_cast<std::size_t>(runner_up)] - distance[static_cast<std::size_t>(thinnest)];
+  REQUIRE(gap > 0.0);
+  const double delta = 2.0 * gap;  // per coordinate: brings the runner-up nearer than the thinnest
+  const double slack = 2.0 * std::sqrt(3.0) * delta;
+
+  for (const double thin_below : {2.0, 0.5 * distance[static_cast<std::size_t>(thinnest)]}) {
+    for (const int threads : {1, 2}) {
+      CAPTURE(thin_below);
+      CAPTURE(threads);
+      std::vector<double> lower;
+      WallBounds record;
+      record.record = &lower;
+      const SurfaceDefects before = find_surface_defects(outer, inner, {}, {}, thin_below, threads, nullptr, nullptr, nullptr, record);
+      REQUIRE(thinnest == 0);
+      CHECK(before.thinnest_vertex == thinnest);
+      REQUIRE(lower.size() == distance.size());
+      for (std::size_t i = 0; i < lower.size(); ++i) CHECK(lower[i] <= distance[i] * (1.0 + 1e-12));
+
+      // The runner-up towards its closest outer point by delta per coordinate, and every tenth
+      // vertex (not vertex 0) away from it by delta/2.
+      Mesh moved = inner;
+      for (Eigen::Index i = 0; i < moved.V.rows(); ++i) {
+        const Eigen::Vector3d p = inner.V.row(i).transpose();
+        const Eigen::Vector3d towards = closest_point(bvh, p).point - p;
+        const double step = i == runner_up ? delta : i % 10 == 5 ? -0.5 * delta : 0.0;
+        for (int c = 0; c < 3; ++c) moved.V(i, c) += step * (towards(c) > 0.0 ? 1.0 : towards(c) < 0.0 ? -1.0 : 0.0);
+      }
+      double moved_thinnest = std::numeric_limits<double>::infinity();
+      int moved_vertex = -1;
+      std::vector<int> moved_thin;
+      for (Eigen::Index i = 0; i < moved.V.rows(); ++i) {
+        const double d = closest_point(bvh, moved.V.row(i).transpose()).distance;
+        if (d < moved_thinnest) {
+          moved_thinnest = d;
+          moved_vertex = static_cast<int>(i);
+        }
+        if (d < thin_below) moved_thin.push_back(static_cast<int>(i));
+      }
+      REQUIRE(moved_vertex == runner_up);  // the bounds had a winner to miss
+
+      WallBounds known;
+      known.known = &lower;
+      known.slack = slack;
+      const SurfaceDefects after = find_surface_defects(outer, moved, {}, {}, thin_below, threads, nullptr, nullptr, nullptr, known);
+      CHECK(after.thinnest_wall == moved_thinnest);
+      CHECK(after.thinnest_vertex == runner_up);
+      CHECK(after.thin_wall_vertices == moved_thin);
+    }
   }
 }
