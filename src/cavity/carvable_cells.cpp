@@ -5,8 +5,8 @@
 #include <limits>
 
 #include "cavity/contour_cavity.h"
+#include "cavity/distance_band.h"
 #include "geometry/aabb.h"
-#include "geometry/closest_point.h"
 #include "geometry/grid_winding.h"
 #include "util/parallel.h"
 
@@ -14,146 +14,7 @@ namespace offsetopt {
 
 namespace {
 
-constexpr int kBlock = 4;  // points per block side in the distance passes
 constexpr int kParts = 2;  // every parallel loop is cut into this many fixed parts
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// The faces whose own box lies within `radius` of p (a superset of those within radius).
-void faces_near(const TriangleBvh& bvh, const Eigen::Vector3d& p, double radius, std::vector<int>& out) {
-  out.clear();
-  const double limit = radius * radius;
-  bvh.traverse([&](const Aabb& box) { return box.squared_distance(p) <= limit; },
-               [&](int face) {
-                 if (bvh.face_box(face).squared_distance(p) <= limit) out.push_back(face);
-                 return true;
-               });
-}
-
-// The distance from p to the nearest of `faces`, +inf when there is none; or, as soon as one face
-// is nearer than `enough`, that face's distance (all the caller needs to know then). `hint` (a face
-// near p, or -1) is measured first, and faces whose box lies beyond the best so far, or beyond
-// `bound` (an upper bound on the answer), are skipped unseen; should none lie within the bound
-// after all, the search runs again unbounded.
-double nearest_of(const TriangleBvh& bvh, const std::vector<int>& faces, const Eigen::Vector3d& p, double bound, double enough,
-                  int hint) {
-  double best = bound * bound;
-  const double enough_squared = enough > 0.0 ? enough * enough : -1.0;
-  bool found = false;
-  auto measure = [&](int face) {
-    if (bvh.face_box(face).squared_distance(p) > best) return;
-    const Eigen::Vector3d q = closest_point_on_triangle(p, bvh.corner(face, 0), bvh.corner(face, 1), bvh.corner(face, 2));
-    const double squared = (q - p).squaredNorm();
-    if (squared < best) {
-      best = squared;
-      found = true;
-    }
-  };
-  if (hint >= 0) measure(hint);
-  for (std::size_t f = 0; f < faces.size() && !(best < enough_squared); ++f)
-    if (faces[f] != hint) measure(faces[f]);
-  if (!found) return bound == kInf ? kInf : nearest_of(bvh, faces, p, kInf, enough, -1);
-  return std::sqrt(best);
-}
-
-// Per point of `g` where mask != 0: how many of the ascending `thresholds` its unsigned distance to
-// the surface reaches (d >= t, as face_within decides it). One capped query per block of 4³ points:
-// its centre's distance D and closest point q bound every point's distance, d(p) >= D − |p − c| and
-// d(p) <= min(D + |p − c|, |p − q|), which settle most points (all of a block no threshold comes
-// near). A 2³ sub-block with points left open gathers the faces that can be nearest to any of its
-// points (within u + 2 r2 of its centre c2, u bounding d(c2), r2 its half diagonal; or within
-// top + r2 when that is less: a point with no face that near reaches every threshold), and each
-// open point's distance is the least over them. Every margin is `rounding`, far above the
-// computed distances' errors; a distance within it of a threshold is decided by face_within itself.
-std::vector<std::int8_t> distance_band(const NodeGrid& g, const std::vector<std::int8_t>& mask, const TriangleBvh& bvh,
-                                       const std::vector<double>& thresholds, int threads, std::int64_t& queries) {
-  std::vector<std::int8_t> band(static_cast<std::size_t>(g.node_count()), 0);
-  if (thresholds.empty()) return band;
-  const int k = static_cast<int>(thresholds.size());
-  const double top = thresholds.back();
-  const double rounding = 1e-9 * g.spacing;
-  auto count_below = [&](double d) {
-    int c = 0;
-    while (c < k && thresholds[static_cast<std::size_t>(c)] <= d) ++c;
-    return static_cast<std::int8_t>(c);
-  };
-  const std::int64_t bx = (g.nx + kBlock - 1) / kBlock, by = (g.ny + kBlock - 1) / kBlock, bz = (g.nz + kBlock - 1) / kBlock;
-  std::int64_t per_part[kParts] = {0, 0};
-  WorkerPool pool(std::max(1, std::min(threads, kParts)));
-  pool.run_parts(kParts, [&](int part) {
-    std::vector<int> candidates;
-    for (std::int64_t kb = split_point(bz, kParts, part); kb < split_point(bz, kParts, part + 1); ++kb)
-      for (std::int64_t jb = 0; jb < by; ++jb)
-        for (std::int64_t ib = 0; ib < bx; ++ib) {
-          const std::int64_t i0 = ib * kBlock, j0 = jb * kBlock, k0 = kb * kBlock;
-          const std::int64_t i1 = std::min(i0 + kBlock, g.nx), j1 = std::min(j0 + kBlock, g.ny), k1 = std::min(k0 + kBlock, g.nz);
-          bool any = false;
-          for (std::int64_t kk = k0; kk < k1 && !any; ++kk)
-            for (std::int64_t j = j0; j < j1 && !any; ++j)
-              for (std::int64_t i = i0; i < i1 && !any; ++i) any = mask[static_cast<std::size_t>(g.index(i, j, kk))] != 0;
-          if (!any) continue;
-          const Eigen::Vector3d lo(g.x(i0), g.y(j0), g.z(k0)), hi(g.x(i1 - 1), g.y(j1 - 1), g.z(k1 - 1));
-          const Eigen::Vector3d mid = 0.5 * (lo + hi);
-          const double half_diagonal = 0.5 * (hi - lo).norm();
-          const ClosestPoint c = closest_point(bvh, mid, top + half_diagonal + g.spacing);
-          const double D = c.found ? c.distance : kInf;
-          const std::int8_t block_low = count_below(D - half_diagonal - rounding);
-          if (block_low == count_below(D + half_diagonal + rounding)) {
-            for (std::int64_t kk = k0; kk < k1; ++kk)
-              for (std::int64_t j = j0; j < j1; ++j)
-                for (std::int64_t i = i0; i < i1; ++i) {
-                  const std::size_t v = static_cast<std::size_t>(g.index(i, j, kk));
-                  if (mask[v]) band[v] = block_low;
-                }
-            continue;
-          }
-          for (std::int64_t sk = k0; sk < k1; sk += 2)
-            for (std::int64_t sj = j0; sj < j1; sj += 2)
-              for (std::int64_t si = i0; si < i1; si += 2) {
-                const std::int64_t si1 = std::min(si + 2, i1), sj1 = std::min(sj + 2, j1), sk1 = std::min(sk + 2, k1);
-                const Eigen::Vector3d sub_lo(g.x(si), g.y(sj), g.z(sk)), sub_hi(g.x(si1 - 1), g.y(sj1 - 1), g.z(sk1 - 1));
-                const Eigen::Vector3d sub_mid = 0.5 * (sub_lo + sub_hi);
-                const double sub_half_diagonal = 0.5 * (sub_hi - sub_lo).norm();
-                bool gathered = false;
-                for (std::int64_t kk = sk; kk < sk1; ++kk)
-                  for (std::int64_t j = sj; j < sj1; ++j)
-                    for (std::int64_t i = si; i < si1; ++i) {
-                      const std::size_t v = static_cast<std::size_t>(g.index(i, j, kk));
-                      if (!mask[v]) continue;
-                      const Eigen::Vector3d p(g.x(i), g.y(j), g.z(kk));
-                      const double r = (p - mid).norm();
-                      double upper = D + r;
-                      if (c.found) upper = std::min(upper, (p - c.point).norm());
-                      const std::int8_t low = count_below(D - r - rounding), high = count_below(upper + rounding);
-                      if (low >= high) {
-                        band[v] = low;
-                        continue;
-                      }
-                      if (!gathered) {
-                        double centre_upper = D + (sub_mid - mid).norm();
-                        if (c.found) centre_upper = std::min(centre_upper, (sub_mid - c.point).norm());
-                        const double reach = std::min(centre_upper + sub_half_diagonal, top) + rounding;
-                        faces_near(bvh, sub_mid, reach + sub_half_diagonal + rounding, candidates);
-                        gathered = true;
-                      }
-                      // Only the thresholds in [low, high) are open, lowest first (d >= t for a
-                      // threshold implies it for the lower ones).
-                      ++per_part[part];
-                      const double d = nearest_of(bvh, candidates, p, upper + rounding, thresholds[static_cast<std::size_t>(low)] - rounding, c.face);
-                      std::int8_t reached = low;
-                      while (reached < high) {
-                        const double t = thresholds[static_cast<std::size_t>(reached)];
-                        if (d < t - rounding) break;
-                        if (d <= t + rounding && face_within(bvh, p, t, true)) break;
-                        ++reached;
-                      }
-                      band[v] = reached;
-                    }
-              }
-        }
-  });
-  queries += per_part[0] + per_part[1];
-  return band;
-}
 
 }  // namespace
 
