@@ -19,7 +19,7 @@ namespace offsetopt {
 //   distance is the least over them. Every margin is 1e-9 of the spacing, far above the computed
 //   distances' errors; a distance within it of a threshold is decided by face_within itself.
 // by_faces: every face measures the points of its box grown by the largest threshold, and each
-//   point keeps its least squared distance (one double per grid point: grids up to 2^22 points).
+//   point keeps its least squared distance (one double per grid point, 32 MB at 2^22 points).
 //   Cheaper where the faces are few against the points (the demo meshes: 20% fewer instructions),
 //   far dearer where they are many (a scan on the same grid).
 // automatic: by_faces on a grid of at most 2^22 points when its point-face tests number at most
