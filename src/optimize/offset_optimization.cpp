@@ -159,7 +159,13 @@ constexpr double kFinestQuadricCellsPerWall = 3.0;  // one refinement of the def
 // How far below its model's objective a contour's may fall, relative: on the census (56 contours
 // that verified) at most 1.4e-4 (a sphere), every other one above it.
 constexpr double kContourBelowModel = 1e-3;
-constexpr int kOuterFoldRepairs = 4;           // see OffsetSolve::solve
+// See OffsetSolve::solve: the first kOuterFoldHalvings repairs halve the folding faces' limits,
+// the rest set them to 0, and each repair is searched again, up to kOuterFoldRepairs. Four with
+// the last at 0 and no search after it left cgal-data_man standing filled with --outer with 2
+// new crossing pairs (exit 3 on a goal a void reaches): a fold moves next door when its own
+// vertices stop.
+constexpr int kOuterFoldHalvings = 3;
+constexpr int kOuterFoldRepairs = 8;
 
 // The solve met the goal's constraints: neither infeasible nor stopped, and violated by at most
 // 100 times the solver's feasibility tolerance (normalised frame); a NaN violation is not met.
@@ -529,12 +535,12 @@ class OffsetSolve {
   bool solve(int round) {
     minimize(round);
     // The outer limits are local estimates (shape/outer_offset_limit.h): where the thickened
-    // surface still folds, its limits there are halved (the last time set to 0) and the problem is
-    // solved again from where it ended.
+    // surface still folds, its limits there are halved (after kOuterFoldHalvings times, set to 0)
+    // and the problem is solved again from where it ended.
     for (int repair = 0; options_.outer && repair < kOuterFoldRepairs && !stopped(); ++repair) {
       const NewSelfIntersections folds = new_self_intersections(outer, b_.input_pairs, 100000, options_.threads);
       if (folds.pairs == 0) break;
-      const double factor = repair + 1 < kOuterFoldRepairs ? 0.5 : 0.0;
+      const double factor = repair < kOuterFoldHalvings ? 0.5 : 0.0;
       b_.band.outer_limit =
           shrink_outer_limit(f_.normalized, b_.band.outer_limit, folds.new_pairs, factor, OuterOffsetLimitOptions{}.slope);
       problem_->set_outer_limit(b_.band.outer_limit);
