@@ -57,7 +57,7 @@ double nearest_of(const TriangleBvh& bvh, const std::vector<int>& faces, const E
 // BandMethod::automatic's choice (distance_band.h). Instructions of the carvable cells by points
 // against by faces (callgrind, --threads 1) and the tests per masked point: sphere 250 -> 195 M
 // (2.4 tests), buoy 219 -> 178 (3.6), roly-poly 219 -> 174 (4.0), top 185 -> 148 (6.1), bottle
-// `stand` 145 -> 121 (8.1), bottle `stand-filled --outer`, five thresholds up to 7.7 h, 643 -> 959
+// `stand` 145 -> 121 (8.1), bottle `stand-filled --outer`, five thresholds up to 3.9 h, 643 -> 959
 // (9.7): the cut sits between the last two.
 constexpr std::int64_t kFacePassPoints = std::int64_t{1} << 22;
 constexpr double kFacePassTestsPerPoint = 8.5;
