@@ -64,7 +64,8 @@ MatrixXd hs071_like_linear_row() {
   return a;
 }
 
-ConstrainedProblem hs071_like(const MatrixXd& a) {
+// The same without the linear row: HS071 itself.
+ConstrainedProblem hs071_without_row() {
   ConstrainedProblem p;
   p.num_variables = 4;
   p.objective = [](const VectorXd& x, VectorXd& g) {
@@ -82,11 +83,16 @@ ConstrainedProblem hs071_like(const MatrixXd& a) {
     c(0) = 25.0 - x(0) * x(1) * x(2) * x(3);
     j << -x(1) * x(2) * x(3), -x(0) * x(2) * x(3), -x(0) * x(1) * x(3), -x(0) * x(1) * x(2);
   };
+  p.lower = VectorXd::Constant(4, 1.0);
+  p.upper = VectorXd::Constant(4, 5.0);
+  return p;
+}
+
+ConstrainedProblem hs071_like(const MatrixXd& a) {
+  ConstrainedProblem p = hs071_without_row();
   p.linear_matrix = &a;
   p.linear_lower = VectorXd::Constant(1, -kInf);
   p.linear_upper = VectorXd::Constant(1, 0.8);  // active: x2 − x3 = 0.92 at HS071's solution
-  p.lower = VectorXd::Constant(4, 1.0);
-  p.upper = VectorXd::Constant(4, 5.0);
   return p;
 }
 
@@ -343,25 +349,7 @@ TEST_CASE("augmented-lagrangian: a warm start with the solution's multipliers ne
   // The HS071-like problem above without its linear row, solved cold, then again from a nearby
   // start with the returned multipliers and penalty: same answer, fewer evaluations. Wrong
   // multiplier counts are refused.
-  ConstrainedProblem p;
-  p.num_variables = 4;
-  p.objective = [](const VectorXd& x, VectorXd& g) {
-    const double s = x(0) + x(1) + x(2);
-    g << x(3) * s + x(0) * x(3), x(0) * x(3), x(0) * x(3) + 1.0, x(0) * s;
-    return x(0) * x(3) * s + x(2);
-  };
-  p.num_equality = 1;
-  p.equality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
-    c(0) = x.squaredNorm() - 40.0;
-    j.row(0) = 2.0 * x.transpose();
-  };
-  p.num_inequality = 1;
-  p.inequality = [](const VectorXd& x, VectorXd& c, MatrixXd& j) {
-    c(0) = 25.0 - x(0) * x(1) * x(2) * x(3);
-    j << -x(1) * x(2) * x(3), -x(0) * x(2) * x(3), -x(0) * x(1) * x(3), -x(0) * x(1) * x(2);
-  };
-  p.lower = VectorXd::Constant(4, 1.0);
-  p.upper = VectorXd::Constant(4, 5.0);
+  const ConstrainedProblem p = hs071_without_row();
   VectorXd x0(4);
   x0 << 1.0, 5.0, 5.0, 1.0;
   const AlResult cold = augmented_lagrangian_minimize(p, x0);
