@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "cavity/contour_cavity.h"
 #include "cavity/distance_band.h"

@@ -134,8 +134,7 @@ double face_pass_tests(const NodeGrid& g, const TriangleBvh& bvh, double top) {
 std::vector<std::int8_t> distance_band(const NodeGrid& g, const std::vector<std::int8_t>& mask, const TriangleBvh& bvh,
                                        const std::vector<double>& thresholds, int threads, std::int64_t& queries,
                                        BandMethod method) {
-  std::vector<std::int8_t> band(static_cast<std::size_t>(g.node_count()), 0);
-  if (thresholds.empty()) return band;
+  if (thresholds.empty()) return std::vector<std::int8_t>(static_cast<std::size_t>(g.node_count()), 0);
   const int k = static_cast<int>(thresholds.size());
   const double top = thresholds.back();
   const double rounding = 1e-9 * g.spacing;
@@ -151,6 +150,7 @@ std::vector<std::int8_t> distance_band(const NodeGrid& g, const std::vector<std:
     if (face_pass_tests(g, bvh, top) <= kFacePassTestsPerPoint * static_cast<double>(masked)) method = BandMethod::by_faces;
   }
   if (method == BandMethod::by_faces && !bvh.empty()) return distance_band_by_faces(g, mask, bvh, thresholds, pool);
+  std::vector<std::int8_t> band(static_cast<std::size_t>(g.node_count()), 0);
   const std::int64_t bx = (g.nx + kBlock - 1) / kBlock, by = (g.ny + kBlock - 1) / kBlock, bz = (g.nz + kBlock - 1) / kBlock;
   std::int64_t per_part[kParts] = {0, 0};
   pool.run_parts(kParts, [&](int part) {
