@@ -1,6 +1,7 @@
 #include "cavity/reachability.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -62,6 +63,9 @@ struct Frame {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Vector10d P0 = Vector10d::Zero();   // the input's integrals, normalised frame
   double top = 1.0;                   // highest point over the ground, normalised
+  // The corners of a box holding every solid the cells describe (the grid's: the input's box,
+  // grown by outer_max with the band), normalised.
+  std::array<Eigen::Vector3d, 8> region;
   Eigen::Vector3d to_frame(const Eigen::Vector3d& posed) const { return (posed - origin) * scale; }
 };
 
@@ -652,11 +656,32 @@ struct MarginSearch {
   LpRun infeasible_run;
 };
 
-// Dinkelbach: t ← min_j N_j(u)/D_j(u) after each LP max_u min_j (N_j − t D_j).
+// The largest N/D any solid in the region can have, where N/D is an affine function of a centroid:
+// D = d·volume on the material (and d_h·volume on the liquid, d_h >= 0), N = the same weights times
+// n₀ + n·x, no constants; infinite otherwise. Every ratio row is of that kind (the margins are
+// centroids' distances), and a physical solid's centroid lies in the region's box. The generous
+// reading with --outer can remove a cell twice (carved and shaved), so its programme reaches
+// solids of no mass, whose ratios are rounding noise (4·10¹⁰ on cgal-data_bunny00's roly-poly
+// remedy): no solid reaches past this cap.
+double ratio_cap(const Form& N, const Form& D, const std::array<Eigen::Vector3d, 8>& region) {
+  const double d = D.solid(kIntVolume), d_h = D.hollow(kIntVolume);
+  if (N.constant != 0.0 || D.constant != 0.0 || !(d > 0.0) || !(d_h >= 0.0)) return kInf;
+  if (!D.solid.tail<9>().isZero() || !D.hollow.tail<9>().isZero() || !N.solid.tail<6>().isZero()) return kInf;
+  if (N.hollow != (d_h / d) * N.solid) return kInf;
+  double most = -kInf;
+  for (const Eigen::Vector3d& x : region) most = std::max(most, (N.solid(kIntVolume) + N.solid.segment<3>(kIntX).dot(x)) / d);
+  return most;
+}
+
+// Dinkelbach: t ← min_j N_j(u)/D_j(u) after each LP max_u min_j (N_j − t D_j), each ratio capped
+// by ratio_cap.
 MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, const Frame& f, int cap) {
   MarginSearch s;
   std::vector<double> warm(p.groups.size(), 0.0);
   const int nr = static_cast<int>(rows.numerators.size());
+  std::vector<double> caps;
+  for (int j = 0; j < nr; ++j)
+    caps.push_back(ratio_cap(rows.numerators[static_cast<std::size_t>(j)], rows.denominators[static_cast<std::size_t>(j)], f.region));
   // Start from the solid as it is when it meets the plain rows (its margin is one any void beats),
   // else from a margin of minus the diagonal.
   double t = -1.0;
@@ -682,8 +707,9 @@ MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, con
     int arg = -1;
     const Moved& moved = solver.moved_at(p, run.u);
     for (int j = 0; j < nr; ++j) {
-      const double ratio = form_value(rows.numerators[static_cast<std::size_t>(j)], f.P0, moved) /
-                           form_value(rows.denominators[static_cast<std::size_t>(j)], f.P0, moved);
+      const double ratio = std::min(form_value(rows.numerators[static_cast<std::size_t>(j)], f.P0, moved) /
+                                        form_value(rows.denominators[static_cast<std::size_t>(j)], f.P0, moved),
+                                    caps[static_cast<std::size_t>(j)]);
       if (ratio < t_new) {
         t_new = ratio;
         arg = j;
@@ -741,9 +767,20 @@ ReachCertificate certify(const LpRun& run, const Partition& outer, const Frame& 
                                g(3) + 2.0 * g(6) * x.z() + g(8) * x.y() + g(9) * x.x());
     const double hess = 2.0 * (std::fabs(g(4)) + std::fabs(g(5)) + std::fabs(g(6))) +
                         2.0 * (std::fabs(g(7)) + std::fabs(g(8)) + std::fabs(g(9)));
-    const double most = q + half * grad.cwiseAbs().sum() + 0.5 * half * half * hess;
-    // Plus the integral's own rounding, far below any bound that decides.
-    if (most > 0.0) total.add(v * most * (1.0 + 1e-12));
+    // q on the cube is q(x + d), |d_i| <= h/2: within `spread` of its value at the centre.
+    const double spread = half * grad.cwiseAbs().sum() + 0.5 * half * half * hess;
+    const double most = q + spread, least = q - spread;
+    // The void's part of the integral in this cube is at most ∫ max(0, q) over it: 0 where q is
+    // nowhere positive; ∫ q itself, exactly v (q(x) + h²/12 (g₄ + g₅ + g₆)), where q is positive on
+    // the whole cube; else at most v · max q. Bounding every cube by v · max q instead counts the
+    // spread once per positive cube: on cgal-data_bunny00 standing as a roly-poly, 0.0044 against
+    // the programme's −0.042, no proof. Each term is rounded up (1e-12 of itself; `least` must
+    // clear its own rounding), far beyond the sums' own error.
+    if (most > 0.0) {
+      const double mean = q + half * half / 3.0 * (g(4) + g(5) + g(6));
+      const bool positive = least > 1e-12 * (std::fabs(q) + spread);
+      total.add(v * (positive ? mean : most) * (1.0 + 1e-12));
+    }
     ++c.cells_checked;
   }
   c.present = true;
@@ -926,7 +963,11 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
   // The highest point over the ground, for the spin's levels: bounded by the cells' reach.
   double top = 0.0;
   for (std::int64_t c : cells->outer) top = std::max(top, (rotation * cells->centre(c)).z() - ground_z);
-  const Frame f = make_frame(input_integrals, rotation, origin, diagonal, top);
+  Frame f = make_frame(input_integrals, rotation, origin, diagonal, top);
+  const NodeGrid& grid = cells->grid;
+  for (int c = 0; c < 8; ++c)
+    f.region[static_cast<std::size_t>(c)] =
+        f.to_frame(rotation * grid.position(c & 1 ? grid.nx - 1 : 0, c & 2 ? grid.ny - 1 : 0, c & 4 ? grid.nz - 1 : 0));
   out.ok = true;
   if (goal.kind == GoalKind::volume) {
     out.reachable = goal.target_volume <= out.carvable_volume;

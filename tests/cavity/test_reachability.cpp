@@ -6,9 +6,12 @@
 // - the same box with a reachable strip: the occupancy the programme returns, integrated cell by
 //   cell here, meets the margin and gives the lowest centre of mass it reports;
 // - an unreachable strip: the certificate's quadric integrated over the outer cells proves it;
+//   a near miss too, which one bound of the quadric per cube would leave unproved;
+// - a generous reading that can remove every cell: its margin stays one a solid in the box can have;
 // - a sphere floating: reachable at ρ = 0.8, unreachable at ρ = 0.05 (95% void with a wall).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -128,6 +131,72 @@ TEST_CASE("reachability: an unreachable stand is proved by its quadric integrate
     return r.certificate.quadric.dot(cube_integrals(p, 1e-6, r.certificate.origin)) / 1e-18;
   };
   CHECK(q_at(Eigen::Vector3d(9, 3, 2)) < q_at(Eigen::Vector3d(1, 3, 2)));
+}
+
+TEST_CASE("reachability: a near miss is proved where one bound per cube would not prove it") {
+  // The generous reading misses the strip by 0.11: a cube wholly inside the quadric's carving side
+  // must be bounded by its own integral, not by v · (the quadric's extreme on it).
+  const double a = 10, b = 6, c = 4, wall = 0.5;
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(a, b, c));
+  const TriangleBvh bvh(box.V, box.F);
+  const Reachability r = reachability(box, bvh, strip_goal(2.7, b, 0.05), 0.0, Eigen::Vector3d(1, 3, 0), options_for(wall));
+  REQUIRE(r.ok);
+  CHECK(!r.reachable);
+  REQUIRE(r.certificate.present);
+  CHECK(r.certificate.proves);
+  CHECK(r.decided);
+  // The stand's rows read the volume and the first moments: q is linear, so its least value on a
+  // cube is at a corner. A void keeping the wall lies in the outer cells; within each, it gains at
+  // most ∫ max(0, −q), bounded here by splitting the cube into n³ and taking each part's corners.
+  REQUIRE(r.certificate.quadric.tail<6>().isZero());
+  const CarvableCells& cells = *r.cells;
+  const double h = cells.grid.spacing;
+  auto q = [&](const Eigen::Vector3d& p) {
+    return r.certificate.quadric.head<4>().dot(Eigen::Vector4d(1.0, p.x() - r.certificate.origin.x(), p.y() - r.certificate.origin.y(),
+                                                                p.z() - r.certificate.origin.z()));
+  };
+  auto bound = [&](int n) {
+    const double part = h / n;
+    double total = r.certificate.constant;
+    for (std::int64_t cell : cells.outer) {
+      const Eigen::Vector3d low = cells.centre(cell) - Eigen::Vector3d::Constant(0.5 * h);
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+          for (int k = 0; k < n; ++k) {
+            double least = q(low + part * Eigen::Vector3d(i, j, k));
+            for (int corner = 1; corner < 8; ++corner)
+              least = std::min(least, q(low + part * Eigen::Vector3d(i + (corner & 1), j + ((corner >> 1) & 1), k + (corner >> 2))));
+            if (least < 0.0) total -= least * part * part * part;
+          }
+    }
+    return total;
+  };
+  CHECK(bound(1) > 0.0);  // one bound per cube: no proof
+  CHECK(bound(4) < 0.0);  // the certificate holds for voids of any shape in the outer cells
+}
+
+TEST_CASE("reachability: with a band wider than the wall, the generous margin stays one a solid in the grid's box can have") {
+  // outer_max 2 against a wall of 0.5: the generous reading may carve a cell and shave it too, so
+  // its programme reaches solids of no mass, whose ratios are rounding noise (5·10¹³ before the
+  // cap). The centre of mass of any solid lies in the grid's box, so no margin below the sphere
+  // centre exceeds the centre's height over the box's bottom.
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
+  const TriangleBvh bvh(box.V, box.F);
+  GoalSpec g;
+  g.kind = GoalKind::roly_poly;
+  g.axis_point = Eigen::Vector3d(5, 3, 0.5);
+  g.epsilon = 0.05;
+  ReachabilityOptions o = options_for(0.5);
+  o.outer = true;
+  o.outer_max = 2.0;
+  const Reachability r = reachability(box, bvh, g, 0.0, Eigen::Vector3d(5, 3, 0), o);
+  REQUIRE(r.ok);
+  CHECK(!r.reachable);
+  REQUIRE(r.best_margin);
+  REQUIRE(r.outer_margin_found);
+  const double cap = g.axis_point.z() - r.cells->grid.origin.z();
+  CHECK(*r.outer_margin_found <= cap * (1.0 + 1e-12));
+  CHECK(*r.outer_margin_found >= *r.best_margin);
 }
 
 TEST_CASE("reachability: a sphere floats at density 0.8 but not at 0.05 (the void cannot be 95% with the wall)") {
