@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
 #include "mass/volume_integrals.h"
+#include "optimize/quadric_correction.h"
 #include "util/neumaier_sum.h"
 #include "util/parallel.h"
 
@@ -194,6 +196,20 @@ QuadricVoid write_quadric_void(const QuadricVoidInput& input) {
   Vector10d c = to_frame(start, s, input.origin);
   Vector10d predicted = Vector10d::Zero();
   std::shared_ptr<ContourReuse> reuse;  // what the rounds' contours share (the outer surface's part)
+  // The round closest to meeting the goal so far: its quadric (scaled as its step was taken), rows,
+  // violation and integrals.
+  struct Best {
+    Vector10d c = Vector10d::Zero(), written = Vector10d::Zero();
+    Eigen::VectorXd rows;
+    double violation = std::numeric_limits<double>::infinity();
+  } best;
+  // The last Newton step's rows before it and as its first order predicted them, for the gain
+  // (optimize/quadric_correction.h) the next step is divided by.
+  struct LastStep {
+    Eigen::VectorXd before, predicted;
+  };
+  std::optional<LastStep> last_step;
+  double gain = 1.0;
   for (int round = 0; round <= input.max_rounds; ++round) {
     out.quadric = to_input_units(c, s, input.origin);
     const ContourCavity contoured =
@@ -222,8 +238,25 @@ QuadricVoid write_quadric_void(const QuadricVoidInput& input) {
       const double g = boundary_gradient(contoured.cavity, c, s, input.origin, near);
       if (g > 0.0) {
         c /= g;
-        J = boundary_jacobian(contoured.cavity, c, s, input.origin, near);
-        step = newton_step(evaluate_goal(aim, outer, written), J);
+        const GoalValues values = evaluate_goal(aim, outer, written);
+        const Eigen::VectorXd rows = goal_rows(values);
+        const Eigen::Index equalities = values.equality.size();
+        const double now = goal_violation(rows, equalities);
+        if (last_step) gain = observed_gain(last_step->before, last_step->predicted, rows);
+        last_step.reset();
+        if (now > 0.5 * best.violation) {
+          const double t = step_back_fraction(best.rows, rows, equalities);
+          step = best.c + t * (c - best.c) - c;
+          predicted = best.written + t * (written - best.written);
+        } else {
+          J = boundary_jacobian(contoured.cavity, c, s, input.origin, near);
+          step = newton_step(values, J);
+          if (step) {
+            *step /= gain;
+            last_step = LastStep{rows, rows + goal_row_jacobian(values) * (J * *step)};
+          }
+        }
+        if (now < best.violation) best = Best{c, written, rows, now};
       }
       if (!step) out.message = "the quadric's boundary cannot move the goal's rows (round " + std::to_string(round) + ")";
     }
@@ -238,7 +271,7 @@ QuadricVoid write_quadric_void(const QuadricVoidInput& input) {
     }
     record_round(contoured, round == 0 ? written : predicted, written, s, out.verification, will_correct, out);
     if (!will_correct) break;
-    predicted = written + J * *step;  // the next round's integrals to first order
+    if (!J.isZero()) predicted = written + J * *step;  // the next round's integrals to first order
     c += *step;
   }
   return out;

@@ -11,8 +11,10 @@
 //   ∂I_k/∂c_j = −∫_{∂void ∩ {q = 0}} m_k m_j / |∇q| dA        (one point per face),
 // and each round takes the least-norm step δc that brings the goal's violated rows (shape/goal.h,
 // evaluated on the written integrals with `headroom` of the user's margins inside them) to zero
-// to first order. All of it in the normalised frame (origin, 1 / diagonal), where the ten
-// coefficients are of one scale.
+// to first order, divided by the gain the last such step showed, or steps back towards the best
+// round when a round did not halve its violation (optimize/quadric_correction.h: on thin voids
+// that first order misses half of what moves). All of it in the normalised frame (origin,
+// 1 / diagonal), where the ten coefficients are of one scale.
 #pragma once
 #include <optional>
 #include <string>
