@@ -849,6 +849,23 @@ std::vector<double> per_cell(const Partition& p, const std::vector<double>& u, i
   return out;
 }
 
+// Spin's optimum (Reachability::find_optimum): at the level whose rows a void met, the void that
+// leaves the solid's moment ∫z least (the paper's m·cz, its objective's first term), from that
+// void's occupancy `warm` (per group of the partition rebuilt here as reachability built it).
+void spin_optimum(const CarvableCells& cells, const Frame& f, const ReachabilityOptions& options, const GoalRows& rows,
+                  bool band, std::vector<double> warm, Reachability& r) {
+  const std::vector<std::int64_t>& writable = options.mid_reading ? cells.mid : cells.inner;
+  Partition inner = make_partition(cells, writable, band ? cells.band_inner : std::vector<std::int64_t>{}, {}, f, options.block);
+  Solver solver(f, options, r);
+  Form low;
+  low.solid = -unit(kIntZ);
+  const LpRun lowest = solver.solve(inner, rows.plain, 0, false, &low, warm);
+  if (lowest.status != LpStatus::optimal) return;
+  r.optimum = quadric_in_input_units(-lowest.void_reduced, f);
+  r.occupancy = per_cell(inner, lowest.u, -1, writable.size());
+  r.band_occupancy = per_cell(inner, lowest.u, 1, cells.band_inner.size());
+}
+
 Frame make_frame(const VolumeIntegrals& input, const Eigen::Matrix3d& R, const Eigen::Vector3d& origin, double diagonal,
                  double top) {
   Frame f;
@@ -991,6 +1008,9 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
         out.reachable = out.decided = true;
         out.occupancy = per_cell(inner, run.u, -1, writable.size());
         out.band_occupancy = per_cell(inner, run.u, 1, cells->band_inner.size());
+        out.find_optimum = [cells, f, options, rows, band, warm = run.u](Reachability& r) {
+          spin_optimum(*cells, f, options, rows, band, warm, r);
+        };
       }
     }
     if (!out.reachable) {

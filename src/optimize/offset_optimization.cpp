@@ -842,11 +842,16 @@ void contour_offset_void(const OptimizeOptions& options, const Frame& f, const B
   }
 }
 
-// The goals the quadric void is written for: those that lower the centre of mass.
+// The goals the quadric void is written for: those that lower the centre of mass, and spin, whose
+// programme's optimum leaves the solid's ∫z least at the lowest level it reaches (there its void is
+// written only where the offset void misses the goal: no measure says how far from the best a
+// spinning void is).
 bool lowers_centre(GoalKind kind) {
   return kind == GoalKind::stand || kind == GoalKind::stand_filled || kind == GoalKind::roly_poly ||
          kind == GoalKind::floating;
 }
+
+bool quadric_goal(GoalKind kind) { return lowers_centre(kind) || kind == GoalKind::spin; }
 
 // The goal's objective on the solid as written (normalised frame), or for float the depth under
 // the centre of buoyancy negated: smaller is better either way.
@@ -988,7 +993,17 @@ bool quadric_possible(const OptimizeOptions& options, const ReachabilitySummary&
 QuadricAttempt take_quadric(const OptimizeOptions& options, const Frame& f, const Band& b, const OffsetSolve& solve,
                             const Reachability& programme, QuadricAhead* ahead) {
   if (ahead && ahead->valid()) return ahead->get();
-  return attempt_quadric(options, f, solve.outer, *b.bvh, programme, options.threads);
+  if (programme.optimum || !programme.find_optimum)
+    return attempt_quadric(options, f, solve.outer, *b.bvh, programme, options.threads);
+  // Spin's optimum, found now that it is wanted.
+  Reachability found = programme;
+  programme.find_optimum(found);
+  if (!found.optimum) {
+    QuadricAttempt none;
+    none.q.message = "the reachability programme found no optimal void";
+    return none;
+  }
+  return attempt_quadric(options, f, solve.outer, *b.bvh, found, options.threads);
 }
 
 // The offset path's cavity `c` against the quadric void: the quadric void is made where the offset
@@ -1007,7 +1022,8 @@ Cavity choose_cavity(const OptimizeOptions& options, const Frame& f, const Band&
   const bool offset_verified = !forced && c.verification.goal_met && c.verification.valid;
   if (offset_verified) c.summary.offset_objective = written_score(f, solve.outer, c.written, c.verification);
   const std::optional<Optimality> offset_optimality = optimality(f, programme, c.verification);
-  const bool short_of_best = !offset_optimality || offset_optimality->fraction < options.quadric_below_fraction;
+  const bool short_of_best =
+      lowers_centre(f.goal.kind) && (!offset_optimality || offset_optimality->fraction < options.quadric_below_fraction);
   if (!forced && !(options.cavity == CavityMode::automatic && (!offset_verified || short_of_best))) return c;
 
   if (!attempt) attempt = take_quadric(options, f, b, solve, programme, ahead);
@@ -1064,9 +1080,10 @@ Cavity choose_cavity(const OptimizeOptions& options, const Frame& f, const Band&
 Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
                    const ReachabilitySummary& reach, StageTimings& timings, const Progress& say, QuadricAhead* ahead) {
   const bool forced = options.cavity == CavityMode::quadric;
-  const bool writable = lowers_centre(options.goal) && !options.outer && b.fixed_count == 0;
+  const bool writable = quadric_goal(options.goal) && !options.outer && b.fixed_count == 0;
   const bool wanted = options.cavity == CavityMode::automatic || forced;
-  const bool possible = wanted && writable && reach.programme && reach.programme->reachable && reach.programme->optimum;
+  const bool possible = wanted && writable && reach.programme && reach.programme->reachable &&
+                        (reach.programme->optimum || reach.programme->find_optimum);
   double predicted = std::numeric_limits<double>::infinity();  // none: the offset path as always
   if (possible && options.cavity == CavityMode::automatic && !options.wants_drain_holes())
     predicted = predicted_fraction(f, *reach.programme, solve.eval).value_or(predicted);
@@ -1104,7 +1121,7 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
       c.verification.valid = false;
       c.verification.failures.insert(
           c.verification.failures.begin(),
-          !writable           ? "--cavity quadric needs a goal that lowers the centre of mass, without --outer or --fix"
+          !writable           ? "--cavity quadric needs a goal that lowers the centre of mass, or spin, without --outer or --fix"
           : !reach.programme ? "no quadric void: the reachability programme could not be set up"
                              : "no quadric void: no void the programme knows reaches the goal");
     }

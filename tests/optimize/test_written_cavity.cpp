@@ -176,6 +176,26 @@ TEST_CASE("bottle stand with a one-function basis: the offset void misses, the q
   CHECK(fraction == doctest::Approx(w.report.at("optimality").at("fraction").as_number()).epsilon(1e-9));
 }
 
+TEST_CASE("top spin with a one-function basis: the offset void misses, the quadric void is written and spins") {
+  // The programme's void at the lowest level it reaches (least ∫z) is written and corrected until
+  // the written solid's centre of mass is on the axis, the products vanish and z is the axis of
+  // its largest principal moment.
+  const Written w = optimize("top_k1", "top.obj", "--goal spin --k 1");
+  CHECK(w.exit_code == 0);
+  const Json& cavity = w.report.at("cavity");
+  CHECK_FALSE(cavity.at("offset_goal_met").as_bool());
+  CHECK(cavity.at("written").as_string() == "quadric");
+  check_printable(w);
+  const test::MassFigures P = written_properties(w);
+  const Json& tip = w.report.at("goal").at("tip");
+  const double diagonal = w.report.at("frame").at("diagonal").as_number();
+  CHECK(std::hypot(P.com.x() - tip.at(0).as_number(), P.com.y() - tip.at(1).as_number()) <= 1e-4 * diagonal);
+  CHECK(std::fabs(P.inertia(2, 0)) <= 1e-4 * P.inertia(2, 2));
+  CHECK(std::fabs(P.inertia(1, 2)) <= 1e-4 * P.inertia(2, 2));
+  const double xx = P.inertia(0, 0), yy = P.inertia(1, 1), xy = P.inertia(0, 1);
+  CHECK(0.5 * (xx + yy + std::hypot(xx - yy, 2.0 * xy)) < P.inertia(2, 2));
+}
+
 TEST_CASE("buoy float: the quadric void floats level, deeper than the offset void, from its first contour") {
   const Written w = optimize("buoy", "buoy.obj", "--goal float --fluid-density 0.806");
   CHECK(w.exit_code == 0);
