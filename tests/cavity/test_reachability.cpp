@@ -47,6 +47,14 @@ ReachabilityOptions options_for(double wall) {
   return o;
 }
 
+// The 10 × 6 × 4 box, wall 0.5, standing on a strip [0, width] × [0, 6] by a margin of 0.05: out of
+// reach below a width of about 2.8 (the generous reading's best centroid).
+Reachability box_on_strip(double width) {
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
+  const TriangleBvh bvh(box.V, box.F);
+  return reachability(box, bvh, strip_goal(width, 6, 0.05), 0.0, Eigen::Vector3d(1, 3, 0), options_for(0.5));
+}
+
 }  // namespace
 
 TEST_CASE("reachability: a box on a strip: the best margin is the half-box cut by a plane") {
@@ -109,10 +117,7 @@ TEST_CASE("reachability: the optimal void, integrated cell by cell, meets the ma
 }
 
 TEST_CASE("reachability: an unreachable stand is proved by its quadric integrated over the carvable cells") {
-  const double a = 10, b = 6, c = 4, wall = 0.5;
-  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(a, b, c));
-  const TriangleBvh bvh(box.V, box.F);
-  const Reachability r = reachability(box, bvh, strip_goal(2.0, b, 0.05), 0.0, Eigen::Vector3d(1, 3, 0), options_for(wall));
+  const Reachability r = box_on_strip(2.0);
   REQUIRE(r.ok);
   CHECK(!r.reachable);
   REQUIRE(r.certificate.present);
@@ -136,10 +141,7 @@ TEST_CASE("reachability: an unreachable stand is proved by its quadric integrate
 TEST_CASE("reachability: a near miss is proved where one bound per cube would not prove it") {
   // The generous reading misses the strip by 0.11: a cube wholly inside the quadric's carving side
   // must be bounded by its own integral, not by v · (the quadric's extreme on it).
-  const double a = 10, b = 6, c = 4, wall = 0.5;
-  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(a, b, c));
-  const TriangleBvh bvh(box.V, box.F);
-  const Reachability r = reachability(box, bvh, strip_goal(2.7, b, 0.05), 0.0, Eigen::Vector3d(1, 3, 0), options_for(wall));
+  const Reachability r = box_on_strip(2.7);
   REQUIRE(r.ok);
   CHECK(!r.reachable);
   REQUIRE(r.certificate.present);
