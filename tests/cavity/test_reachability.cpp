@@ -47,6 +47,15 @@ ReachabilityOptions options_for(double wall) {
   return o;
 }
 
+// Out of reach, with a certificate that proves it.
+void check_proved(const Reachability& r) {
+  REQUIRE(r.ok);
+  CHECK(!r.reachable);
+  REQUIRE(r.certificate.present);
+  CHECK(r.certificate.proves);
+  CHECK(r.decided);
+}
+
 // The 10 × 6 × 4 box, wall 0.5, standing on a strip [0, width] × [0, 6] by a margin of 0.05: out of
 // reach below a width of about 2.8 (the generous reading's best centroid).
 Reachability box_on_strip(double width) {
@@ -118,10 +127,7 @@ TEST_CASE("reachability: the optimal void, integrated cell by cell, meets the ma
 
 TEST_CASE("reachability: an unreachable stand is proved by its quadric integrated over the carvable cells") {
   const Reachability r = box_on_strip(2.0);
-  REQUIRE(r.ok);
-  CHECK(!r.reachable);
-  REQUIRE(r.certificate.present);
-  CHECK(r.certificate.proves);
+  check_proved(r);
   // Farkas: the rows met would make constant − ∫_void q >= 0; the best void is {q < 0} over the
   // outer cells, integrated exactly cell by cell here.
   const CarvableCells& cells = *r.cells;
@@ -142,11 +148,7 @@ TEST_CASE("reachability: a near miss is proved where one bound per cube would no
   // The generous reading misses the strip by 0.11: a cube wholly inside the quadric's carving side
   // must be bounded by its own integral, not by v · (the quadric's extreme on it).
   const Reachability r = box_on_strip(2.7);
-  REQUIRE(r.ok);
-  CHECK(!r.reachable);
-  REQUIRE(r.certificate.present);
-  CHECK(r.certificate.proves);
-  CHECK(r.decided);
+  check_proved(r);
   // The stand's rows read the volume and the first moments: q is linear, so its least value on a
   // cube is at a corner. A void keeping the wall lies in the outer cells; within each, it gains at
   // most ∫ max(0, −q), bounded here by splitting the cube into n³ and taking each part's corners.
