@@ -866,8 +866,9 @@ void spin_optimum(const CarvableCells& cells, const Frame& f, const Reachability
   r.band_occupancy = per_cell(inner, lowest.u, 1, cells.band_inner.size());
 }
 
+// `grid`: the cells' grid, whose box holds every solid they describe (Frame::region).
 Frame make_frame(const VolumeIntegrals& input, const Eigen::Matrix3d& R, const Eigen::Vector3d& origin, double diagonal,
-                 double top) {
+                 double top, const NodeGrid& grid) {
   Frame f;
   f.scale = 1.0 / diagonal;
   f.origin = origin;
@@ -890,6 +891,9 @@ Frame make_frame(const VolumeIntegrals& input, const Eigen::Matrix3d& R, const E
     f.P0(k) = shifted.values(k) * factor;
   }
   f.top = top * s;
+  for (int c = 0; c < 8; ++c)
+    f.region[static_cast<std::size_t>(c)] =
+        f.to_frame(R * grid.position(c & 1 ? grid.nx - 1 : 0, c & 2 ? grid.ny - 1 : 0, c & 4 ? grid.nz - 1 : 0));
   return f;
 }
 
@@ -980,11 +984,7 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
   // The highest point over the ground, for the spin's levels: bounded by the cells' reach.
   double top = 0.0;
   for (std::int64_t c : cells->outer) top = std::max(top, (rotation * cells->centre(c)).z() - ground_z);
-  Frame f = make_frame(input_integrals, rotation, origin, diagonal, top);
-  const NodeGrid& grid = cells->grid;
-  for (int c = 0; c < 8; ++c)
-    f.region[static_cast<std::size_t>(c)] =
-        f.to_frame(rotation * grid.position(c & 1 ? grid.nx - 1 : 0, c & 2 ? grid.ny - 1 : 0, c & 4 ? grid.nz - 1 : 0));
+  const Frame f = make_frame(input_integrals, rotation, origin, diagonal, top, cells->grid);
   out.ok = true;
   if (goal.kind == GoalKind::volume) {
     out.reachable = goal.target_volume <= out.carvable_volume;

@@ -174,6 +174,9 @@ bool constraints_met(const AlResult& solved, const OptimizeOptions& options) {
          solved.max_violation <= 100.0 * options.solver.feasibility_tolerance;
 }
 
+// A solid that meets the goal and is valid, as verified.
+bool verified(const Verification& v) { return v.goal_met && v.valid; }
+
 // Stage "frame": ground, support polygon, scale, and the goal in input units (for verification)
 // and in the normalised frame (for the solver).
 struct Frame {
@@ -657,7 +660,7 @@ VerifyInput offset_verify_input(const OptimizeOptions& options, const Frame& f, 
 
 // Whether the offset path contours a cavity once the offset surfaces' verification is known.
 bool wants_offset_contour(const OptimizeOptions& options, const Cavity& c) {
-  const bool offset_verified = c.verification.goal_met && c.verification.valid;
+  const bool offset_verified = verified(c.verification);
   return options.cavity == CavityMode::contour ||
          (options.cavity == CavityMode::automatic && (!offset_verified || options.wants_drain_holes()));
 }
@@ -684,7 +687,7 @@ Cavity verify_offset_surfaces(const OptimizeOptions& options, const Frame& f, co
   // As written: rounded to the output's precision and verified again (only when it can pass:
   // on real meshes the offset surface rarely verifies even unrounded).
   RoundedForOutput offset_written;
-  if (rounded_check && c.verification.goal_met && c.verification.valid) {
+  if (rounded_check && verified(c.verification)) {
     offset_written = round_for_output(outer, inner, b.band.fixed, options.output_precision, options.threads);
     verify_input.outer = &offset_written.outer;
     verify_input.inner = &offset_written.inner;
@@ -842,15 +845,16 @@ void contour_offset_void(const OptimizeOptions& options, const Frame& f, const B
   }
 }
 
-// The goals the quadric void is written for: those that lower the centre of mass, and spin, whose
-// programme's optimum leaves the solid's ∫z least at the lowest level it reaches (there its void is
-// written only where the offset void misses the goal: no measure says how far from the best a
-// spinning void is).
+// The goals that lower the centre of mass: their voids are measured against the best (optimality),
+// and the quadric void may replace an offset void that falls short of it.
 bool lowers_centre(GoalKind kind) {
   return kind == GoalKind::stand || kind == GoalKind::stand_filled || kind == GoalKind::roly_poly ||
          kind == GoalKind::floating;
 }
 
+// The goals the quadric void is written for: those, and spin, whose programme's optimum leaves the
+// solid's ∫z least at the lowest level it reaches (its void is written only where the offset void
+// misses the goal: no measure says how far from the best a spinning void is).
 bool quadric_goal(GoalKind kind) { return lowers_centre(kind) || kind == GoalKind::spin; }
 
 // The goal's objective on the solid as written (normalised frame), or for float the depth under
@@ -967,14 +971,13 @@ QuadricAttempt attempt_quadric(const OptimizeOptions& options, const Frame& f, c
   // and its integrals jump as parts of it appear and vanish under the wall, more than a float's
   // balance allows (the turbine floating at 0.8, written as PLY: 1% off after six rounds at
   // wall / 1.5, verified at wall / 3). So a grid twice as fine is tried there too.
-  const bool missed = !(a.q.verification.goal_met && a.q.verification.valid);
+  const bool missed = !verified(a.q.verification);
   if ((missed || (a.optimality && a.optimality->fraction < options.quadric_below_fraction)) &&
       2.0 * in.contour.cells_per_wall <= kFinestQuadricCellsPerWall) {
     in.contour.cells_per_wall *= 2.0;
     QuadricVoid finer = write_quadric_void(in);
     const std::optional<Optimality> finer_optimality = optimality(f, programme, finer.verification);
-    const bool finer_verified = finer.verification.goal_met && finer.verification.valid;
-    if (missed ? finer_verified : finer_optimality && finer_optimality->fraction > a.optimality->fraction) {
+    if (missed ? verified(finer.verification) : finer_optimality && finer_optimality->fraction > a.optimality->fraction) {
       a.q = std::move(finer);
       a.optimality = finer_optimality;
     }
@@ -1024,7 +1027,7 @@ Cavity choose_cavity(const OptimizeOptions& options, const Frame& f, const Band&
     c.verification.valid = false;
     c.verification.failures.insert(c.verification.failures.begin(), why);
   };
-  const bool offset_verified = !forced && c.verification.goal_met && c.verification.valid;
+  const bool offset_verified = !forced && verified(c.verification);
   if (offset_verified) c.summary.offset_objective = written_score(f, solve.outer, c.written, c.verification);
   const std::optional<Optimality> offset_optimality = optimality(f, programme, c.verification);
   const bool short_of_best =
@@ -1036,7 +1039,7 @@ Cavity choose_cavity(const OptimizeOptions& options, const Frame& f, const Band&
   const std::optional<Optimality>& quadric_optimality = attempt->optimality;
   timings.quadric = attempt->seconds;
   c.summary.quadric_rounds = q.rounds;
-  const bool quadric_verified = q.verification.goal_met && q.verification.valid;
+  const bool quadric_verified = verified(q.verification);
   say(std::string("quadric void: ") + std::to_string(q.rounds.size()) + " contours, " +
       (quadric_verified ? "verified" : q.message.empty() ? "not verified" : q.message));
   if (quadric_verified) c.summary.quadric_objective = written_score(f, solve.outer, q.written, q.verification);
@@ -1104,7 +1107,7 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
     early = take_quadric(options, f, b, solve, *reach.programme, ahead);
     const QuadricVoid& q = early->q;
     // A margin over the prediction: offset surfaces that verified would reach it up to their rounding.
-    if (q.verification.goal_met && q.verification.valid && early->optimality &&
+    if (verified(q.verification) && early->optimality &&
         early->optimality->fraction > predicted + kContourBelowModel) {
       const double quadric_objective = written_score(f, solve.outer, q.written, q.verification);
       const std::string reaches = ", the quadric void reaches " + percent(early->optimality->fraction);
@@ -1550,7 +1553,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   if (b.field.fallback_count > 0)
     result.warnings.push_back(std::to_string(b.field.fallback_count) + " vertices move along the inward normal (skeleton direction unusable or too shallow)");
   const Verification& verification = cavity.verification;
-  if (verification.goal_met && verification.valid) {
+  if (verified(verification)) {
     result.status = OptimizeStatus::verified;
     if (result.reachability) credit_written_solid(*result.reachability, f.goal.kind, verification);
     // The solver's tolerance (1e-8 of the diagonal) is far tighter than the goals' (1e-4 for the
