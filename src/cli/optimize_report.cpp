@@ -336,11 +336,13 @@ Json reachability_json(const ReachabilitySummary& r) {
     Json m = Json::object();
     m["option"] = remedy.option;
     m["reachable"] = remedy.reachable;
+    m["decided"] = remedy.decided;
     m["best_margin"] = optional_number(remedy.best_margin);
     remedies.push_back(m);
   }
   j["remedies"] = remedies;
   j["carvable_volume"] = r.carvable_volume;
+  j["cell_spacing"] = r.cell_spacing;
   j["linear_programmes"] = r.lps;
   j["simplex_iterations"] = r.lp_iterations;
   return j;

@@ -29,7 +29,8 @@ namespace offsetopt {
 
 struct ReachabilityRemedy {
   std::string option;                // "--outer"
-  bool reachable = false;            // the programme reaches the goal with it
+  bool reachable = false;            // the programme reaches the goal with it (on the mid cells)
+  bool decided = false;              // reachable, or proved out of reach by a checked certificate
   std::optional<double> best_margin;
 };
 
@@ -47,11 +48,15 @@ struct ReachabilitySummary {
   Eigen::Vector3d certificate_origin = Eigen::Vector3d::Zero();
   Vector10d quadric = Vector10d::Zero();  // q(p) = Σ quadric_k m_k(p − origin); void = {q < 0}
   double carvable_volume = 0.0;
+  // The cells' spacing the answer was read on, input units: the contour's, or half of it when the
+  // contour's could not decide (docs/reachability.md "Finer cells").
+  double cell_spacing = 0.0;
   int lps = 0;
   long long lp_iterations = 0;
   std::vector<ReachabilityRemedy> remedies;
   std::string refusal;               // when decided unreachable: the one-line reason, input units
-  std::string remedy_list;           // the remedies that reach the goal ("--outer (may), --up +y"), or empty
+  std::string remedy_list;           // the remedies that reach the goal ("--outer, --up +y"), or empty
+  std::string undecided_remedies;    // those the programme cannot tell about ("--outer"), or empty
   // Not reported: the programme itself (cells, occupancy, the optimum's quadric) and how it was
   // set, for the quadric void (optimize/quadric_void.h); null when it could not be set up.
   std::shared_ptr<const Reachability> programme;
@@ -80,7 +85,7 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in);
 void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& summary);
 
 // For a run that missed the goal: what the programme found, in one clause. Undecided: "undecided
-// whether any void reaches it (best margin -0.0087 to -0.0013); try --outer (may), --pose stable";
+// whether any void reaches it (best margin -0.0087 to -0.0013); try --pose stable; undecided with --outer";
 // reachable: "a void the tool can write reaches it (best margin 0.4), so this is the tool's
 // shortfall, not the model's".
 std::string reachability_note(const ReachabilitySummary& summary);

@@ -5,6 +5,8 @@
 // reachable, and the lowest centre of mass any void reaches lies between the closed forms for the
 // carvable cylinder shrunk by the grid's two error bounds. A leaning funnel (narrow at the ground)
 // is refused with a flat base among the remedies, and cut at the height named it stands, verified.
+// A box on a strip that the contour's cells cannot decide is decided on cells half as large, and
+// the finer certificate, integrated here cell by cell, proves it.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -12,6 +14,9 @@
 #include <string>
 
 #include "geometry/flatten_base.h"
+#include "cavity/carvable_cells.h"
+#include "cavity/reachability.h"
+#include "geometry/bvh.h"
 #include "mass/mass_properties.h"
 #include "mesh/primitives.h"
 #include "optimize/offset_optimization.h"
@@ -36,6 +41,15 @@ Mesh leaning_funnel(double lean) {
   Mesh m = make_revolution(profile, 32);
   for (Eigen::Index v = 0; v < m.V.rows(); ++v) m.V(v, 0) += lean * m.V(v, 2);
   return m;
+}
+
+// Box [0,10]×[0,6]×[0,4] carved to the box shrunk by `shrink`: the smallest centroid x any void
+// reaches is that of carving {x > x*}, with x* the centroid itself.
+double box_min_centroid_x(double shrink) {
+  const double a = 10, b = 6, c = 4, V = a * b * c, area = (b - 2 * shrink) * (c - 2 * shrink), U = a - shrink;
+  double x = 0.5 * a;
+  for (int i = 0; i < 200; ++i) x = (V * 0.5 * a - area * 0.5 * (U * U - x * x)) / (V - area * (U - x));
+  return x;
 }
 
 }  // namespace
@@ -145,4 +159,57 @@ TEST_CASE("reachability stage: a leaning funnel is refused with --flatten H, and
   CHECK(stands.status == OptimizeStatus::verified);
   CHECK(stands.after.goal_met);
   CHECK(stands.after.valid);
+}
+
+TEST_CASE("reachability stage: what the contour's cells cannot decide is decided on cells half as large") {
+  // The 10 × 6 × 4 box, wall 0.5, on a strip [0, 3.3] × [0, 6] by a margin of 0.05. Keeping the
+  // wall exactly, the best void leaves the centroid at x = box_min_centroid_x(0.5) = 4.08, 0.78
+  // outside the strip: out of reach. At the contour's spacing (wall / 1.5) the generous reading's
+  // cells reach to wall − √3 h / 2 and still put the centre inside, so that programme cannot tell.
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
+  const double width = 3.3;
+  ReachabilityStageInput in;
+  in.input = &box;
+  in.goal.kind = GoalKind::stand;
+  in.goal.margin = 0.05;
+  in.goal.support_polygon = {Eigen::Vector2d(0, 0), Eigen::Vector2d(width, 0), Eigen::Vector2d(width, 6), Eigen::Vector2d(0, 6)};
+  in.wall = 0.5;
+  in.outer_max = 1.0;
+  in.ground_tol = 1e-3;
+  in.origin = Eigen::Vector3d(1, 3, 0);
+  REQUIRE(width - box_min_centroid_x(0.5) < in.goal.margin);
+
+  ReachabilityOptions coarse;
+  coarse.wall = in.wall;
+  coarse.ground_tol = in.ground_tol;
+  coarse.mid_reading = true;
+  const TriangleBvh bvh(box.V, box.F);
+  const Reachability at_contour = reachability(box, bvh, in.goal, 0.0, in.origin, coarse);
+  REQUIRE(at_contour.ok);
+  CHECK(!at_contour.reachable);
+  CHECK(!at_contour.decided);
+
+  const ReachabilitySummary s = reachability_stage(in);
+  CHECK(!s.reachable);
+  CHECK(s.decided);
+  CHECK(s.cell_spacing == doctest::Approx(0.5 * at_contour.cells->grid.spacing));
+  CHECK(s.refusal.find("no void can reach this") == 0);
+  // No void keeping the wall does better than the generous reading's bound, and every point of
+  // the finer generous cells is at least wall − √3 h deep.
+  REQUIRE(s.best_margin_upper);
+  CHECK(*s.best_margin_upper >= width - box_min_centroid_x(0.5) - 1e-9);
+  CHECK(*s.best_margin_upper <= width - box_min_centroid_x(0.5 - std::sqrt(3.0) * s.cell_spacing) + 1e-9);
+  CHECK(*s.best_margin_upper < in.goal.margin);
+  // Farkas on the finer cells: the rows met would make constant − ∫_void q >= 0, and the best void
+  // of outer cells, {q < 0} integrated exactly cube by cube, leaves it negative.
+  REQUIRE(s.programme);
+  const CarvableCells& cells = *s.programme->cells;
+  CHECK(cells.grid.spacing == s.cell_spacing);
+  double best = s.programme->certificate.constant;
+  for (std::int64_t cell : cells.outer) {
+    const double integral = s.quadric.dot(cube_integrals(cells.centre(cell), cells.grid.spacing, s.certificate_origin));
+    if (integral < 0.0) best -= integral;
+  }
+  CHECK(best < 0.0);
+  CHECK(s.lps > at_contour.lps);  // the contour's programmes are counted too
 }
