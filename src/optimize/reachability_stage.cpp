@@ -227,10 +227,51 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
   // Reachable: nothing to remedy. Undecided: the remedies wait until the run has missed the goal
   // (add_remedies).
   if (r.reachable || !r.decided) return s;
+  s.shortfall = shortfall(in.goal, r);
   add_remedies(in, s);
-  s.refusal = "no void can reach this: " + shortfall(in.goal, r);
-  s.refusal += remedy_clauses(s, "; no remedy tried is known to reach it (re-pose the model or thicken it)");
+  s.refusal = reachability_note(s);
   return s;
+}
+
+void confirm_reachable(const ReachabilityStageInput& in, ReachabilitySummary& s) {
+  if (!s.reachable || s.evidence != "programme" || s.inner_reading) return;
+  std::optional<TriangleBvh> own;
+  const TriangleBvh& bvh = in.input_bvh ? *in.input_bvh : own.emplace(in.input->V, in.input->F);
+  ReachabilityOptions o = options_for(in, in.outer);
+  o.mid_reading = false;
+  o.lowest_cz = false;  // the claim alone: the optimum stays the mid reading's
+  Reachability r = reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, o);
+  if (r.ok && !r.decided) {
+    const double coarse_spacing = r.cells->grid.spacing;
+    const int lps = r.lps;
+    const long long iterations = r.lp_iterations;
+    o.cells_per_wall = std::min(8.0, o.cells_per_wall * kFinerCellsPerWallFactor);
+    o.max_nodes = std::min(o.max_nodes, kFinerMaxNodes);
+    Reachability finer = reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, o);
+    if (finer.ok && finer.cells->grid.spacing < 0.9 * coarse_spacing) {
+      r = std::move(finer);
+      r.lps += lps;
+      r.lp_iterations += iterations;
+    }
+  }
+  s.inner_reading = true;
+  if (!r.ok) return;
+  s.lps += r.lps;
+  s.lp_iterations += r.lp_iterations;
+  if (r.reachable) return;
+  s.reachable = false;
+  s.decided = r.decided;
+  s.evidence = r.decided ? "certificate" : "";
+  s.best_margin = r.best_margin;
+  s.best_margin_upper = r.best_margin_upper;
+  s.binding = r.binding;
+  s.cell_spacing = r.cells->grid.spacing;
+  if (r.certificate.present) {
+    s.certificate = true;
+    s.certificate_origin = r.certificate.origin;
+    s.quadric = r.certificate.quadric;
+  }
+  if (r.decided) s.shortfall = shortfall(in.goal, r);
 }
 
 void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& s) {
@@ -262,7 +303,7 @@ void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& s) {
     });
     s.remedies.insert(s.remedies.end(), poses.begin(), poses.end());
     // A new cut means new cells, several times over: only for a proved refusal.
-    if (r.decided)
+    if (s.decided)
       if (auto remedy = smallest_flatten(in)) s.remedies.push_back(*remedy);
   }
   // Named to be tried: the remedies whose programme reaches the goal on the mid cells. Named as
@@ -278,6 +319,9 @@ void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& s) {
 }
 
 std::string reachability_note(const ReachabilitySummary& summary) {
+  if (!summary.reachable && summary.decided)
+    return "no void can reach this: " + summary.shortfall +
+           remedy_clauses(summary, "; no remedy tried is known to reach it (re-pose the model or thicken it)");
   if (summary.reachable) {
     std::string note = "a void the tool can write reaches it";
     if (summary.best_margin) note += " (best margin " + format_double(*summary.best_margin) + ")";

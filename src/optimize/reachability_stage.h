@@ -41,6 +41,9 @@ struct ReachabilitySummary {
   // and the run's verified solid meets the goal: optimize sets this after the verification), or
   // empty (undecided).
   std::string evidence;
+  // The claim "reachable" was read again on the inner cells (confirm_reachable): it stands only
+  // where they reach the goal too.
+  bool inner_reading = false;
   std::optional<double> best_margin, best_margin_upper;
   std::string binding;
   std::optional<double> lowest_cz;
@@ -54,7 +57,8 @@ struct ReachabilitySummary {
   int lps = 0;
   long long lp_iterations = 0;
   std::vector<ReachabilityRemedy> remedies;
-  std::string refusal;               // when decided unreachable: the one-line reason, input units
+  std::string shortfall;             // when decided unreachable: by how much, in the goal's terms, input units
+  std::string refusal;               // when refused before the solve: the one-line reason, remedies and all
   std::string remedy_list;           // the remedies that reach the goal ("--outer, --up +y"), or empty
   std::string undecided_remedies;    // those the programme cannot tell about ("--outer"), or empty
   // Not reported: the programme itself (cells, occupancy, the optimum's quadric) and how it was
@@ -78,13 +82,22 @@ struct ReachabilityStageInput {
 
 ReachabilitySummary reachability_stage(const ReachabilityStageInput& in);
 
+// For a run that missed a goal the mid reading calls reachable (its cells reach half a cell past
+// the wall, so near the limit it is an estimate): whether a void the tool can write reaches it,
+// read on the inner cells (every corner passes the contour's node test), on the contour's cells
+// and, where they cannot tell, on cells half as large. Where neither shows one, the summary is
+// made undecided, with the inner reading's best margin and the generous reading's bound (or
+// proved out of reach where its certificate proves it). The remedies are not added here.
+void confirm_reachable(const ReachabilityStageInput& in, ReachabilitySummary& summary);
+
 // The remedies, each checked by the same programme, into `summary` (remedies, remedy_list): the
 // stage adds them itself to a proved refusal; for an undecided goal the pipeline asks only once
 // the run has missed it (six pose programmes and the --outer band cost more than many solves that
 // then meet the goal). Does nothing for a reachable goal or when they are already there.
 void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& summary);
 
-// For a run that missed the goal: what the programme found, in one clause. Undecided: "undecided
+// For a run that missed the goal: what the programme found, in one clause. Proved out of reach
+// (confirm_reachable's certificate): "no void can reach this: ...; try ...". Undecided: "undecided
 // whether any void reaches it (best margin -0.0087 to -0.0013); try --pose stable; undecided with --outer";
 // reachable: "a void the tool can write reaches it (best margin 0.4), so this is the tool's
 // shortfall, not the model's".

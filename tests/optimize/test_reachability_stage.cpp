@@ -6,7 +6,8 @@
 // carvable cylinder shrunk by the grid's two error bounds. A leaning funnel (narrow at the ground)
 // is refused with a flat base among the remedies, and cut at the height named it stands, verified.
 // A box on a strip that the contour's cells cannot decide is decided on cells half as large, and
-// the finer certificate, integrated here cell by cell, proves it.
+// the finer certificate, integrated here cell by cell, proves it. A strip the mid reading calls
+// reachable and no void keeping the wall reaches is made undecided once a run has missed it.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -161,13 +162,10 @@ TEST_CASE("reachability stage: a leaning funnel is refused with --flatten H, and
   CHECK(stands.after.valid);
 }
 
-TEST_CASE("reachability stage: what the contour's cells cannot decide is decided on cells half as large") {
-  // The 10 × 6 × 4 box, wall 0.5, on a strip [0, 3.3] × [0, 6] by a margin of 0.05. Keeping the
-  // wall exactly, the best void leaves the centroid at x = box_min_centroid_x(0.5) = 4.08, 0.78
-  // outside the strip: out of reach. At the contour's spacing (wall / 1.5) the generous reading's
-  // cells reach to wall − √3 h / 2 and still put the centre inside, so that programme cannot tell.
-  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
-  const double width = 3.3;
+namespace {
+
+// The box [0,10]×[0,6]×[0,4], wall 0.5, to stand on the strip [0, width] × [0, 6] by a margin of 0.05.
+ReachabilityStageInput box_on_strip(const Mesh& box, double width) {
   ReachabilityStageInput in;
   in.input = &box;
   in.goal.kind = GoalKind::stand;
@@ -177,6 +175,19 @@ TEST_CASE("reachability stage: what the contour's cells cannot decide is decided
   in.outer_max = 1.0;
   in.ground_tol = 1e-3;
   in.origin = Eigen::Vector3d(1, 3, 0);
+  return in;
+}
+
+}  // namespace
+
+TEST_CASE("reachability stage: what the contour's cells cannot decide is decided on cells half as large") {
+  // The 10 × 6 × 4 box, wall 0.5, on a strip [0, 3.3] × [0, 6] by a margin of 0.05. Keeping the
+  // wall exactly, the best void leaves the centroid at x = box_min_centroid_x(0.5) = 4.08, 0.78
+  // outside the strip: out of reach. At the contour's spacing (wall / 1.5) the generous reading's
+  // cells reach to wall − √3 h / 2 and still put the centre inside, so that programme cannot tell.
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
+  const double width = 3.3;
+  const ReachabilityStageInput in = box_on_strip(box, width);
   REQUIRE(width - box_min_centroid_x(0.5) < in.goal.margin);
 
   ReachabilityOptions coarse;
@@ -212,4 +223,45 @@ TEST_CASE("reachability stage: what the contour's cells cannot decide is decided
   }
   CHECK(best < 0.0);
   CHECK(s.lps > at_contour.lps);  // the contour's programmes are counted too
+}
+
+TEST_CASE("reachability stage: a strip the mid reading reaches and no void keeping the wall does is undecided after a miss") {
+  // Width 4.1: keeping the wall exactly, the best void's centroid is 4.08, 0.017 inside the strip,
+  // less than the margin 0.05, so no void the tool can write meets the goal. The mid reading's
+  // cells reach half a cell past the wall, and it calls the goal reachable; read again on the
+  // inner cells (every corner a wall deep), at the contour's spacing and half of it, the claim
+  // goes, the bracket holds the exact answer, and no certificate proves the goal out of reach.
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
+  const double width = 4.1, exact = width - box_min_centroid_x(0.5);
+  const ReachabilityStageInput in = box_on_strip(box, width);
+  REQUIRE(exact < in.goal.margin);
+  ReachabilitySummary s = reachability_stage(in);
+  REQUIRE(s.reachable);  // the mid reading's estimate
+  CHECK(s.evidence == "programme");
+  const int lps = s.lps;
+  confirm_reachable(in, s);
+  CHECK(s.inner_reading);
+  CHECK(!s.reachable);
+  CHECK(!s.decided);
+  CHECK(s.evidence.empty());
+  REQUIRE(s.best_margin);
+  REQUIRE(s.best_margin_upper);
+  CHECK(*s.best_margin <= exact + 1e-9);
+  CHECK(*s.best_margin_upper >= exact - 1e-9);
+  CHECK(s.lps > lps);
+  // Once read, not again; the note now says undecided, and the remedies can be added.
+  const ReachabilitySummary read = s;
+  confirm_reachable(in, s);
+  CHECK(s.lps == read.lps);
+  add_remedies(in, s);
+  CHECK(reachability_note(s).find("undecided whether any void reaches it") == 0);
+
+  // Where the inner cells reach the goal too (width 4.6: 0.52 inside at the exact wall), the claim stands.
+  const ReachabilityStageInput wide = box_on_strip(box, 4.6);
+  ReachabilitySummary kept = reachability_stage(wide);
+  REQUIRE(kept.reachable);
+  confirm_reachable(wide, kept);
+  CHECK(kept.reachable);
+  CHECK(kept.decided);
+  CHECK(reachability_note(kept).find("a void the tool can write reaches it") == 0);
 }
