@@ -265,3 +265,34 @@ TEST_CASE("reachability stage: a strip the mid reading reaches and no void keepi
   CHECK(kept.decided);
   CHECK(reachability_note(kept).find("a void the tool can write reaches it") == 0);
 }
+
+TEST_CASE("reachability stage: the --outer remedy is named to be tried only where the band's inner cells reach the goal") {
+  // Width 3.3: out of reach without the band (proved on the finer cells, above). With it, the mid
+  // reading reaches the goal (its cells half a cell past the wall) and the inner cells do not, at
+  // the contour's spacing or half of it, so --outer is named as undecided, not to be tried.
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
+  const ReachabilityStageInput in = box_on_strip(box, 3.3);
+  const TriangleBvh bvh(box.V, box.F);
+  ReachabilityOptions band;
+  band.wall = in.wall;
+  band.outer_max = in.outer_max;
+  band.ground_tol = in.ground_tol;
+  band.outer = true;
+  band.mid_reading = true;
+  REQUIRE(reachability(box, bvh, in.goal, 0.0, in.origin, band).reachable);
+  band.mid_reading = false;
+  REQUIRE(!reachability(box, bvh, in.goal, 0.0, in.origin, band).reachable);
+  band.cells_per_wall = 3.0;
+  REQUIRE(!reachability(box, bvh, in.goal, 0.0, in.origin, band).reachable);
+
+  const ReachabilitySummary s = reachability_stage(in);
+  REQUIRE(s.decided);
+  REQUIRE(!s.reachable);
+  const ReachabilityRemedy* outer = nullptr;
+  for (const ReachabilityRemedy& remedy : s.remedies)
+    if (remedy.option == "--outer") outer = &remedy;
+  REQUIRE(outer);
+  CHECK(!outer->reachable);
+  CHECK(s.remedy_list.find("--outer") == std::string::npos);
+  CHECK(s.refusal.find("undecided with --outer") != std::string::npos);
+}
