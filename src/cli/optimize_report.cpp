@@ -337,6 +337,7 @@ Json reachability_json(const ReachabilitySummary& r) {
     m["option"] = remedy.option;
     m["reachable"] = remedy.reachable;
     m["decided"] = remedy.decided;
+    m["mid_cells_reach"] = remedy.mid_cells_reach;
     m["best_margin"] = optional_number(remedy.best_margin);
     remedies.push_back(m);
   }

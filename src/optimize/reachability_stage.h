@@ -31,6 +31,9 @@ struct ReachabilityRemedy {
   std::string option;                // "--outer"
   bool reachable = false;            // the programme reaches the goal with it (on the mid cells)
   bool decided = false;              // reachable, or proved out of reach by a checked certificate
+  // Not reachable, but the mid cells reach it (a void whose cells' centres keep the wall, half a
+  // cell past it at most); the inner cells do not: named as undecided (--outer only).
+  bool mid_cells_reach = false;
   std::optional<double> best_margin;
 };
 
@@ -60,7 +63,7 @@ struct ReachabilitySummary {
   std::string shortfall;             // when decided unreachable: by how much, in the goal's terms, input units
   std::string refusal;               // when refused before the solve: the one-line reason, remedies and all
   std::string remedy_list;           // the remedies that reach the goal ("--outer, --up +y"), or empty
-  std::string undecided_remedies;    // those the programme cannot tell about ("--outer"), or empty
+  std::string undecided_remedies;    // those only the mid cells reach (mid_cells_reach: "--outer"), or empty
   // Not reported: the programme itself (cells, occupancy, the optimum's quadric) and how it was
   // set, for the quadric void (optimize/quadric_void.h); null when it could not be set up.
   std::shared_ptr<const Reachability> programme;

@@ -293,6 +293,7 @@ TEST_CASE("reachability stage: the --outer remedy is named to be tried only wher
     if (remedy.option == "--outer") outer = &remedy;
   REQUIRE(outer);
   CHECK(!outer->reachable);
+  CHECK(outer->mid_cells_reach);
   CHECK(s.remedy_list.find("--outer") == std::string::npos);
   CHECK(s.refusal.find("undecided with --outer") != std::string::npos);
 }
