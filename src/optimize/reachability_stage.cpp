@@ -169,9 +169,7 @@ std::optional<ReachabilityRemedy> smallest_flatten(const ReachabilityStageInput&
 // Cells half as large, when the programme cannot tell at the contour's scale: the generous
 // reading's cells shrink towards the exact wall and the mid reading's grow towards it, so the
 // bracket between them narrows (docs/reachability.md "Finer cells"). On the census's 12 undecided
-// refusals one halving decided 10 and a second none, at 3 to 4 times the cost. Not with --outer:
-// there the bracket is the band's (the generous reading lets the void come as near the input as
-// the band is thick), which finer cells do not narrow.
+// refusals one halving decided 10 and a second none, at 3 to 4 times the cost.
 constexpr double kFinerCellsPerWallFactor = 2.0;
 constexpr std::int64_t kFinerMaxNodes = std::int64_t{1} << 24;
 
@@ -211,6 +209,8 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
   std::optional<TriangleBvh> own;
   const TriangleBvh& bvh = in.input_bvh ? *in.input_bvh : own.emplace(in.input->V, in.input->F);
   s.options = options_for(in, in.outer);
+  // Not on finer cells with --outer: there the bracket is the band's (the generous reading lets
+  // material come as near the input as the band is thick), which finer cells do not narrow.
   Reachability first = reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, s.options);
   const auto programme = std::make_shared<const Reachability>(
       in.outer ? std::move(first) : decide_on_finer_cells(in, bvh, s.options, std::move(first)));
