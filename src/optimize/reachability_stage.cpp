@@ -195,6 +195,23 @@ Reachability on_inner_cells(const ReachabilityStageInput& in, const TriangleBvh&
   return decide_on_finer_cells(in, bvh, o, reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, o));
 }
 
+// The programme's answer into the summary: the claim, its margins and the cells it was read on,
+// and its certificate where it has one (else the summary keeps the one it had, if any).
+void take_claim(const Reachability& r, ReachabilitySummary& s) {
+  s.reachable = r.reachable;
+  s.decided = r.decided;
+  s.evidence = r.reachable ? "programme" : r.decided ? "certificate" : "";
+  s.best_margin = r.best_margin;
+  s.best_margin_upper = r.best_margin_upper;
+  s.binding = r.binding;
+  s.cell_spacing = r.cells->grid.spacing;
+  if (r.certificate.present) {
+    s.certificate = true;
+    s.certificate_origin = r.certificate.origin;
+    s.quadric = r.certificate.quadric;
+  }
+}
+
 // "; try --pose stable, --up +y; undecided with --outer", or `none` when no remedy reaches the goal.
 std::string remedy_clauses(const ReachabilitySummary& s, const std::string& none) {
   std::string clauses = s.remedy_list.empty() ? none : "; try " + s.remedy_list;
@@ -220,18 +237,9 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
     return s;
   }
   s.programme = programme;
-  s.reachable = r.reachable;
-  s.decided = r.decided;
-  s.evidence = r.reachable ? "programme" : r.decided ? "certificate" : "";
-  s.best_margin = r.best_margin;
-  s.best_margin_upper = r.best_margin_upper;
-  s.binding = r.binding;
+  take_claim(r, s);
   s.lowest_cz = r.lowest_cz;
-  s.certificate = r.certificate.present;
-  s.certificate_origin = r.certificate.origin;
-  s.quadric = r.certificate.quadric;
   s.carvable_volume = r.carvable_volume;
-  s.cell_spacing = r.cells->grid.spacing;
   s.lps = r.lps;
   s.lp_iterations = r.lp_iterations;
   // Reachable: nothing to remedy. Undecided: the remedies wait until the run has missed the goal
@@ -253,18 +261,7 @@ void confirm_reachable(const ReachabilityStageInput& in, ReachabilitySummary& s)
   s.lps += r.lps;
   s.lp_iterations += r.lp_iterations;
   if (r.reachable) return;
-  s.reachable = false;
-  s.decided = r.decided;
-  s.evidence = r.decided ? "certificate" : "";
-  s.best_margin = r.best_margin;
-  s.best_margin_upper = r.best_margin_upper;
-  s.binding = r.binding;
-  s.cell_spacing = r.cells->grid.spacing;
-  if (r.certificate.present) {
-    s.certificate = true;
-    s.certificate_origin = r.certificate.origin;
-    s.quadric = r.certificate.quadric;
-  }
+  take_claim(r, s);
   if (r.decided) s.shortfall = shortfall(in.goal, r);
 }
 
