@@ -15,30 +15,16 @@
 #include <cmath>
 #include <vector>
 
+#include "../box_on_strip.h"
 #include "cavity/reachability.h"
 #include "geometry/bvh.h"
 #include "mesh/primitives.h"
 
 using namespace offsetopt;
+using offsetopt::test::min_centroid_x;
+using offsetopt::test::strip_goal;
 
 namespace {
-
-// Box [0,a]×[0,b]×[0,c]; the carvable box is it shrunk by `shrink` on every side. The smallest
-// centroid x any void reaches: carve {x > x*} of the carvable box, with x* the centroid itself.
-double min_centroid_x(double a, double b, double c, double shrink) {
-  const double V = a * b * c, area = (b - 2 * shrink) * (c - 2 * shrink), U = a - shrink;
-  double x = 0.5 * a;
-  for (int i = 0; i < 200; ++i) x = (V * 0.5 * a - area * 0.5 * (U * U - x * x)) / (V - area * (U - x));
-  return x;
-}
-
-GoalSpec strip_goal(double width, double b, double margin) {
-  GoalSpec g;
-  g.kind = GoalKind::stand;
-  g.support_polygon = {Eigen::Vector2d(0, 0), Eigen::Vector2d(width, 0), Eigen::Vector2d(width, b), Eigen::Vector2d(0, b)};
-  g.margin = margin;
-  return g;
-}
 
 ReachabilityOptions options_for(double wall) {
   ReachabilityOptions o;

@@ -14,10 +14,11 @@
 #include <cstdlib>
 #include <string>
 
-#include "geometry/flatten_base.h"
+#include "../box_on_strip.h"
 #include "cavity/carvable_cells.h"
 #include "cavity/reachability.h"
 #include "geometry/bvh.h"
+#include "geometry/flatten_base.h"
 #include "mass/mass_properties.h"
 #include "mesh/primitives.h"
 #include "optimize/offset_optimization.h"
@@ -44,14 +45,8 @@ Mesh leaning_funnel(double lean) {
   return m;
 }
 
-// Box [0,10]×[0,6]×[0,4] carved to the box shrunk by `shrink`: the smallest centroid x any void
-// reaches is that of carving {x > x*}, with x* the centroid itself.
-double box_min_centroid_x(double shrink) {
-  const double a = 10, b = 6, c = 4, V = a * b * c, area = (b - 2 * shrink) * (c - 2 * shrink), U = a - shrink;
-  double x = 0.5 * a;
-  for (int i = 0; i < 200; ++i) x = (V * 0.5 * a - area * 0.5 * (U * U - x * x)) / (V - area * (U - x));
-  return x;
-}
+// The 10 × 6 × 4 box shrunk by `shrink` (tests/box_on_strip.h).
+double box_min_centroid_x(double shrink) { return test::min_centroid_x(10, 6, 4, shrink); }
 
 }  // namespace
 
@@ -168,9 +163,7 @@ namespace {
 ReachabilityStageInput box_on_strip(const Mesh& box, double width) {
   ReachabilityStageInput in;
   in.input = &box;
-  in.goal.kind = GoalKind::stand;
-  in.goal.margin = 0.05;
-  in.goal.support_polygon = {Eigen::Vector2d(0, 0), Eigen::Vector2d(width, 0), Eigen::Vector2d(width, 6), Eigen::Vector2d(0, 6)};
+  in.goal = test::strip_goal(width, 6, 0.05);
   in.wall = 0.5;
   in.outer_max = 1.0;
   in.ground_tol = 1e-3;
