@@ -48,6 +48,18 @@ Mesh leaning_funnel(double lean) {
 // The 10 × 6 × 4 box shrunk by `shrink` (tests/box_on_strip.h).
 double box_min_centroid_x(double shrink) { return test::min_centroid_x(10, 6, 4, shrink); }
 
+// The box [0,10]×[0,6]×[0,4], wall 0.5, to stand on the strip [0, width] × [0, 6] by a margin of 0.05.
+ReachabilityStageInput box_on_strip(const Mesh& box, double width) {
+  ReachabilityStageInput in;
+  in.input = &box;
+  in.goal = test::strip_goal(width, 6, 0.05);
+  in.wall = 0.5;
+  in.outer_max = 1.0;
+  in.ground_tol = 1e-3;
+  in.origin = Eigen::Vector3d(1, 3, 0);
+  return in;
+}
+
 }  // namespace
 
 TEST_CASE("reachability stage: a leaning cylinder is refused before the solve, with the shortfall") {
@@ -156,22 +168,6 @@ TEST_CASE("reachability stage: a leaning funnel is refused with --flatten H, and
   CHECK(stands.after.goal_met);
   CHECK(stands.after.valid);
 }
-
-namespace {
-
-// The box [0,10]×[0,6]×[0,4], wall 0.5, to stand on the strip [0, width] × [0, 6] by a margin of 0.05.
-ReachabilityStageInput box_on_strip(const Mesh& box, double width) {
-  ReachabilityStageInput in;
-  in.input = &box;
-  in.goal = test::strip_goal(width, 6, 0.05);
-  in.wall = 0.5;
-  in.outer_max = 1.0;
-  in.ground_tol = 1e-3;
-  in.origin = Eigen::Vector3d(1, 3, 0);
-  return in;
-}
-
-}  // namespace
 
 TEST_CASE("reachability stage: what the contour's cells cannot decide is decided on cells half as large") {
   // The 10 × 6 × 4 box, wall 0.5, on a strip [0, 3.3] × [0, 6] by a margin of 0.05. Keeping the
