@@ -169,7 +169,7 @@ std::optional<ReachabilityRemedy> smallest_flatten(const ReachabilityStageInput&
 // Cells half as large, when the programme cannot tell at the contour's scale: the generous
 // reading's cells shrink towards the exact wall and the mid reading's grow towards it, so the
 // bracket between them narrows (docs/reachability.md "Finer cells"). On the census's 12 undecided
-// refusals one halving decided 10 and a second none, at 3 to 4 times the cost.
+// refusals one halving decided 10 (the roly-poly census took 113.7 s in all, 106.7 s before).
 constexpr double kFinerCellsPerWallFactor = 2.0;
 constexpr std::int64_t kFinerMaxNodes = std::int64_t{1} << 24;
 
