@@ -31,9 +31,22 @@ ReachabilityOptions options_for(const ReachabilityStageInput& in, bool outer) {
   return o;
 }
 
+// A roly-poly's sphere whose centre is not above the ground: the sphere fitted to a bottom that is
+// not rounded (legs, a flat or hollow base; --radius puts the centre above the lowest point). No
+// solid resting on the ground, carved, thickened or not, has its centre of mass under it. The
+// census had 16 such of 49 roly-poly refusals, one of them a flat base fitted with a sphere of
+// radius 3566 below the ground ("leaves the centre of mass 3566 above the sphere centre").
+bool sphere_centre_below_ground(const ReachabilityStageInput& in) {
+  return in.goal.kind == GoalKind::roly_poly && in.goal.axis_point.z() <= in.ground_z;
+}
+
 // "the best any void reaches leaves the centre of mass 0.27 outside support edge 6", in the
 // goal's own terms.
-std::string shortfall(const GoalSpec& goal, const Reachability& r) {
+std::string shortfall(const ReachabilityStageInput& in, const Reachability& r) {
+  const GoalSpec& goal = in.goal;
+  if (sphere_centre_below_ground(in))
+    return "the sphere fitted to the bottom has its centre " + format_double(in.ground_z - goal.axis_point.z()) +
+           " below the ground (the bottom is not rounded), and no centre of mass can lie under it";
   const std::string binding = r.binding.empty() ? "the goal's rows" : r.binding;
   if (!r.best_margin && !r.best_margin_upper) return "no void meets " + binding;
   // With the generous reading's optimum, a bound on every void; else the best void of mid cells
@@ -245,7 +258,8 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
   // Reachable: nothing to remedy. Undecided: the remedies wait until the run has missed the goal
   // (add_remedies).
   if (r.reachable || !r.decided) return s;
-  s.shortfall = shortfall(in.goal, r);
+  s.shortfall = shortfall(in, r);
+  if (sphere_centre_below_ground(in)) s.no_remedy_hint = "a roly-poly rocks on a rounded bottom: re-pose the model on one";
   add_remedies(in, s);
   s.refusal = reachability_note(s);
   return s;
@@ -262,13 +276,14 @@ void confirm_reachable(const ReachabilityStageInput& in, ReachabilitySummary& s)
   s.lp_iterations += r.lp_iterations;
   if (r.reachable) return;
   take_claim(r, s);
-  if (r.decided) s.shortfall = shortfall(in.goal, r);
+  if (r.decided) s.shortfall = shortfall(in, r);
 }
 
 void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& s) {
   if (!s.programme || s.reachable || !s.remedies.empty()) return;
   const Reachability& r = *s.programme;
-  const bool band_helps = in.goal.kind != GoalKind::floating && in.goal.kind != GoalKind::volume;
+  const bool band_helps =
+      in.goal.kind != GoalKind::floating && in.goal.kind != GoalKind::volume && !sphere_centre_below_ground(in);
   if (!in.outer && band_helps) {
     std::optional<TriangleBvh> own;
     const TriangleBvh& bvh = in.input_bvh ? *in.input_bvh : own.emplace(in.input->V, in.input->F);
@@ -325,7 +340,7 @@ void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& s) {
 std::string reachability_note(const ReachabilitySummary& summary) {
   if (!summary.reachable && summary.decided)
     return "no void can reach this: " + summary.shortfall +
-           remedy_clauses(summary, "; no remedy tried is known to reach it (re-pose the model or thicken it)");
+           remedy_clauses(summary, "; no remedy tried is known to reach it (" + summary.no_remedy_hint + ")");
   if (summary.reachable) {
     std::string note = "a void the tool can write reaches it";
     if (summary.best_margin) note += " (best margin " + format_double(*summary.best_margin) + ")";

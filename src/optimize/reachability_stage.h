@@ -64,6 +64,7 @@ struct ReachabilitySummary {
   std::string refusal;               // when refused before the solve: the one-line reason, remedies and all
   std::string remedy_list;           // the remedies that reach the goal ("--outer, --up +y"), or empty
   std::string undecided_remedies;    // those only the mid cells reach (mid_cells_reach: "--outer"), or empty
+  std::string no_remedy_hint = "re-pose the model or thicken it";  // what to do when no remedy tried reaches it
   // Not reported: the programme itself (cells, occupancy, the optimum's quadric) and how it was
   // set, for the quadric void (optimize/quadric_void.h); null when it could not be set up.
   std::shared_ptr<const Reachability> programme;

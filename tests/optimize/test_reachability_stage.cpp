@@ -140,6 +140,37 @@ TEST_CASE("reachability stage: an upright cylinder is reachable, its lowest cent
   CHECK(s.remedies.empty());
 }
 
+TEST_CASE("reachability stage: a roly-poly whose sphere centre lies below the ground is refused for the bottom, not the void") {
+  // A flat-bottomed cylinder resting on z = 0, its rocking sphere centred 5 below the ground (what
+  // a sphere fitted to a bottom that is not rounded can give). Every solid resting on the ground
+  // has cz > 0 > −5, so no void of any shape, and no thicker outside, reaches cz < −5 − ε.
+  const Mesh mesh = make_cylinder(3.0, 0.0, 10.0, 48, 24, 8);
+  ReachabilityStageInput in;
+  in.input = &mesh;
+  in.goal.kind = GoalKind::roly_poly;
+  in.goal.axis_point = Eigen::Vector3d(0, 0, -5);
+  in.goal.epsilon = 0.02;
+  in.wall = 0.3;
+  in.outer_max = 0.6;
+  in.ground_tol = 0.01;
+  const ReachabilitySummary s = reachability_stage(in);
+  CHECK(!s.reachable);
+  CHECK(s.decided);
+  // The programme's own bound agrees with the geometry: the centre stays at least 5 above the centre.
+  if (s.best_margin_upper) CHECK(*s.best_margin_upper < -5.0);
+  CHECK(s.refusal.find("centre 5 below the ground (the bottom is not rounded)") != std::string::npos);
+  CHECK(s.refusal.find("thicken") == std::string::npos);
+  CHECK(s.refusal.find("re-pose the model on one") != std::string::npos);
+  CHECK(s.remedies.empty());  // the band cannot help: not tried
+
+  // Centred above the ground but out of reach, the shortfall is the programme's, in the goal's terms.
+  in.goal.axis_point = Eigen::Vector3d(0, 0, 1);
+  const ReachabilitySummary above = reachability_stage(in);
+  CHECK(!above.reachable);
+  CHECK(above.refusal.find("above the sphere centre") != std::string::npos);
+  CHECK(above.refusal.find("below the ground") == std::string::npos);
+}
+
 TEST_CASE("reachability stage: a leaning funnel is refused with --flatten H, and cut at H it stands") {
   const Mesh mesh = leaning_funnel(0.5);
   OptimizeOptions options;
