@@ -1408,17 +1408,19 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
                                            options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
                                            options.threads, options.flatten, input_bvh.get()};
   std::atomic<bool> out_of_reach{false};
+  std::atomic<bool> reach_running{options.threads > 1};
   struct ReachOutcome {
     ReachabilitySummary summary;
     double seconds = 0.0;
     QuadricAhead quadric_ahead;
   };
-  const auto compute_reach = [&reach_input, &options, &f, &input, input_bvh, &out_of_reach, &tick, n]() {
+  const auto compute_reach = [&reach_input, &options, &f, &input, input_bvh, &out_of_reach, &reach_running, &tick, n]() {
     ReachOutcome outcome;
     if (tick) tick("reachability", -1.0);
     const auto start = Clock::now();
     outcome.summary = reachability_stage(reach_input);
     outcome.seconds = seconds_since(start);
+    reach_running = false;
     if (tick) tick("reachability", 1.0);
     const ReachabilitySummary& reach = outcome.summary;
     if (reach.decided && !reach.reachable) {
@@ -1489,6 +1491,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   reduced_options.bounds = options.bounds;
   reduced_options.start_fraction = options.start_fraction;
   reduced_options.threads = options.threads;
+  reduced_options.serial_while = &reach_running;
   if (const std::string problem_text = reduced_options.check(); !problem_text.empty()) {
     if (refused()) return refuse();
     return failure(OptimizeStatus::bad_input, problem_text);

@@ -56,11 +56,11 @@ ReducedProblem::ReducedProblem(const Mesh& mesh, const OffsetBand& band, const E
   vertex_split_[2] = mesh_.V.rows();
   if (execution_policy(options_.threads, static_cast<double>(mesh_.V.rows()), kMinParallelVertices) ==
       ExecutionPolicy::parallel)
-    pool_ = std::make_unique<WorkerPool>(2);
+    pool_ = std::make_unique<WorkerPool>(2, PoolWait::poll_then_sleep);
 }
 
 void ReducedProblem::run_parts(const std::function<void(int)>& part) const {
-  if (pool_) {
+  if (pool_ && !(options_.serial_while && options_.serial_while->load(std::memory_order_relaxed))) {
     pool_->run_parts(2, part);  // both parts, even when the pool got only one thread
   } else {
     part(0);

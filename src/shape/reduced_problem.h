@@ -21,6 +21,7 @@
 // The outer penalty wp·β₁² (paper 5.2: the first coefficient, the DC term) and, in clamp mode,
 // the overshoot term (ReducedOptions::overshoot_weight) are added to f.
 #pragma once
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <string>
@@ -64,6 +65,11 @@ struct ReducedOptions {
   // Each evaluation is cut into two fixed parts, run on two threads when this is > 1 and the mesh
   // is large enough (util/parallel.h's execution_policy; the results are the same either way).
   int threads = 2;
+  // While this reads true, the two parts run one after the other on the calling thread: another
+  // task holds the second core (optimize's reachability programme), and two parts on one core
+  // wait for each other's time slices (on stand-filled --outer the first solve took 0.20 s beside
+  // the programme, 0.16 s alone on one thread). Null: no such task.
+  const std::atomic<bool>* serial_while = nullptr;
 
   // Empty when the options are valid, else what is wrong.
   std::string check() const;

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <thread>
 #include <future>
 #include <vector>
 
@@ -24,6 +26,29 @@ TEST_CASE("worker pool: run_parts runs every part exactly once on 1, 2, 3 and 5 
       for (int repeat = 0; repeat < 3; ++repeat) pool.run_parts(parts, [&](int part) { ++runs[static_cast<std::size_t>(part)]; });
       for (int p = 0; p < parts; ++p) CHECK(runs[static_cast<std::size_t>(p)] == 3);
     }
+  }
+}
+
+TEST_CASE("worker pool: a polling pool runs every part exactly once, hand-offs caught polling or asleep") {
+  // Parts that end at once (the next run is caught while the threads poll) and parts that outlast
+  // the 100 µs poll (the caller and the worker sleep and are woken), alternating.
+  for (PoolWait wait : {PoolWait::sleep, PoolWait::poll_then_sleep}) {
+    WorkerPool pool(2, wait);
+    std::vector<std::atomic<int>> runs(2);
+    for (auto& r : runs) r = 0;
+    std::atomic<long> sum{0};
+    const int repeats = 2000;
+    for (int repeat = 0; repeat < repeats; ++repeat) {
+      const bool slow = repeat % 100 == 99;
+      pool.run_parts(2, [&](int part) {
+        ++runs[static_cast<std::size_t>(part)];
+        if (slow && part == 1) std::this_thread::sleep_for(std::chrono::microseconds(300));
+        sum += repeat;
+      });
+    }
+    CHECK(runs[0] == repeats);
+    CHECK(runs[1] == repeats);
+    CHECK(sum == 2L * repeats * (repeats - 1) / 2);
   }
 }
 
