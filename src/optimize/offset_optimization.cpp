@@ -155,6 +155,9 @@ namespace {
 using Progress = std::function<void(const std::string&)>;
 
 constexpr double kCorrectionHeadroom = 0.01;  // see OffsetSolve::correct
+// A sphere fitted to the bottom this many diagonals wide: the bottom is flat (cgal-data_pinion:
+// radius 690 on a diagonal of 1.3; every other roly-poly of the census is under one diagonal).
+constexpr double kFlatBottomDiagonals = 10.0;
 constexpr double kFinestQuadricCellsPerWall = 3.0;  // one refinement of the default 1.5
 // How far below its model's objective a contour's may fall, relative: on the census (56 contours
 // that verified) at most 1.4e-4 (a sphere), every other one above it.
@@ -1555,6 +1558,14 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
                               (cavity.summary.contoured() ? "; those parts stay solid" : ", where the offset surface leaves less than the wall"));
   if (b.field.fallback_count > 0)
     result.warnings.push_back(std::to_string(b.field.fallback_count) + " vertices move along the inward normal (skeleton direction unusable or too shallow)");
+  // Below the centre of so large a sphere is where any solid's centre of mass already is: the goal
+  // is met, and says nothing about rocking.
+  if (options.goal == GoalKind::roly_poly && !(options.radius > 0.0) &&
+      f.setup.sphere_radius > kFlatBottomDiagonals * f.diag)
+    result.warnings.push_back("the sphere fitted to the bottom has radius " + format_double(f.setup.sphere_radius) + ", " +
+                              format_double(std::round(f.setup.sphere_radius / f.diag)) +
+                              " times the model's diagonal: the bottom is nearly flat, so the object stands rather than "
+                              "rocks; give --radius for the sphere it should rock on");
   const Verification& verification = cavity.verification;
   if (verified(verification)) {
     result.status = OptimizeStatus::verified;

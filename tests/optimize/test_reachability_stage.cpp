@@ -171,6 +171,25 @@ TEST_CASE("reachability stage: a roly-poly whose sphere centre lies below the gr
   CHECK(above.refusal.find("below the ground") == std::string::npos);
 }
 
+TEST_CASE("roly-poly on a flat bottom: the fitted sphere is many diagonals wide, and the run says the object will not rock") {
+  // A disc of radius 6 and height 1 whose bottom is the paraboloid z = 10⁻⁴ (x² + y²): the sphere
+  // through it has radius 1 / (2 · 10⁻⁴) = 5000, about 400 of the disc's diagonals.
+  Mesh disc = make_cylinder(6.0, 0.0, 1.0, 24, 1, 4);
+  for (Eigen::Index v = 0; v < disc.V.rows(); ++v)
+    if (disc.V(v, 2) < 0.5) disc.V(v, 2) = 1e-4 * (disc.V(v, 0) * disc.V(v, 0) + disc.V(v, 1) * disc.V(v, 1));
+  OptimizeOptions options;
+  options.goal = GoalKind::roly_poly;
+  const OptimizeResult r = optimize_offsets(disc, options);
+  bool warned = false;
+  for (const std::string& w : r.warnings) warned = warned || w.find("the bottom is nearly flat") != std::string::npos;
+  CHECK(warned);
+  CHECK(r.goal.sphere_radius == doctest::Approx(5000.0).epsilon(0.01));
+  // Given --radius, the user has said which sphere: no such warning.
+  options.radius = 2.0;
+  const OptimizeResult given = optimize_offsets(disc, options);
+  for (const std::string& w : given.warnings) CHECK(w.find("nearly flat") == std::string::npos);
+}
+
 TEST_CASE("reachability stage: a leaning funnel is refused with --flatten H, and cut at H it stands") {
   const Mesh mesh = leaning_funnel(0.5);
   OptimizeOptions options;
