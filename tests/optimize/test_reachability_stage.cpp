@@ -156,7 +156,7 @@ TEST_CASE("reachability stage: a roly-poly whose sphere centre lies below the gr
   const ReachabilitySummary s = reachability_stage(in);
   CHECK(!s.reachable);
   CHECK(s.decided);
-  // The programme's own bound agrees with the geometry: the centre stays at least 5 above the centre.
+  // The programme's own bound agrees with the geometry: the centre of mass stays over 5 above the sphere's.
   if (s.best_margin_upper) CHECK(*s.best_margin_upper < -5.0);
   CHECK(s.refusal.find("centre 5 below the ground (the bottom is not rounded)") != std::string::npos);
   CHECK(s.refusal.find("thicken") == std::string::npos);

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <thread>
 #include <future>
+#include <thread>
 #include <vector>
 
 #include "util/parallel.h"
