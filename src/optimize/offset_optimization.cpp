@@ -156,7 +156,7 @@ using Progress = std::function<void(const std::string&)>;
 
 constexpr double kCorrectionHeadroom = 0.01;  // see OffsetSolve::correct
 // A sphere fitted to the bottom this many diagonals wide: the bottom is flat (cgal-data_pinion:
-// radius 690 on a diagonal of 1.3; every other roly-poly of the census is under one diagonal).
+// radius 1228, 527 diagonals; every other roly-poly of the census is under one diagonal).
 constexpr double kFlatBottomDiagonals = 10.0;
 constexpr double kFinestQuadricCellsPerWall = 3.0;  // one refinement of the default 1.5
 // How far below its model's objective a contour's may fall, relative: on the census (56 contours
