@@ -264,6 +264,8 @@ int run_optimize(const Args& args) {
   const PosedInput posed = pose_input(loaded.mesh, pose_options, mesh_path, true);
   print_warnings(posed.warnings, quiet);
   options.flatten = pose_options.flatten;
+  options.up = pose_options.up;
+  options.posed_stable = pose_options.stable;
   // Searched once at the input boundary; a posed mesh is another mesh and is searched again.
   if (!pose_options.any()) options.input_self_intersections = loaded.self_intersections;
   OptimizeResult result = optimize_offsets(posed.mesh, options, progress);

@@ -14,6 +14,7 @@
 #include "geometry/bvh.h"
 #include "geometry/intersecting_faces.h"
 #include "geometry/mesh_defects.h"
+#include "geometry/pose.h"
 #include "mass/mass_properties.h"
 #include "mass/stability.h"
 #include "mass/volume_integrals.h"
@@ -135,6 +136,7 @@ std::string OptimizeOptions::check() const {
   if (!(s.ramp > 0.0)) return "ramp must be > 0";
   if (s.outer && s.bounds == BoundsMode::hard && s.k == 0) return "--k all with --bounds hard and --outer is not supported";
   if (s.threads < 1 || s.threads > 64) return "--threads must be in [1, 64]";
+  if (AxisPermutation axis; !up_axis_permutation(s.up, axis)) return "--up must be +x, -x, +y, -y, +z or -z, got '" + s.up + "'";
   if (s.max_correction_rounds < 0 || s.max_correction_rounds > 20) return "correction rounds must be in [0, 20]";
   if (s.wants_drain_holes() && s.cavity == CavityMode::offset)
     return "drain holes are cut through a contoured cavity: use --cavity auto, contour or quadric, not offset";
@@ -1409,7 +1411,8 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   say("reachability: can any void reach the goal?");
   const ReachabilityStageInput reach_input{&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
                                            options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
-                                           options.threads, options.flatten, input_bvh.get()};
+                                           options.threads, options.flatten, input_bvh.get(), options.up,
+                                           options.posed_stable};
   std::atomic<bool> out_of_reach{false};
   std::atomic<bool> reach_running{options.threads > 1};
   struct ReachOutcome {

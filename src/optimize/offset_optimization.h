@@ -71,6 +71,10 @@ struct OptimizeOptions {
   // The --flatten height the input was already cut at (the CLI's pose options; 0: none), so a
   // flat-base remedy names the height to type.
   double flatten = 0.0;
+  // The --up axis the input was turned by and whether --pose stable was given (the CLI's pose
+  // options), so that an other-pose remedy names what to type for the file (reachability_stage.h).
+  std::string up = "+z";
+  bool posed_stable = false;
   CavityMode cavity = CavityMode::automatic;
   // `auto` tries the quadric void when the offset void misses a goal some void reaches, or when
   // it achieves less than this fraction of the possible lowering (Optimality); the offset void is

@@ -303,19 +303,30 @@ void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& s) {
       s.remedies.back().mid_cells_reach = mid_cells_reach;
     }
   }
-  // Other poses (stand goals): the most stable hull facet and the other five axes up, ranked by
-  // the best margin a void reaches there.
+  // Other poses (stand goals): the most stable hull facet and the file's other five axes up,
+  // ranked by the best margin a void reaches there. Each is tried as the CLI would pose the file
+  // with it: the input here is the file turned by the user's --up U, so "--up b" is the turn
+  // P_b · U⁻¹ of it. Not after --flatten (the CLI cuts after turning: the cut would be another), and
+  // no --up after --pose stable (the CLI would re-pose whatever the axis).
   if (in.goal.kind == GoalKind::stand || in.goal.kind == GoalKind::stand_filled) {
     const VolumeIntegrals integrals = volume_integrals(*in.input);
     std::vector<ReachabilityRemedy> poses;
-    const Vector10d P = mass_properties(*in.input);
-    const StablePose stable = stable_pose(*in.input, Eigen::Vector3d(P(kCx), P(kCy), P(kCz)));
-    if (stable.status == StablePoseStatus::ok)
-      if (auto remedy = try_pose(in, r.cells, integrals, stable.motion.rotation, "--pose stable")) poses.push_back(*remedy);
-    for (const char* up : {"+x", "-x", "+y", "-y", "-z"}) {
-      AxisPermutation permutation;
-      if (!up_axis_permutation(up, permutation)) continue;
-      if (auto remedy = try_pose(in, r.cells, integrals, permutation.matrix(), std::string("--up ") + up)) poses.push_back(*remedy);
+    const bool turned_as_typed = !(in.flatten > 0.0);
+    if (turned_as_typed && !in.posed_stable) {
+      const Vector10d P = mass_properties(*in.input);
+      const StablePose stable = stable_pose(*in.input, Eigen::Vector3d(P(kCx), P(kCy), P(kCz)));
+      if (stable.status == StablePoseStatus::ok)
+        if (auto remedy = try_pose(in, r.cells, integrals, stable.motion.rotation, "--pose stable")) poses.push_back(*remedy);
+    }
+    AxisPermutation user_up;
+    if (turned_as_typed && !in.posed_stable && up_axis_permutation(in.up, user_up)) {
+      const Eigen::Matrix3d undo = user_up.matrix().transpose();
+      for (const char* up : {"+z", "+x", "-x", "+y", "-y", "-z"}) {
+        AxisPermutation permutation;
+        if (!up_axis_permutation(up, permutation) || permutation.matrix() == user_up.matrix()) continue;
+        if (auto remedy = try_pose(in, r.cells, integrals, permutation.matrix() * undo, std::string("--up ") + up))
+          poses.push_back(*remedy);
+      }
     }
     std::stable_sort(poses.begin(), poses.end(), [](const ReachabilityRemedy& a, const ReachabilityRemedy& b) {
       return a.best_margin.value_or(-1e300) > b.best_margin.value_or(-1e300);

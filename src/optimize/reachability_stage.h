@@ -82,6 +82,11 @@ struct ReachabilityStageInput {
   int threads = 2;
   double flatten = 0.0;              // the --flatten height the input was already cut at (0: none)
   const TriangleBvh* input_bvh = nullptr;  // the input's tree when built already (else built here)
+  // How the file's mesh was turned into `input` (the CLI's pose options): the --up axis, and
+  // whether --pose stable was given. A pose remedy names what to type for the file, so with --up
+  // +x an "--up +y" remedy is the file's +y up, not the turned mesh's.
+  std::string up = "+z";
+  bool posed_stable = false;
 };
 
 ReachabilitySummary reachability_stage(const ReachabilityStageInput& in);

@@ -5,6 +5,7 @@
 // surface passes `check`.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -140,4 +141,49 @@ TEST_CASE("optimize --flatten on a sphere: the written surface is a closed solid
   CHECK(run(kBinary + " optimize " + path + " --flatten 60 --goal stand --quiet -o " + temp().file("none.obj")) == 2);
   CHECK(run(kBinary + " optimize " + path + " --flatten -1 --goal stand --quiet -o " + temp().file("none.obj")) == 2);
   CHECK(read_file(temp().file("none.obj")).empty());
+}
+
+// A square prism 2 × 2 × 10 standing on its end, sheared y += 0.8 z: no void brings its centre of
+// mass over the end, and it stands on either flat side whose normal is ±x. The file holds it
+// turned so that `--up +x` poses it on its end. Every pose remedy the refusal names is run as the
+// user would type it, and stands; before, the remedies named the posed mesh's axes ("--up +x" for
+// the side that is the file's -z), which is not what the file needs.
+TEST_CASE("optimize --up +x: every pose remedy of a refusal names the file's axis, and stands as typed") {
+  Mesh prism = make_cylinder(std::sqrt(2.0), 0.0, 10.0, 4, 20, 3);
+  double s, c;
+  det_sincos(0.25 * kPi, s, c);
+  for (Eigen::Index i = 0; i < prism.V.rows(); ++i) {
+    const double x = prism.V(i, 0), y = prism.V(i, 1);
+    prism.V(i, 0) = c * x - s * y;
+    prism.V(i, 1) = s * x + c * y + 0.8 * prism.V(i, 2);
+  }
+  AxisPermutation up_x;
+  REQUIRE(up_axis_permutation("+x", up_x));
+  const std::string path = temp().file("sheared_prism.obj");
+  write_mesh(path, permute_axes(prism, up_x.inverse()));
+  const std::string report_path = temp().file("sheared_prism.json");
+  REQUIRE(run(kBinary + " optimize " + path + " --goal stand --up +x --quiet -o " + temp().file("sheared.stl") +
+              " --report " + report_path) == 3);
+  const Json report = Json::parse(read_file(report_path));
+  const Json& reach = report.at("reachability");
+  CHECK(reach.at("decided").as_bool());
+  CHECK_FALSE(reach.at("reachable").as_bool());
+  int named = 0;
+  bool plus_z = false, minus_z = false;
+  for (const Json& remedy : reach.at("remedies").elements()) {
+    const std::string option = remedy.at("option").as_string();
+    CAPTURE(option);
+    CHECK(option != "--up +x");  // the pose it has
+    if (!remedy.at("reachable").as_bool() || option.rfind("--flatten", 0) == 0 || option == "--outer") continue;
+    ++named;
+    plus_z = plus_z || option == "--up +z";
+    minus_z = minus_z || option == "--up -z";
+    // As typed: an --up replaces the user's, --pose stable joins it.
+    const std::string pose = option.rfind("--up ", 0) == 0 ? option : "--up +x " + option;
+    CHECK(run(kBinary + " optimize " + path + " --goal stand " + pose + " --quiet -o " + temp().file("remedy.stl")) == 0);
+  }
+  // The two flat sides are the file's +z and -z (the turned mesh's ±x).
+  CHECK(plus_z);
+  CHECK(minus_z);
+  CHECK(named >= 2);
 }
