@@ -284,24 +284,46 @@ ConvexHull3d convex_hull_3d(const std::vector<Eigen::Vector3d>& points, double c
     const auto& v = hull.triangles[t];
     normal[t] = (points[v[1]] - points[v[0]]).cross(points[v[2]] - points[v[0]]);
   }
+  auto has_plane = [&](int t) { return normal[t].squaredNorm() > 0.0; };
   auto distance_to_plane = [&](int t, int point) {
-    const double length = normal[t].norm();
-    if (!(length > 0.0)) return 0.0;  // a sliver hull triangle joins its neighbour
-    return std::fabs(normal[t].dot(points[point] - points[hull.triangles[t][0]])) / length;
+    return std::fabs(normal[t].dot(points[point] - points[hull.triangles[t][0]])) / normal[t].norm();
   };
+  auto far_corner = [&](int t, int e, int u) {  // u's corner off the edge e of t
+    for (int k = 0; k < 3; ++k)
+      if (hull.triangles[u][k] != hull.triangles[t][e] && hull.triangles[u][k] != hull.triangles[t][(e + 1) % 3])
+        return hull.triangles[u][k];
+    return -1;
+  };
+  // Two adjacent triangles are one facet when each one's far corner lies within the tolerance of
+  // the other's plane. Both, not either: a sliver along a hull edge (corners collinear up to
+  // rounding) has a plane that is noise, and its far corner, on the edge, lies in both faces'
+  // planes; "either" made it join both, and a sheared box's four long faces one facet.
   DisjointSets coplanar(static_cast<std::size_t>(count));
   for (int t = 0; t < count; ++t)
     for (int e = 0; e < 3; ++e) {
       const int u = adjacency[t][e];
-      if (u < t) continue;
-      int far_u = -1, far_t = hull.triangles[t][(e + 2) % 3];
-      for (int k = 0; k < 3; ++k)
-        if (hull.triangles[u][k] != hull.triangles[t][e] && hull.triangles[u][k] != hull.triangles[t][(e + 1) % 3])
-          far_u = hull.triangles[u][k];
-      if (distance_to_plane(t, far_u) <= coplanar_tolerance || distance_to_plane(u, far_t) <= coplanar_tolerance) {
+      if (u < t || !has_plane(t) || !has_plane(u)) continue;
+      if (distance_to_plane(t, far_corner(t, e, u)) <= coplanar_tolerance &&
+          distance_to_plane(u, hull.triangles[t][(e + 2) % 3]) <= coplanar_tolerance)
         coplanar.unite(static_cast<std::uint32_t>(t), static_cast<std::uint32_t>(u));
-      }
     }
+  // A triangle no neighbour took (such a sliver, or one of no area) joins the first neighbour whose
+  // plane holds its three corners: one facet, never a bridge between two.
+  std::vector<int> members(static_cast<std::size_t>(count), 0);
+  for (int t = 0; t < count; ++t) ++members[coplanar.find(static_cast<std::uint32_t>(t))];
+  std::vector<int> join(static_cast<std::size_t>(count), -1);
+  for (int t = 0; t < count; ++t) {
+    if (members[coplanar.find(static_cast<std::uint32_t>(t))] != 1) continue;
+    for (int e = 0; e < 3 && join[t] < 0; ++e) {
+      const int u = adjacency[t][e];
+      if (!has_plane(u)) continue;
+      bool holds = true;
+      for (int k = 0; k < 3; ++k) holds = holds && distance_to_plane(u, hull.triangles[t][k]) <= coplanar_tolerance;
+      if (holds) join[t] = u;
+    }
+  }
+  for (int t = 0; t < count; ++t)
+    if (join[t] >= 0) coplanar.unite(static_cast<std::uint32_t>(t), static_cast<std::uint32_t>(join[t]));
   std::map<int, int> facet_of_root;
   for (int t = 0; t < count; ++t) {
     const int root = static_cast<int>(coplanar.find(static_cast<std::uint32_t>(t)));

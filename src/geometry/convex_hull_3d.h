@@ -45,7 +45,9 @@ struct ConvexHull3d {
 };
 
 // The hull of `points` (duplicates allowed). Two adjacent hull triangles belong to one facet when
-// the far corner of either is within `coplanar_tolerance` (a length, >= 0) of the other's plane.
+// the far corner of each is within `coplanar_tolerance` (a length, >= 0) of the other's plane; a
+// triangle no neighbour takes so (a sliver along a hull edge, or one of no area) joins the first
+// neighbour whose plane holds its three corners, so that no sliver joins two faces.
 ConvexHull3d convex_hull_3d(const std::vector<Eigen::Vector3d>& points, double coplanar_tolerance);
 
 }  // namespace offsetopt

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -56,4 +57,30 @@ TEST_CASE("stable_pose: a tilted 4 x 2 x 1 box rests on a 4 x 2 face with margin
   CHECK(stable_pose(tilted, P.segment<3>(kCx), bad).status == StablePoseStatus::bad_options);
   // The pose is a rigid motion: edge lengths are kept.
   CHECK((posed.V.row(7) - posed.V.row(0)).norm() == doctest::Approx(std::sqrt(21.0)).epsilon(1e-14));
+}
+
+// The sheared box of tests/geometry/test_pose.cpp ([-1,1]² × [0,10] sampled every 0.25, y += 0.8 z):
+// the centre of mass (0, 4, 5) projects onto the middle of each long face; the sheared ±y faces are
+// 2 × 12.8 rectangles (margin 1, the half-width), the ±x faces parallelograms 1.56 wide between
+// their long sides (margin 0.78), the ends miss it. Before, slivers along the edges merged four
+// faces into one facet and the pose rested on a ±x face, margin 0.78.
+TEST_CASE("stable_pose: a sheared, finely sampled box rests on a sheared face with margin 1") {
+  Mesh points;
+  std::vector<Eigen::Vector3d> list;
+  for (int i = 0; i <= 8; ++i)
+    for (int j = 0; j <= 8; ++j)
+      for (int k = 0; k <= 40; ++k) {
+        if (i != 0 && i != 8 && j != 0 && j != 8 && k != 0 && k != 40) continue;
+        const double x = -1.0 + 0.25 * i, y = -1.0 + 0.25 * j, z = 0.25 * k;
+        list.emplace_back(x, y + 0.8 * z, z);
+      }
+  points.V.resize(static_cast<Eigen::Index>(list.size()), 3);
+  for (std::size_t i = 0; i < list.size(); ++i) points.V.row(static_cast<Eigen::Index>(i)) = list[i].transpose();
+  const StablePose pose = stable_pose(points, Eigen::Vector3d(0, 4, 5));
+  REQUIRE(pose.status == StablePoseStatus::ok);
+  CHECK(pose.facet_count == 6);
+  CHECK(pose.margin == doctest::Approx(1.0).epsilon(1e-9));
+  CHECK(pose.facet_area == doctest::Approx(2.0 * std::sqrt(164.0)).epsilon(1e-12));
+  CHECK(std::fabs(pose.facet_normal.x()) < 1e-12);  // a sheared ±y face: normal (0, ∓1, ±0.8)/√1.64
+  CHECK(std::fabs(pose.facet_normal.z()) == doctest::Approx(0.8 / std::sqrt(1.64)).epsilon(1e-12));
 }
