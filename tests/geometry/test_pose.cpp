@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "../sheared_box_points.h"
 #include "geometry/convex_hull_3d.h"
 #include "geometry/pose.h"
 #include "mesh/primitives.h"
@@ -125,21 +126,12 @@ TEST_CASE("rotation_to_minus_z: orthonormal, proper, and takes the vector to −
   }
 }
 
-// The box [-1,1]² × [0,10] sampled every 0.25 on its surface and sheared y += 0.8 z: the sheared
-// points along each edge are collinear only up to rounding, so the hull has sliver triangles
-// along its edges, whose planes are noise. Each face must stay one facet with its own area: two
-// 2 × 10 parallelograms (20), two 2 × 12.806 rectangles (the sheared ±y faces, 2·√164) and two
-// 2 × 2 ends. Before, a sliver on an edge joined both faces it touches, and four faces came out
-// as one facet of area 91.2.
+// The sheared box of tests/sheared_box_points.h: the slivers along its hull edges have planes that
+// are noise. Each face must stay one facet with its own area: 20 (the parallelograms), 2·√164
+// (the sheared rectangles), 4 (the ends). Before, a sliver on an edge joined both faces it
+// touches, and four faces came out as one facet of area 91.2.
 TEST_CASE("convex_hull_3d: a sheared, finely sampled box has its six faces as six facets") {
-  std::vector<Eigen::Vector3d> points;
-  for (int i = 0; i <= 8; ++i)
-    for (int j = 0; j <= 8; ++j)
-      for (int k = 0; k <= 40; ++k) {
-        if (i != 0 && i != 8 && j != 0 && j != 8 && k != 0 && k != 40) continue;  // the surface only
-        const double x = -1.0 + 0.25 * i, y = -1.0 + 0.25 * j, z = 0.25 * k;
-        points.emplace_back(x, y + 0.8 * z, z);
-      }
+  const std::vector<Eigen::Vector3d> points = test::sheared_box_points();
   const double diagonal = std::sqrt(2.0 * 2.0 + 10.0 * 10.0 + 10.0 * 10.0);
   const ConvexHull3d hull = convex_hull_3d(points, 1e-9 * diagonal);
   check_hull(points, hull);

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "../sheared_box_points.h"
 #include "geometry/pose.h"
 #include "mass/mass_properties.h"
 #include "mass/stable_pose.h"
@@ -59,21 +60,13 @@ TEST_CASE("stable_pose: a tilted 4 x 2 x 1 box rests on a 4 x 2 face with margin
   CHECK((posed.V.row(7) - posed.V.row(0)).norm() == doctest::Approx(std::sqrt(21.0)).epsilon(1e-14));
 }
 
-// The sheared box of tests/geometry/test_pose.cpp ([-1,1]² × [0,10] sampled every 0.25, y += 0.8 z):
-// the centre of mass (0, 4, 5) projects onto the middle of each long face; the sheared ±y faces are
-// 2 × 12.8 rectangles (margin 1, the half-width), the ±x faces parallelograms 1.56 wide between
-// their long sides (margin 0.78), the ends miss it. Before, slivers along the edges merged four
-// faces into one facet and the pose rested on a ±x face, margin 0.78.
+// The sheared box of tests/sheared_box_points.h: its centre of mass (0, 4, 5) projects onto the
+// middle of each long face; on a sheared ±y face (a 2-wide rectangle) the margin is 1, its
+// half-width, on a ±x face (a parallelogram 1.56 wide) 0.78, and the ends miss it. Before, slivers
+// along the edges merged four faces into one facet and the pose rested on a ±x face, margin 0.78.
 TEST_CASE("stable_pose: a sheared, finely sampled box rests on a sheared face with margin 1") {
   Mesh points;
-  std::vector<Eigen::Vector3d> list;
-  for (int i = 0; i <= 8; ++i)
-    for (int j = 0; j <= 8; ++j)
-      for (int k = 0; k <= 40; ++k) {
-        if (i != 0 && i != 8 && j != 0 && j != 8 && k != 0 && k != 40) continue;
-        const double x = -1.0 + 0.25 * i, y = -1.0 + 0.25 * j, z = 0.25 * k;
-        list.emplace_back(x, y + 0.8 * z, z);
-      }
+  const std::vector<Eigen::Vector3d> list = test::sheared_box_points();
   points.V.resize(static_cast<Eigen::Index>(list.size()), 3);
   for (std::size_t i = 0; i < list.size(); ++i) points.V.row(static_cast<Eigen::Index>(i)) = list[i].transpose();
   const StablePose pose = stable_pose(points, Eigen::Vector3d(0, 4, 5));
