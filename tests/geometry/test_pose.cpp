@@ -1,6 +1,7 @@
 // Poses (issue 13): the 3-D convex hull against its defining property (every point on or below
-// every hull plane, Euler's formula), the exact up-axis permutations and the sqrt-only rotation
-// to −z (the stable pose is tested in tests/mass/test_stable_pose.cpp).
+// every hull plane, Euler's formula) and a sheared, sampled box's six facets against their analytic
+// areas, the exact up-axis permutations and the sqrt-only rotation to −z (the stable pose is tested
+// in tests/mass/test_stable_pose.cpp).
 #include <doctest/doctest.h>
 
 #include <algorithm>

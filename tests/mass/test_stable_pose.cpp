@@ -1,5 +1,5 @@
 // The stable pose (issue 13, mass/stable_pose.h): a tilted box against the analytic margin of its
-// largest face.
+// largest face, and a sheared, sampled box against the half-width of its sheared faces.
 #include <doctest/doctest.h>
 
 #include <cmath>

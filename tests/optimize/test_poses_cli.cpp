@@ -2,7 +2,8 @@
 // bottle run with --up y gives the z-up run's meshes (solid, inner, outer, skeleton) byte for byte
 // once turned back, and the same report apart from the input's name and the pose; a tilted box
 // posed stable rests on its largest face with the analytic margin; a flattened sphere's written
-// surface passes `check`.
+// surface passes `check`; a sheared prism that `--up +x` stands on its end is refused, and every
+// pose remedy the refusal names, run as typed, stands.
 #include <doctest/doctest.h>
 
 #include <cmath>
