@@ -299,21 +299,22 @@ ConvexHull3d convex_hull_3d(const std::vector<Eigen::Vector3d>& points, double c
   // rounding) has a plane that is noise, and its far corner, on the edge, lies in both faces'
   // planes; "either" made it join both, and a sheared box's four long faces one facet.
   DisjointSets coplanar(static_cast<std::size_t>(count));
+  std::vector<char> taken(static_cast<std::size_t>(count), 0);
   for (int t = 0; t < count; ++t)
     for (int e = 0; e < 3; ++e) {
       const int u = adjacency[t][e];
       if (u < t || !has_plane(t) || !has_plane(u)) continue;
       if (distance_to_plane(t, far_corner(t, e, u)) <= coplanar_tolerance &&
-          distance_to_plane(u, hull.triangles[t][(e + 2) % 3]) <= coplanar_tolerance)
+          distance_to_plane(u, hull.triangles[t][(e + 2) % 3]) <= coplanar_tolerance) {
         coplanar.unite(static_cast<std::uint32_t>(t), static_cast<std::uint32_t>(u));
+        taken[t] = taken[u] = 1;
+      }
     }
   // A triangle no neighbour took (such a sliver, or one of no area) joins the first neighbour whose
   // plane holds its three corners: one facet, never a bridge between two.
-  std::vector<int> members(static_cast<std::size_t>(count), 0);
-  for (int t = 0; t < count; ++t) ++members[coplanar.find(static_cast<std::uint32_t>(t))];
   std::vector<int> join(static_cast<std::size_t>(count), -1);
   for (int t = 0; t < count; ++t) {
-    if (members[coplanar.find(static_cast<std::uint32_t>(t))] != 1) continue;
+    if (taken[t]) continue;
     for (int e = 0; e < 3 && join[t] < 0; ++e) {
       const int u = adjacency[t][e];
       if (!has_plane(u)) continue;

@@ -311,15 +311,12 @@ void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& s) {
   if (in.goal.kind == GoalKind::stand || in.goal.kind == GoalKind::stand_filled) {
     const VolumeIntegrals integrals = volume_integrals(*in.input);
     std::vector<ReachabilityRemedy> poses;
-    const bool turned_as_typed = !(in.flatten > 0.0);
-    if (turned_as_typed && !in.posed_stable) {
+    AxisPermutation user_up;
+    if (!(in.flatten > 0.0) && !in.posed_stable && up_axis_permutation(in.up, user_up)) {
       const Vector10d P = mass_properties(*in.input);
       const StablePose stable = stable_pose(*in.input, Eigen::Vector3d(P(kCx), P(kCy), P(kCz)));
       if (stable.status == StablePoseStatus::ok)
         if (auto remedy = try_pose(in, r.cells, integrals, stable.motion.rotation, "--pose stable")) poses.push_back(*remedy);
-    }
-    AxisPermutation user_up;
-    if (turned_as_typed && !in.posed_stable && up_axis_permutation(in.up, user_up)) {
       const Eigen::Matrix3d undo = user_up.matrix().transpose();
       for (const char* up : {"+z", "+x", "-x", "+y", "-y", "-z"}) {
         AxisPermutation permutation;
