@@ -29,10 +29,10 @@ namespace offsetopt {
 
 struct ReachabilityRemedy {
   std::string option;                // "--outer"
-  bool reachable = false;            // the programme reaches the goal with it (mid cells; --outer: inner ones too)
+  bool reachable = false;            // the programme reaches the goal with it (mid cells; --outer, --flatten: inner ones too)
   bool decided = false;              // reachable, or proved out of reach by a checked certificate
   // Not reachable, but the mid cells reach it (a void whose cells' centres keep the wall, half a
-  // cell past it at most); the inner cells do not: named as undecided (--outer only).
+  // cell past it at most); the inner cells do not: named as undecided (--outer, --flatten H).
   bool mid_cells_reach = false;
   std::optional<double> best_margin;
 };

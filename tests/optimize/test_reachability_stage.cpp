@@ -20,6 +20,7 @@
 #include "geometry/bvh.h"
 #include "geometry/flatten_base.h"
 #include "mass/mass_properties.h"
+#include "mass/stability.h"
 #include "mesh/primitives.h"
 #include "optimize/offset_optimization.h"
 #include "optimize/reachability_stage.h"
@@ -335,4 +336,60 @@ TEST_CASE("reachability stage: the --outer remedy is named to be tried only wher
   CHECK(outer->mid_cells_reach);
   CHECK(s.remedy_list.find("--outer") == std::string::npos);
   CHECK(s.refusal.find("undecided with --outer") != std::string::npos);
+}
+
+TEST_CASE("reachability stage: a flat base only the mid cells reach is named as undecided, beside a taller one to try") {
+  // At wall 0.06 the smallest cut whose mid cells (centres a wall deep) reach the goal is not one
+  // whose inner cells (every corner a wall deep: a void the tool writes) do.
+  const Mesh mesh = leaning_funnel(0.5);
+  OptimizeOptions options;
+  options.goal = GoalKind::stand;
+  options.wall = 0.06;
+  options.margin = 0.01;
+  const OptimizeResult refused = optimize_offsets(mesh, options);
+  REQUIRE(refused.status == OptimizeStatus::goal_not_met);
+  REQUIRE(refused.reachability);
+  const ReachabilityRemedy *to_try = nullptr, *hopeful = nullptr;
+  for (const ReachabilityRemedy& remedy : refused.reachability->remedies)
+    if (remedy.option.rfind("--flatten ", 0) == 0) (remedy.reachable ? to_try : hopeful) = &remedy;
+  REQUIRE(to_try);
+  REQUIRE(hopeful);
+  CHECK(hopeful->mid_cells_reach);
+  CHECK(!hopeful->decided);
+  const double tall = std::strtod(to_try->option.c_str() + 10, nullptr);
+  const double low = std::strtod(hopeful->option.c_str() + 10, nullptr);
+  CHECK(low < tall);
+  CHECK(refused.message.find("try ") < refused.message.find(to_try->option));
+  CHECK(refused.message.find("undecided with " + hopeful->option) != std::string::npos);
+  // Cut at the lower height, the mid cells reach the goal and the inner ones do not; cut at the
+  // taller one, the run writes a solid that meets it.
+  auto cut_at = [&mesh](double height) {
+    FlattenOptions cut;
+    cut.height = height;
+    const FlattenResult flattened = flatten_base(mesh, cut);
+    REQUIRE(flattened.status == FlattenStatus::ok);
+    return flattened.mesh;
+  };
+  const Mesh lower = cut_at(low);
+  const TriangleBvh bvh(lower.V, lower.F);
+  StabilityOptions so;
+  so.ground_tol = refused.frame.ground_tol;
+  const Stability st = compute_stability(lower, mass_properties(lower).segment<3>(kCx), so);
+  GoalSpec goal;
+  goal.kind = GoalKind::stand;
+  goal.support_polygon = st.support_polygon;
+  goal.margin = options.margin;
+  ReachabilityOptions o;
+  o.wall = options.wall;
+  o.ground_tol = refused.frame.ground_tol;
+  o.lowest_cz = false;
+  o.mid_reading = true;
+  const Eigen::Vector3d origin(0, 0, st.ground_z);
+  CHECK(reachability(lower, bvh, goal, st.ground_z, origin, o).reachable);
+  o.mid_reading = false;
+  CHECK(!reachability(lower, bvh, goal, st.ground_z, origin, o).reachable);
+  const OptimizeResult stands = optimize_offsets(cut_at(tall), options);
+  CHECK(stands.status == OptimizeStatus::verified);
+  CHECK(stands.after.goal_met);
+  CHECK(stands.after.valid);
 }
