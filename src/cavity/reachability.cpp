@@ -866,6 +866,44 @@ void spin_optimum(const CarvableCells& cells, const Frame& f, const Reachability
   r.band_occupancy = per_cell(inner, lowest.u, 1, cells.band_inner.size());
 }
 
+// Volume's optimum (Reachability::find_optimum): the goal places no centre of mass, so the void
+// written is the ball about the middle of the writable cells, clipped to them, that holds the
+// target: the cells nearest the writable cell closest to their centroid, in order of distance (ties
+// by index), the last one part full; q = |p − c|² − r², r² between the last cell taken and the
+// next. A ball about the centroid itself may miss the cells (a torus).
+void volume_optimum(const CarvableCells& cells, const std::vector<std::int64_t>& writable, double target, Reachability& r) {
+  const double v = cells.cell_volume();
+  if (writable.empty() || !(target > 0.0) || !(v > 0.0)) return;
+  NeumaierSum sum[3];
+  for (std::int64_t cell : writable) {
+    const Eigen::Vector3d x = cells.centre(cell);
+    for (int a = 0; a < 3; ++a) sum[a].add(x(a));
+  }
+  const double n = static_cast<double>(writable.size());
+  const Eigen::Vector3d centroid(sum[0].value() / n, sum[1].value() / n, sum[2].value() / n);
+  Eigen::Vector3d c = cells.centre(writable.front());
+  for (std::int64_t cell : writable)
+    if ((cells.centre(cell) - centroid).squaredNorm() < (c - centroid).squaredNorm()) c = cells.centre(cell);
+  std::vector<std::pair<double, std::size_t>> order(writable.size());
+  for (std::size_t i = 0; i < writable.size(); ++i) order[i] = {(cells.centre(writable[i]) - c).squaredNorm(), i};
+  std::sort(order.begin(), order.end());
+  r.occupancy.assign(writable.size(), 0.0);
+  double left = target;
+  std::size_t taken = 0;
+  for (; taken < order.size() && left > 0.0; ++taken) {
+    const double part = std::min(1.0, left / v);
+    r.occupancy[order[taken].second] = part;
+    left -= part * v;
+  }
+  const double h = cells.grid.spacing;
+  const double r2 = taken < order.size() ? 0.5 * (order[taken - 1].first + order[taken].first) : order.back().first + h * h;
+  Quadric q;
+  q.origin = c;
+  q.coefficients << -r2, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0;
+  r.optimum = q;
+  r.band_occupancy.assign(cells.band_inner.size(), 0.0);
+}
+
 // `grid`: the cells' grid, whose box holds every solid they describe (Frame::region).
 Frame make_frame(const VolumeIntegrals& input, const Eigen::Matrix3d& R, const Eigen::Vector3d& origin, double diagonal,
                  double top, const NodeGrid& grid) {
@@ -989,6 +1027,10 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
   if (goal.kind == GoalKind::volume) {
     out.reachable = goal.target_volume <= out.carvable_volume;
     out.decided = out.reachable || goal.target_volume > out.carvable_volume_outer;
+    if (out.reachable)
+      out.find_optimum = [cells, mid = options.mid_reading, target = goal.target_volume](Reachability& r) {
+        volume_optimum(*cells, mid ? cells->mid : cells->inner, target, r);
+      };
     return out;
   }
   Solver solver(f, options, out);

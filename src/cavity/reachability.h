@@ -130,7 +130,8 @@ struct Reachability {
   // Spin: `optimum` is found only when asked, by calling this on the programme (or a copy): it
   // sets optimum, occupancy and band_occupancy, and counts its programmes in lps. The offset void
   // mostly meets spin, and the optimum costs many times the feasible void (the demo top: 18,506
-  // simplex iterations against 107). Empty otherwise.
+  // simplex iterations against 107). Volume: the same, for the ball about the cells' middle that
+  // holds the target (no programme: the goal places no centre of mass). Empty otherwise.
   std::function<void(Reachability&)> find_optimum;
   ReachCertificate certificate;      // unreachable: the proof; reachable: the optimum's quadric
   std::shared_ptr<const CarvableCells> cells;
