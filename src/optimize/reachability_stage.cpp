@@ -367,8 +367,8 @@ void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& s) {
     if (s.decided)
       for (ReachabilityRemedy& remedy : flatten_remedies(in)) s.remedies.push_back(std::move(remedy));
   }
-  // Named to be tried: the remedies whose programme reaches the goal (--outer: on the inner cells
-  // too). Named as undecided: those only the mid cells reach, a void half a cell past the wall at
+  // Named to be tried: the remedies whose programme reaches the goal (--outer, --flatten: on the inner
+  // cells too). Named as undecided: those only the mid cells reach, a void half a cell past the wall at
   // most (a user who tries one may or may not get there: euclid-data_rocker_arm's roly-poly does).
   // Those only the generous reading reaches are not named: on the census it reached almost every
   // goal with the band ("--outer (may)" on 36 of 49 roly-poly refusals said little).
