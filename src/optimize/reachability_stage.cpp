@@ -47,6 +47,10 @@ std::string shortfall(const ReachabilityStageInput& in, const Reachability& r) {
   if (sphere_centre_below_ground(in))
     return "the sphere fitted to the bottom has its centre " + format_double(in.ground_z - goal.axis_point.z()) +
            " below the ground (the bottom is not rounded), and no centre of mass can lie under it";
+  // Every void keeping the wall lies in the cells that may hold a point a wall deep.
+  if (goal.kind == GoalKind::volume)
+    return "the region at least a wall inside holds at most " + format_double(r.carvable_volume_outer) +
+           ", less than the target " + format_double(goal.target_volume);
   const std::string binding = r.binding.empty() ? "the goal's rows" : r.binding;
   if (!r.best_margin && !r.best_margin_upper) return "no void meets " + binding;
   // With the generous reading's optimum, a bound on every void; else the best void of mid cells
@@ -294,6 +298,7 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
   if (r.reachable || !r.decided) return s;
   s.shortfall = shortfall(in, r);
   if (sphere_centre_below_ground(in)) s.no_remedy_hint = "a roly-poly rocks on a rounded bottom: re-pose the model on one";
+  if (in.goal.kind == GoalKind::volume) s.no_remedy_hint = "a thinner --wall leaves room for more";
   add_remedies(in, s);
   s.refusal = reachability_note(s);
   return s;

@@ -24,6 +24,7 @@
 #include "mesh/primitives.h"
 #include "optimize/offset_optimization.h"
 #include "optimize/reachability_stage.h"
+#include "util/format_double.h"
 
 using namespace offsetopt;
 
@@ -392,4 +393,34 @@ TEST_CASE("reachability stage: a flat base only the mid cells reach is named as 
   CHECK(stands.status == OptimizeStatus::verified);
   CHECK(stands.after.goal_met);
   CHECK(stands.after.valid);
+}
+
+TEST_CASE("reachability stage: a volume larger than the region a wall deep is refused with the most that region holds") {
+  // The 10 × 6 × 4 box, wall 0.5: the points at least a wall inside are the 9 × 5 × 3 box, 135.
+  // The bound the refusal names is the generous reading's: every cell that may hold such a point,
+  // so at least 135 and at most the box grown by a cell's diagonal √3 h on every side.
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
+  ReachabilityStageInput in;
+  in.input = &box;
+  in.goal.kind = GoalKind::volume;
+  in.goal.target_volume = 200.0;
+  in.wall = 0.5;
+  in.outer_max = 1.0;
+  in.ground_tol = 1e-3;
+  in.origin = Eigen::Vector3d(5, 3, 0);
+  const ReachabilitySummary s = reachability_stage(in);
+  CHECK(!s.reachable);
+  CHECK(s.decided);
+  REQUIRE(s.programme);
+  const double bound = s.programme->carvable_volume_outer;
+  const double grown = std::sqrt(3.0) * s.cell_spacing;
+  CHECK(bound >= 135.0);
+  CHECK(bound <= (9.0 + 2.0 * grown) * (5.0 + 2.0 * grown) * (3.0 + 2.0 * grown));
+  CHECK(bound < in.goal.target_volume);
+  CHECK(s.refusal.find("holds at most " + format_double(bound) + ", less than the target 200") != std::string::npos);
+  CHECK(s.refusal.find("a thinner --wall") != std::string::npos);
+  CHECK(s.refusal.find("re-pose") == std::string::npos);
+  // Within what the region holds, the same programme calls it reachable.
+  in.goal.target_volume = 130.0;
+  CHECK(reachability_stage(in).reachable);
 }
