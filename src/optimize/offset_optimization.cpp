@@ -1159,12 +1159,26 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
   return c;
 }
 
+// The quadric void holding a volume, aimed at `aim` (normalised frame) instead of the target, and
+// verified against that aim; none when it does not verify.
+std::optional<QuadricAttempt> quadric_void_aimed_at(const OptimizeOptions& options, const Frame& f, const Band& b,
+                                                    const OffsetSolve& solve, const Reachability& programme, double aim) {
+  Frame aimed = f;
+  aimed.goal.target_volume = aim;
+  aimed.goal_input.target_volume = aim / (f.scale * f.scale * f.scale);
+  QuadricAttempt a = take_quadric(options, aimed, b, solve, programme, nullptr);
+  if (!verified(a.q.verification)) return std::nullopt;
+  return a;
+}
+
 // Stage "openings": drain holes and the channel cut through the written cavity and verified on the
 // cut solid as written (cavity/verify_opened_cavity.h). When the openings' material moves the goal
 // out of reach, the goal is solved again with their integrals added to the last contour's Δ and
-// the cavity contoured again (at most 3 times, offset contour path only).
+// the cavity contoured again, or a quadric void holding a volume is aimed at the target less the
+// openings' (at most 3 times).
 OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
-                             Cavity& cavity, std::optional<Mesh>& opened_solid, StageTimings& timings, const Progress& say) {
+                             const Reachability* programme, Cavity& cavity, std::optional<Mesh>& opened_solid,
+                             StageTimings& timings, const Progress& say) {
   const auto start = Clock::now();
   OpenCavityOptions open_options;
   open_options.holes = options.drain_holes;
@@ -1176,6 +1190,8 @@ OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, con
   open_options.wall = f.wall;
   const VerifyInput base = verify_input_for(options, f);
   OpeningsSummary summary;
+  double aim = f.goal.target_volume;                  // a quadric void's volume aimed at (below)
+  std::optional<std::pair<double, double>> previous;  // the last aim and what its opened void held
   for (int attempt = 0;; ++attempt) {
     if (!cavity.verification.valid) {
       summary.message = "the cavity was not valid before the openings";
@@ -1198,6 +1214,34 @@ OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, con
     const bool correctable = cavity.summary.written == WrittenCavity::contour && cavity.summary.rounds &&
                              !cavity.summary.rounds->empty() && solve.constraints_met && v.opened.ok &&
                              v.verification.valid && !v.verification.goal_met && attempt < 3;
+    // A quadric void holding a volume: the openings' channels are part of the void (on the demo
+    // sphere a 2 mm drain hole added 297 to a target of 1000), so the void is aimed lower, by a
+    // secant on what the opened void held against the aim (the channel lengthens as the void shrinks).
+    const bool reaimable = cavity.summary.written == WrittenCavity::quadric && f.goal.kind == GoalKind::volume && programme &&
+                           v.opened.ok && v.verification.valid && !v.verification.goal_met && attempt < 3;
+    std::optional<QuadricAttempt> reaimed;
+    if (reaimable) {
+      const double held = integrals_in_frame(f, v.void_surfaces)(kIntVolume);
+      double next = aim - (held - f.goal.target_volume);
+      if (previous && held != previous->second)
+        next = aim - (held - f.goal.target_volume) * (aim - previous->first) / (held - previous->second);
+      previous = std::make_pair(aim, held);
+      aim = next;
+      const double channels = (held - integrals_in_frame(f, cavity.written)(kIntVolume)) / (f.scale * f.scale * f.scale);
+      if (aim > 0.0) reaimed = quadric_void_aimed_at(options, f, b, solve, *programme, aim);
+      else
+        v.verification.failures.insert(v.verification.failures.begin(),
+                                       "the openings' channels alone hold " + format_double(channels) +
+                                           " of the void, more than the target " + format_double(f.goal_input.target_volume));
+    }
+    if (reaimed) {
+      timings.quadric = timings.quadric.value_or(0.0) + reaimed->seconds;
+      cavity.outer = std::move(reaimed->q.outer);
+      cavity.written = std::move(reaimed->q.written);
+      cavity.verification = std::move(reaimed->q.verification);
+      cavity.summary.quadric_rounds = std::move(reaimed->q.rounds);
+      continue;
+    }
     if (!correctable) {
       cavity.verification = v.verification;
       if (v.opened.ok) opened_solid = std::move(v.solid);
@@ -1531,7 +1575,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   std::optional<OpeningsSummary> openings;
   std::optional<Mesh> opened_solid;
   if ((options.wants_drain_holes() || wants_channel(options, b)) && cavity.summary.contoured())
-    openings = cut_openings(options, f, b, solve, cavity, opened_solid, timings, say);
+    openings = cut_openings(options, f, b, solve, reach.programme.get(), cavity, opened_solid, timings, say);
   timings.total = seconds_since(total_start);
 
   OptimizeResult result;
