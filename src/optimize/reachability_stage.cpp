@@ -217,6 +217,46 @@ std::vector<ReachabilityRemedy> flatten_remedies(const ReachabilityStageInput& i
   return remedies;
 }
 
+// A volume out of reach: the thickest wall at which the inner cells (a void the tool writes) hold
+// the target, to two significant digits rounded down and checked at the value named. Walls from
+// 0.8 times the user's down by factors of 0.8, at most 5 (to a third of it: the cells grow as the
+// wall's inverse cube, their nodes capped at 2^23), then two bisections.
+constexpr int kThinnerWallSteps = 5;
+constexpr std::int64_t kThinnerWallMaxNodes = std::int64_t{1} << 23;
+
+std::optional<ReachabilityRemedy> thinner_wall(const ReachabilityStageInput& in, const TriangleBvh& bvh) {
+  auto holds = [&in, &bvh](double wall) {
+    ReachabilityOptions o = options_for(in, false);
+    o.wall = wall;
+    o.mid_reading = false;
+    o.lowest_cz = false;
+    o.max_nodes = std::min(o.max_nodes, kThinnerWallMaxNodes);
+    return reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, o);
+  };
+  double thick = in.wall, thin = -1.0;
+  for (int k = 1; k <= kThinnerWallSteps; ++k) {
+    const double wall = in.wall * std::pow(0.8, k);
+    const Reachability r = holds(wall);
+    if (r.ok && r.reachable) {
+      thin = wall;
+      break;
+    }
+    thick = wall;
+  }
+  if (thin < 0.0) return std::nullopt;
+  for (int step = 0; step < 2; ++step) {
+    const double wall = 0.5 * (thin + thick);
+    const Reachability r = holds(wall);
+    (r.ok && r.reachable ? thin : thick) = wall;
+  }
+  const double unit = std::pow(10.0, std::floor(std::log10(thin)) - 1.0);
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g", std::floor(thin / unit) * unit);
+  const Reachability r = holds(std::strtod(text, nullptr));
+  if (!r.ok || !r.reachable) return std::nullopt;
+  return remedy_from(std::string("--wall ") + text, r);
+}
+
 // Cells half as large, when the programme cannot tell at the contour's scale: the generous
 // reading's cells shrink towards the exact wall and the mid reading's grow towards it, so the
 // bracket between them narrows (docs/reachability.md "Finer cells"). On the census's 12 undecided
@@ -341,6 +381,11 @@ void add_remedies(const ReachabilityStageInput& in, ReachabilitySummary& s) {
       s.remedies.push_back(remedy_from("--outer", with_band));
       s.remedies.back().mid_cells_reach = mid_cells_reach;
     }
+  }
+  if (in.goal.kind == GoalKind::volume) {
+    std::optional<TriangleBvh> own;
+    const TriangleBvh& bvh = in.input_bvh ? *in.input_bvh : own.emplace(in.input->V, in.input->F);
+    if (auto remedy = thinner_wall(in, bvh)) s.remedies.push_back(*remedy);
   }
   // Other poses (stand goals): the most stable hull facet and the file's other five axes up,
   // ranked by the best margin a void reaches there. Each is tried as the CLI would pose the file

@@ -424,3 +424,38 @@ TEST_CASE("reachability stage: a volume larger than the region a wall deep is re
   in.goal.target_volume = 130.0;
   CHECK(reachability_stage(in).reachable);
 }
+
+TEST_CASE("reachability stage: a volume out of reach at the wall asked is named a thinner --wall that holds it, and holds it") {
+  // The 10 × 6 × 4 box at wall 0.5 holds at most 9 × 5 × 3 = 135 a wall deep; 150 needs the wall
+  // w with (10 − 2w)(6 − 2w)(4 − 2w) = 150, about 0.35.
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
+  ReachabilityStageInput in;
+  in.input = &box;
+  in.goal.kind = GoalKind::volume;
+  in.goal.target_volume = 150.0;
+  in.wall = 0.5;
+  in.outer_max = 1.0;
+  in.ground_tol = 1e-3;
+  in.origin = Eigen::Vector3d(5, 3, 0);
+  ReachabilitySummary s = reachability_stage(in);
+  CHECK(!s.reachable);
+  add_remedies(in, s);
+  const ReachabilityRemedy* thinner = nullptr;
+  for (const ReachabilityRemedy& remedy : s.remedies)
+    if (remedy.option.rfind("--wall ", 0) == 0) thinner = &remedy;
+  REQUIRE(thinner);
+  CHECK(thinner->reachable);
+  CHECK(s.remedy_list.find(thinner->option) != std::string::npos);
+  const double wall = std::strtod(thinner->option.c_str() + 7, nullptr);
+  CHECK(wall < 0.5);
+  CHECK((10 - 2 * wall) * (6 - 2 * wall) * (4 - 2 * wall) >= 150.0);
+  // Typed: the run at that wall writes a solid whose void holds 150 (a basis below the box's 8 vertices).
+  OptimizeOptions options;
+  options.k = 4;
+  options.goal = GoalKind::volume;
+  options.target_volume = 150.0;
+  options.wall = wall;
+  const OptimizeResult r = optimize_offsets(box, options);
+  CHECK(r.status == OptimizeStatus::verified);
+  CHECK(r.after.goal_met);
+}
