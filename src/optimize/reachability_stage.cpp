@@ -153,6 +153,39 @@ std::optional<Reachability> reach_flattened(const ReachabilityStageInput& in, do
   return r;
 }
 
+// The first of `tries` (each farther from `start` than the last) at which `passes` holds, moved
+// back by two bisections towards the last that did not (`start` before the first); none when none
+// passes. The remedies' searches: heights growing, walls thinning.
+template <class Passes>
+std::optional<double> first_passing(double start, const std::vector<double>& tries, const Passes& passes) {
+  double failing = start;
+  for (const double value : tries) {
+    if (!passes(value)) {
+      failing = value;
+      continue;
+    }
+    double passing = value;
+    for (int step = 0; step < 2; ++step) {
+      const double middle = 0.5 * (failing + passing);
+      (passes(middle) ? passing : failing) = middle;
+    }
+    return passing;
+  }
+  return std::nullopt;
+}
+
+// `value` rounded up or down to two significant digits, for the text the user will type.
+double two_digits(double value, bool up) {
+  const double unit = std::pow(10.0, std::floor(std::log10(value)) - 1.0);
+  return (up ? std::ceil(value / unit - 1e-9) : std::floor(value / unit)) * unit;
+}
+
+std::string two_digit_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g", value);
+  return text;
+}
+
 // A height to type and the programme at exactly that height.
 struct FlatBase {
   std::string text;
@@ -166,29 +199,16 @@ struct FlatBase {
 std::optional<FlatBase> smallest_flat_base(const ReachabilityStageInput& in, double from, bool inner) {
   const double tall = in.input->V.col(2).maxCoeff() - in.input->V.col(2).minCoeff();
   if (!(tall > 0.0) || !(from > 0.0)) return std::nullopt;
-  auto reaches = [&in, inner](double h) {
+  std::vector<double> heights;
+  for (double h = from; h <= tall / 4.0 * (1.0 + 1e-12); h *= 2.0) heights.push_back(h);
+  const std::optional<double> above = first_passing(0.0, heights, [&in, inner](double h) {
     const std::optional<Reachability> r = reach_flattened(in, h, inner);
     return r && r->reachable;
-  };
-  double below = 0.0, above = -1.0;
-  for (double h = from; h <= tall / 4.0 * (1.0 + 1e-12); h *= 2.0) {
-    if (reaches(h)) {
-      above = h;
-      break;
-    }
-    below = h;
-  }
-  if (above < 0.0) return std::nullopt;
-  for (int step = 0; step < 2; ++step) {
-    const double h = 0.5 * (below + above);
-    (reaches(h) ? above : below) = h;
-  }
-  // Rounded up to two significant digits, in the text the user will type.
-  const double unit = std::pow(10.0, std::floor(std::log10(above)) - 1.0);
-  const double named_height = std::ceil(above / unit - 1e-9) * unit;
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2g", in.flatten + named_height);
-  const double total = std::strtod(text, nullptr);
+  });
+  if (!above) return std::nullopt;
+  // Rounded up, in the text the user will type: the total from the original lowest point.
+  const std::string text = two_digit_text(in.flatten + two_digits(*above, true));
+  const double total = std::strtod(text.c_str(), nullptr);
   std::optional<Reachability> r = reach_flattened(in, total - in.flatten, inner);
   if (!r) return std::nullopt;
   return FlatBase{text, std::move(*r)};
@@ -233,28 +253,17 @@ std::optional<ReachabilityRemedy> thinner_wall(const ReachabilityStageInput& in,
     o.max_nodes = std::min(o.max_nodes, kThinnerWallMaxNodes);
     return reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, o);
   };
-  double thick = in.wall, thin = -1.0;
-  for (int k = 1; k <= kThinnerWallSteps; ++k) {
-    const double wall = in.wall * std::pow(0.8, k);
+  std::vector<double> walls;
+  for (int k = 1; k <= kThinnerWallSteps; ++k) walls.push_back(in.wall * std::pow(0.8, k));
+  const std::optional<double> thin = first_passing(in.wall, walls, [&holds](double wall) {
     const Reachability r = holds(wall);
-    if (r.ok && r.reachable) {
-      thin = wall;
-      break;
-    }
-    thick = wall;
-  }
-  if (thin < 0.0) return std::nullopt;
-  for (int step = 0; step < 2; ++step) {
-    const double wall = 0.5 * (thin + thick);
-    const Reachability r = holds(wall);
-    (r.ok && r.reachable ? thin : thick) = wall;
-  }
-  const double unit = std::pow(10.0, std::floor(std::log10(thin)) - 1.0);
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2g", std::floor(thin / unit) * unit);
-  const Reachability r = holds(std::strtod(text, nullptr));
+    return r.ok && r.reachable;
+  });
+  if (!thin) return std::nullopt;
+  const std::string text = two_digit_text(two_digits(*thin, false));
+  const Reachability r = holds(std::strtod(text.c_str(), nullptr));
   if (!r.ok || !r.reachable) return std::nullopt;
-  return remedy_from(std::string("--wall ") + text, r);
+  return remedy_from("--wall " + text, r);
 }
 
 // Cells half as large, when the programme cannot tell at the contour's scale: the generous

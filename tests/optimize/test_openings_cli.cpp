@@ -55,6 +55,14 @@ long long enclosed_void_cells(const Mesh& solid, double h) {
   return enclosed;
 }
 
+// The solid as printed with its openings: closed and oriented, no two faces crossing, and no void
+// cell (2 mm) the outside does not reach.
+void check_open_solid(const Mesh& solid) {
+  CHECK(test::closed_and_oriented(solid));
+  CHECK(test::self_intersections(solid) == 0);
+  CHECK(enclosed_void_cells(solid, 2.0) == 0);
+}
+
 // The smallest distance to `outer` over the vertices of `solid` that are not on it (farther than
 // `on`) and not on an opening's side (radius r around its axis, between its caps).
 double wall_off_openings(const Mesh& solid, const Mesh& outer, const Json& cut, double on) {
@@ -97,10 +105,8 @@ TEST_CASE("drain holes auto on the bottle: one piece, the void open to the outsi
   const Json& cut = report.at("openings").at("cut");
   REQUIRE(cut.size() == report.at("openings").at("cavity_shells").as_number());
   const Mesh solid = read_back(base + ".stl"), outer = read_back(base + "_outer.stl");
-  CHECK(test::closed_and_oriented(solid));
+  check_open_solid(solid);
   CHECK(mesh_shells(solid, Eigen::Vector3d(40, 0, 100)).count == 1);
-  CHECK(test::self_intersections(solid) == 0);
-  CHECK(enclosed_void_cells(solid, 2.0) == 0);
   const double wall = report.at("after").at("requested_wall").as_number();
   CHECK(wall_off_openings(solid, outer, cut, 1e-6 * wall) >= wall * (1.0 - 1e-6));
 }
@@ -119,10 +125,8 @@ TEST_CASE("the demo bottle as a container: stand-filled --outer with an opening 
   CHECK(report.at("after").at("empty").at("com_margin").as_number() >= margin);
   CHECK(report.at("after").at("filled").at("com_margin").as_number() >= margin);
   const Mesh solid = read_back(base + ".stl"), outer = read_back(base + "_outer.stl");
-  CHECK(test::closed_and_oriented(solid));
+  check_open_solid(solid);
   CHECK(mesh_shells(solid, Eigen::Vector3d(40, 0, 100)).count == 1);
-  CHECK(test::self_intersections(solid) == 0);
-  CHECK(enclosed_void_cells(solid, 2.0) == 0);
   const double wall = report.at("after").at("requested_wall").as_number();
   CHECK(wall_off_openings(solid, outer, openings.at("cut"), 1e-6 * wall) >= wall * (1.0 - 1e-6));
 }
@@ -139,9 +143,7 @@ TEST_CASE("a small volume with a drain hole: the ball is aimed lower by what the
   const Json report = Json::parse(read_file(base + ".json"));
   CHECK(report.at("cavity").at("written").as_string() == "quadric");
   const Mesh solid = read_back(base + ".stl"), outer = read_back(base + "_outer.stl");
-  CHECK(test::closed_and_oriented(solid));
-  CHECK(test::self_intersections(solid) == 0);
-  CHECK(enclosed_void_cells(solid, 2.0) == 0);
+  check_open_solid(solid);
   const Eigen::Vector3d origin = outer.V.colwise().mean().transpose();
   const double held = test::integrals_of(outer, origin).volume - test::integrals_of(solid, origin).volume;
   CHECK(std::fabs(held - 1000.0) <= 1e-4 * 1000.0);

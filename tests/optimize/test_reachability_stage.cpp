@@ -62,6 +62,19 @@ ReachabilityStageInput box_on_strip(const Mesh& box, double width) {
   return in;
 }
 
+// The box [0,10]×[0,6]×[0,4], wall 0.5, to hold `target` (its region a wall deep holds 135).
+ReachabilityStageInput box_volume(const Mesh& box, double target) {
+  ReachabilityStageInput in;
+  in.input = &box;
+  in.goal.kind = GoalKind::volume;
+  in.goal.target_volume = target;
+  in.wall = 0.5;
+  in.outer_max = 1.0;
+  in.ground_tol = 1e-3;
+  in.origin = Eigen::Vector3d(5, 3, 0);
+  return in;
+}
+
 }  // namespace
 
 TEST_CASE("reachability stage: a leaning cylinder is refused before the solve, with the shortfall") {
@@ -400,14 +413,7 @@ TEST_CASE("reachability stage: a volume larger than the region a wall deep is re
   // The bound the refusal names is the generous reading's: every cell that may hold such a point,
   // so at least 135 and at most the box grown by a cell's diagonal √3 h on every side.
   const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
-  ReachabilityStageInput in;
-  in.input = &box;
-  in.goal.kind = GoalKind::volume;
-  in.goal.target_volume = 200.0;
-  in.wall = 0.5;
-  in.outer_max = 1.0;
-  in.ground_tol = 1e-3;
-  in.origin = Eigen::Vector3d(5, 3, 0);
+  ReachabilityStageInput in = box_volume(box, 200.0);
   const ReachabilitySummary s = reachability_stage(in);
   CHECK(!s.reachable);
   CHECK(s.decided);
@@ -429,14 +435,7 @@ TEST_CASE("reachability stage: a volume out of reach at the wall asked is named 
   // The 10 × 6 × 4 box at wall 0.5 holds at most 9 × 5 × 3 = 135 a wall deep; 150 needs the wall
   // w with (10 − 2w)(6 − 2w)(4 − 2w) = 150, about 0.35.
   const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
-  ReachabilityStageInput in;
-  in.input = &box;
-  in.goal.kind = GoalKind::volume;
-  in.goal.target_volume = 150.0;
-  in.wall = 0.5;
-  in.outer_max = 1.0;
-  in.ground_tol = 1e-3;
-  in.origin = Eigen::Vector3d(5, 3, 0);
+  ReachabilityStageInput in = box_volume(box, 150.0);
   ReachabilitySummary s = reachability_stage(in);
   CHECK(!s.reachable);
   add_remedies(in, s);
