@@ -940,6 +940,16 @@ std::string percent(double fraction) {
   return text;
 }
 
+// Whether a quadric void can be written for the goal. Its moment rows read a void inside a fixed
+// outer surface with nothing cut through it; a volume's one row reads the void alone, so a volume
+// takes it inside the outer surface the solve thickened (--outer) and opened by the channel of a
+// half-space --fix (cut_openings aims the void at the target less the channel's share).
+bool quadric_writable(const OptimizeOptions& options, const Band& b) {
+  if (!quadric_goal(options.goal)) return false;
+  if (options.goal == GoalKind::volume) return b.fixed_count == 0 || wants_channel(options, b);
+  return !options.outer && b.fixed_count == 0;
+}
+
 // The quadric void and, where it is thin, the one contoured twice as fine: what make_cavity writes
 // when the offset void falls short. It reads the input (the outer surface: no --outer), its tree,
 // the frame and the programme, nothing the skeleton or the solve make, so it can be computed
@@ -951,7 +961,8 @@ struct QuadricAttempt {
 };
 
 QuadricAttempt attempt_quadric(const OptimizeOptions& options, const Frame& f, const Mesh& outer, const TriangleBvh& outer_bvh,
-                               const Reachability& programme, int threads) {
+                               const Reachability& programme, int threads,
+                               const std::vector<std::pair<int, int>>* outer_own_pairs = nullptr) {
   const auto start = Clock::now();
   QuadricVoidInput in;
   in.outer = &outer;
@@ -969,6 +980,7 @@ QuadricAttempt attempt_quadric(const OptimizeOptions& options, const Frame& f, c
   in.verify = verify_input_for(options, f);
   in.verify.threads = threads;
   in.verify.outer = &outer;
+  in.verify.outer_own_pairs = outer_own_pairs;
   in.max_rounds = options.max_correction_rounds;
   in.headroom = kCorrectionHeadroom;
   QuadricAttempt a;
@@ -1009,8 +1021,14 @@ bool quadric_possible(const OptimizeOptions& options, const ReachabilitySummary&
 QuadricAttempt take_quadric(const OptimizeOptions& options, const Frame& f, const Band& b, const OffsetSolve& solve,
                             const Reachability& programme, QuadricAhead* ahead) {
   if (ahead && ahead->valid()) return ahead->get();
+  // With --outer (a volume: quadric_writable) the void is contoured a wall inside the outer
+  // surface the solve chose, which is searched for new self-intersections as the offset path's is.
+  std::optional<TriangleBvh> outer_offset_bvh;
+  if (options.outer) outer_offset_bvh.emplace(solve.outer.V, solve.outer.F);
+  const TriangleBvh& outer_bvh = outer_offset_bvh ? *outer_offset_bvh : *b.bvh;
+  const std::vector<std::pair<int, int>>* own_pairs = options.outer ? &b.input_pairs : nullptr;
   if (programme.optimum || !programme.find_optimum)
-    return attempt_quadric(options, f, solve.outer, *b.bvh, programme, options.threads);
+    return attempt_quadric(options, f, solve.outer, outer_bvh, programme, options.threads, own_pairs);
   // Spin's or volume's optimum, found now that it is wanted.
   Reachability found = programme;
   programme.find_optimum(found);
@@ -1019,7 +1037,7 @@ QuadricAttempt take_quadric(const OptimizeOptions& options, const Frame& f, cons
     none.q.message = "the reachability programme found no optimal void";
     return none;
   }
-  return attempt_quadric(options, f, solve.outer, *b.bvh, found, options.threads);
+  return attempt_quadric(options, f, solve.outer, outer_bvh, found, options.threads, own_pairs);
 }
 
 // The offset path's cavity `c` against the quadric void: the quadric void is made where the offset
@@ -1096,7 +1114,7 @@ Cavity choose_cavity(const OptimizeOptions& options, const Frame& f, const Band&
 Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
                    const ReachabilitySummary& reach, StageTimings& timings, const Progress& say, QuadricAhead* ahead) {
   const bool forced = options.cavity == CavityMode::quadric;
-  const bool writable = quadric_goal(options.goal) && !options.outer && b.fixed_count == 0;
+  const bool writable = quadric_writable(options, b);
   const bool wanted = options.cavity == CavityMode::automatic || forced;
   const bool possible = wanted && writable && reach.programme && reach.programme->reachable &&
                         (reach.programme->optimum || reach.programme->find_optimum);
@@ -1137,7 +1155,8 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
       c.verification.valid = false;
       c.verification.failures.insert(
           c.verification.failures.begin(),
-          !writable           ? "--cavity quadric needs a goal that lowers the centre of mass, spin or volume, without --outer or --fix"
+          !writable           ? "--cavity quadric needs a goal that lowers the centre of mass or spin, without --outer or --fix, or a volume "
+                                  "(with --fix only as a half-space such as z>V)"
           : !reach.programme ? "no quadric void: the reachability programme could not be set up"
                              : "no quadric void: no void the programme knows reaches the goal");
     }
@@ -1175,7 +1194,8 @@ std::optional<QuadricAttempt> quadric_void_aimed_at(const OptimizeOptions& optio
 // cut solid as written (cavity/verify_opened_cavity.h). When the openings' material moves the goal
 // out of reach, the goal is solved again with their integrals added to the last contour's Δ and
 // the cavity contoured again, or a quadric void holding a volume is aimed at the target less the
-// openings' (at most 3 times).
+// openings' (at most 6 times: on the demo sphere with --fix 'z>5' the channel
+// lengthens as the void shrinks, and a target of 20000 took 4).
 OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
                              const Reachability* programme, Cavity& cavity, std::optional<Mesh>& opened_solid,
                              StageTimings& timings, const Progress& say) {
@@ -1218,7 +1238,7 @@ OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, con
     // sphere a 2 mm drain hole added 297 to a target of 1000), so the void is aimed lower, by a
     // secant on what the opened void held against the aim (the channel lengthens as the void shrinks).
     const bool reaimable = cavity.summary.written == WrittenCavity::quadric && f.goal.kind == GoalKind::volume && programme &&
-                           v.opened.ok && v.verification.valid && !v.verification.goal_met && attempt < 3;
+                           v.opened.ok && v.verification.valid && !v.verification.goal_met && attempt < 6;
     std::optional<QuadricAttempt> reaimed;
     if (reaimable) {
       const double held = integrals_in_frame(f, v.void_surfaces)(kIntVolume);

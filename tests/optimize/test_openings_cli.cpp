@@ -150,3 +150,20 @@ TEST_CASE("a small volume with a drain hole: the ball is aimed lower by what the
   // Aimed at 1000 itself, the opened void held over a quarter more.
   CHECK(report.at("openings").at("rounds").as_number() >= 2);
 }
+
+TEST_CASE("a volume through a half-space opening: the ball is aimed lower by what the channel holds") {
+  // --fix 'z>5' on the demo sphere (centre z = 30, radius 30): the channel runs up from the ball
+  // to the top and lengthens as the ball shrinks, so the aim took four tries (the cap was three).
+  const TempDir dir("offsetopt-volume-channel");
+  const std::string base = dir.path() + "/sphere";
+  REQUIRE(run(kMeshes + "sphere.obj --goal volume --target-volume 20000 --fix 'z>5' -o " + base + ".stl --outer-mesh " +
+              base + "_outer.stl --report " + base + ".json") == 0);
+  const Json report = Json::parse(read_file(base + ".json"));
+  CHECK(report.at("cavity").at("written").as_string() == "quadric");
+  CHECK(report.at("openings").at("cut").at(0).at("kind").as_string() == "channel");
+  const Mesh solid = read_back(base + ".stl"), outer = read_back(base + "_outer.stl");
+  check_open_solid(solid);
+  const Eigen::Vector3d origin = outer.V.colwise().mean().transpose();
+  const double held = test::integrals_of(outer, origin).volume - test::integrals_of(solid, origin).volume;
+  CHECK(std::fabs(held - 20000.0) <= 1e-4 * 20000.0);
+}

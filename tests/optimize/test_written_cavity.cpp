@@ -271,6 +271,16 @@ TEST_CASE("volume below what the offset void can hold: a ball clipped to the car
   }
 }
 
+TEST_CASE("a small volume with --outer: the ball is contoured a wall inside the thickened outer surface") {
+  // Refused as the tool's shortfall before: the quadric void was only written inside the input.
+  const Written w = optimize("small_volume_outer", "sphere.obj", "--goal volume --target-volume 1000 --outer");
+  CHECK(w.exit_code == 0);
+  CHECK(w.report.at("cavity").at("written").as_string() == "quadric");
+  check_printable(w);
+  CHECK(test::self_intersections(w.outer) == 0);
+  CHECK(std::fabs(properties_of(w.cavity).mass - 1000.0) <= 1e-4 * 1000.0);
+}
+
 // Real meshes that some void reaches, once refused by the tool as its own shortfall.
 
 TEST_CASE("real meshes: cgal-data_turbine floats at 0.8 (its quadric void's correction oscillated on the thin blades)") {
