@@ -107,17 +107,14 @@ bool inside_loops(const PlaneSection& s, const Eigen::Vector2d& q) {
   return in;
 }
 
-// The channel for a half-space region: see the header.
-bool channel_prism(const Mesh& outer, const TriangleBvh& cavity_bvh, const OpenCavityOptions& options, Prism& prism,
-                   std::string& why) {
-  const FixRegion& region = options.opening;
+// The area centroid (u, v) of the largest section of `outer` at the region's plane, and that plane.
+std::optional<std::pair<Eigen::Vector2d, SectionPlane>> section_centroid(const Mesh& outer, const FixRegion& region,
+                                                                         std::string& why) {
   const int axis = region.axis;
-  const double s = region.above ? 1.0 : -1.0;
   const double lo = outer.V.col(axis).minCoeff(), hi = outer.V.col(axis).maxCoeff();
-  const double far_end = region.above ? hi : lo;
   if (!(region.above ? region.value < hi : region.value > lo)) {
     why = "the region " + region.text + " holds no part of the surface";
-    return false;
+    return std::nullopt;
   }
   const SectionPlane base = section_plane(axis, region.value);
   const PlaneSection section = plane_section(outer, base);
@@ -126,7 +123,7 @@ bool channel_prism(const Mesh& outer, const TriangleBvh& cavity_bvh, const OpenC
     if (loop.signed_area > 0.0 && (!largest || loop.signed_area > largest->signed_area)) largest = &loop;
   if (!largest) {
     why = "the outer surface has no section at " + region.text;
-    return false;
+    return std::nullopt;
   }
   // Area centroid of the largest loop (shoelace).
   Eigen::Vector2d c = Eigen::Vector2d::Zero();
@@ -138,6 +135,20 @@ bool channel_prism(const Mesh& outer, const TriangleBvh& cavity_bvh, const OpenC
     c += cr * (p + q);
   }
   c /= 3.0 * a2;
+  return std::make_pair(c, base);
+}
+
+// The channel for a half-space region: see the header.
+bool channel_prism(const Mesh& outer, const TriangleBvh& cavity_bvh, const OpenCavityOptions& options, Prism& prism,
+                   std::string& why) {
+  const FixRegion& region = options.opening;
+  const int axis = region.axis;
+  const double s = region.above ? 1.0 : -1.0;
+  const double far_end = region.above ? outer.V.col(axis).maxCoeff() : outer.V.col(axis).minCoeff();
+  const auto centroid = section_centroid(outer, region, why);
+  if (!centroid) return false;
+  const Eigen::Vector2d c = centroid->first;
+  const SectionPlane& base = centroid->second;
   // The largest radius that keeps the wall to every section across the region.
   double room = std::numeric_limits<double>::infinity();
   for (int level = 0; level < 9; ++level) {
@@ -202,6 +213,20 @@ bool channel_prism(const Mesh& outer, const TriangleBvh& cavity_bvh, const OpenC
 }
 
 }  // namespace
+
+std::optional<ChannelAxis> channel_axis(const Mesh& outer, const FixRegion& region, std::string& why) {
+  if (region.kind != FixRegion::Kind::half_space) {
+    why = "only a half-space region has a channel";
+    return std::nullopt;
+  }
+  const auto centroid = section_centroid(outer, region, why);
+  if (!centroid) return std::nullopt;
+  const SectionPlane& base = centroid->second;
+  ChannelAxis line;
+  line.direction = (region.above ? 1.0 : -1.0) * unit(region.axis);
+  line.point = region.value * unit(region.axis) + centroid->first.x() * base.u + centroid->first.y() * base.v;
+  return line;
+}
 
 std::string OpenCavityOptions::check() const {
   if (!(wall > 0.0)) return "the wall must be positive";

@@ -52,6 +52,15 @@ struct OpenCavityOptions {
   std::string check() const;
 };
 
+// The line a channel through the half-space `region` runs along: through the area centroid of the
+// largest section of `outer` at the region's plane, `direction` the region's axis pointing out of
+// the object into the region (+z for z>V). None, with `why`, when the region holds no section.
+struct ChannelAxis {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();      // on the region's plane
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+};
+std::optional<ChannelAxis> channel_axis(const Mesh& outer, const FixRegion& region, std::string& why);
+
 struct CutOpening {
   std::string kind;                   // "drain hole", "auto drain hole", "channel"
   Eigen::Vector3d inner = Eigen::Vector3d::Zero(), outer = Eigen::Vector3d::Zero();  // cap centres

@@ -866,14 +866,22 @@ void spin_optimum(const CarvableCells& cells, const Frame& f, const Reachability
   r.band_occupancy = per_cell(inner, lowest.u, 1, cells.band_inner.size());
 }
 
-// Volume's optimum (Reachability::find_optimum): the goal places no centre of mass, so the void
-// written is the ball about the middle of the writable cells, clipped to them, that holds the
-// target: the cells nearest the writable cell closest to their centroid, in order of distance (ties
-// by index), the last one part full; q = |p − c|² − r², r² between the last cell taken and the
-// next. A ball about the centroid itself may miss the cells (a torus).
-void volume_optimum(const CarvableCells& cells, const std::vector<std::int64_t>& writable, double target, Reachability& r) {
-  const double v = cells.cell_volume();
-  if (writable.empty() || !(target > 0.0) || !(v > 0.0)) return;
+// Where volume's ball starts (ReachabilityOptions::volume_start): the writable cell nearest their
+// centroid (a ball about the centroid itself may miss the cells: a torus), or the one farthest
+// along `start` of those within a cell of it (first in the list on a tie).
+Eigen::Vector3d ball_start(const CarvableCells& cells, const std::vector<std::int64_t>& writable,
+                           const std::optional<ReachabilityOptions::Line>& start) {
+  if (start) {
+    const double h = cells.grid.spacing;
+    const Eigen::Vector3d d = start->direction.normalized();
+    std::optional<Eigen::Vector3d> best;
+    for (std::int64_t cell : writable) {
+      const Eigen::Vector3d x = cells.centre(cell), off = x - start->point;
+      if ((off - off.dot(d) * d).squaredNorm() > h * h) continue;
+      if (!best || x.dot(d) > best->dot(d)) best = x;
+    }
+    if (best) return *best;
+  }
   NeumaierSum sum[3];
   for (std::int64_t cell : writable) {
     const Eigen::Vector3d x = cells.centre(cell);
@@ -884,6 +892,18 @@ void volume_optimum(const CarvableCells& cells, const std::vector<std::int64_t>&
   Eigen::Vector3d c = cells.centre(writable.front());
   for (std::int64_t cell : writable)
     if ((cells.centre(cell) - centroid).squaredNorm() < (c - centroid).squaredNorm()) c = cells.centre(cell);
+  return c;
+}
+
+// Volume's optimum (Reachability::find_optimum): the goal places no centre of mass, so the void
+// written is a ball clipped to the writable cells that holds the target: the cells nearest its
+// start (ball_start), in order of distance (ties by index), the last one part full;
+// q = |p − c|² − r², r² between the last cell taken and the next.
+void volume_optimum(const CarvableCells& cells, const std::vector<std::int64_t>& writable, double target,
+                    const std::optional<ReachabilityOptions::Line>& start, Reachability& r) {
+  const double v = cells.cell_volume();
+  if (writable.empty() || !(target > 0.0) || !(v > 0.0)) return;
+  const Eigen::Vector3d c = ball_start(cells, writable, start);
   std::vector<std::pair<double, std::size_t>> order(writable.size());
   for (std::size_t i = 0; i < writable.size(); ++i) order[i] = {(cells.centre(writable[i]) - c).squaredNorm(), i};
   std::sort(order.begin(), order.end());
@@ -1028,8 +1048,9 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
     out.reachable = goal.target_volume <= out.carvable_volume;
     out.decided = out.reachable || goal.target_volume > out.carvable_volume_outer;
     if (out.reachable)
-      out.find_optimum = [cells, mid = options.mid_reading, target = goal.target_volume](Reachability& r) {
-        volume_optimum(*cells, mid ? cells->mid : cells->inner, target, r);
+      out.find_optimum = [cells, mid = options.mid_reading, target = goal.target_volume,
+                          start = options.volume_start](Reachability& r) {
+        volume_optimum(*cells, mid ? cells->mid : cells->inner, target, start, r);
       };
     return out;
   }

@@ -78,6 +78,14 @@ struct ReachabilityOptions {
   // estimate of the best void at the exact wall, and the programme the quadric void is written
   // from. The claim "unreachable" is always read on the outer cells.
   bool mid_reading = false;
+  // Volume: where the ball that holds the target starts (Reachability::find_optimum). None: at
+  // the writable cell nearest their centroid. A line (a channel's axis, pointing out of the object
+  // into the opening): at the writable cell farthest along it of those within a cell of it, so
+  // that the channel cut to the void is short; the centroid's cell when none is.
+  struct Line {
+    Eigen::Vector3d point = Eigen::Vector3d::Zero(), direction = Eigen::Vector3d::UnitZ();
+  };
+  std::optional<Line> volume_start;
 
   static BoundedSimplexOptions lp_defaults() {
     BoundedSimplexOptions o;  // rows are scaled by the volume: values O(1), a cell's column O(1/#cells)

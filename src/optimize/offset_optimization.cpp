@@ -24,6 +24,7 @@
 #include "shape/outer_offset_limit.h"
 #include "shape/shrink_outer_limit.h"
 #include "cavity/new_self_intersections.h"
+#include "cavity/open_cavity.h"
 #include "cavity/printable_solid.h"
 #include "cavity/verify_opened_cavity.h"
 #include "cavity/round_for_output.h"
@@ -1476,10 +1477,18 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   // same either way; when the goal is out of reach the solve is stopped (AlOptions::stop) and the
   // goal refused as before, with the same precedence over the skeleton's and the basis' errors.
   say("reachability: can any void reach the goal?");
-  const ReachabilityStageInput reach_input{&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
-                                           options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
-                                           options.threads, options.flatten, input_bvh.get(), options.up,
-                                           options.posed_stable};
+  ReachabilityStageInput reach_input{&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
+                                     options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
+                                     options.threads, options.flatten, input_bvh.get(), options.up,
+                                     options.posed_stable, std::nullopt};
+  // A volume held behind an opening: its ball starts under the opening, on the channel's axis, so
+  // that the channel cut to it is short (on the demo sphere through z>55, one holding 1587 of a
+  // target of 1000 with the ball at the middle).
+  if (options.goal == GoalKind::volume && options.fix.kind == FixRegion::Kind::half_space) {
+    std::string why;
+    if (const std::optional<ChannelAxis> axis = channel_axis(input, options.fix, why))
+      reach_input.volume_start = ReachabilityOptions::Line{axis->point, axis->direction};
+  }
   std::atomic<bool> out_of_reach{false};
   std::atomic<bool> reach_running{options.threads > 1};
   struct ReachOutcome {

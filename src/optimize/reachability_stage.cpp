@@ -28,6 +28,7 @@ ReachabilityOptions options_for(const ReachabilityStageInput& in, bool outer) {
   o.margin_cells = in.cavity_margin_cells;
   o.threads = in.threads;
   o.mid_reading = true;
+  o.volume_start = in.volume_start;
   return o;
 }
 

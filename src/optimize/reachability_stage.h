@@ -87,6 +87,7 @@ struct ReachabilityStageInput {
   // +x an "--up +y" remedy is the file's +y up, not the turned mesh's.
   std::string up = "+z";
   bool posed_stable = false;
+  std::optional<ReachabilityOptions::Line> volume_start;  // ReachabilityOptions::volume_start
 };
 
 ReachabilitySummary reachability_stage(const ReachabilityStageInput& in);

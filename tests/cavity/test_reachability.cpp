@@ -238,3 +238,38 @@ TEST_CASE("reachability: a quadric about an origin, re-expanded about zero, has 
     CHECK(value(a, p) == doctest::Approx(expected).epsilon(1e-12).scale(1.0 + std::fabs(expected)));
   }
 }
+
+TEST_CASE("reachability: a volume's ball starts at the writable cell farthest along the given line") {
+  // An icosphere of radius 10 about the origin, wall 1: the writable cells' centres lie at least a
+  // wall inside, so none is above z = 9; along +z through the centre, the farthest lies within
+  // two cells of that height. Without the line the ball starts at the cell nearest the centroid
+  // (by symmetry, within a cell of the centre). Either way it holds the target (occupancy sum).
+  const Mesh sphere = make_icosphere(10.0, 3);
+  const TriangleBvh bvh(sphere.V, sphere.F);
+  GoalSpec g;
+  g.kind = GoalKind::volume;
+  g.target_volume = 50.0;
+  ReachabilityOptions o = options_for(1.0);
+  for (const bool along : {false, true}) {
+    CAPTURE(along);
+    if (along) o.volume_start = ReachabilityOptions::Line{Eigen::Vector3d(0.3, -0.2, 4.0), Eigen::Vector3d(0, 0, 2)};
+    Reachability r = reachability(sphere, bvh, g, sphere.V.col(2).minCoeff(), Eigen::Vector3d::Zero(), o);
+    REQUIRE(r.ok);
+    REQUIRE(r.reachable);
+    REQUIRE(r.find_optimum);
+    r.find_optimum(r);
+    REQUIRE(r.optimum);
+    const double h = r.cells->grid.spacing;
+    const Eigen::Vector3d c = r.optimum->origin;
+    if (along) {
+      CHECK(std::hypot(c.x() - 0.3, c.y() + 0.2) <= h * (1.0 + 1e-12));
+      CHECK(c.z() <= 9.0);
+      CHECK(c.z() >= 9.0 - 2.0 * h);
+    } else {
+      CHECK(c.norm() <= h);
+    }
+    double held = 0.0;
+    for (double u : r.occupancy) held += u * r.cells->cell_volume();
+    CHECK(held == doctest::Approx(50.0).epsilon(1e-9));
+  }
+}
