@@ -107,19 +107,53 @@ bool inside_loops(const PlaneSection& s, const Eigen::Vector2d& q) {
   return in;
 }
 
-// The area centroid (u, v) of the largest section of `outer` at the region's plane, and that plane.
-std::optional<std::pair<Eigen::Vector2d, SectionPlane>> section_centroid(const Mesh& outer, const FixRegion& region,
-                                                                         std::string& why) {
+// Where a channel through a half-space region runs: the point (u, v) of the region's plane it
+// crosses, that plane, and its room (the least distance from the axis to the outer surface's
+// sections at 9 levels across the region: axis_room).
+struct AxisChoice {
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();
+  SectionPlane plane;
+  double room = 0.0;
+};
+
+// The room of the axis through `c` across `levels` (the sections from the region's plane
+// outwards): the least distance from it to every section, inside the material (the wall to keep)
+// and, once it has left, outside (the channel passes the surface beyond by a wall too); none when
+// it is outside the first section, or enters the material again after leaving it.
+std::optional<double> axis_room(const std::vector<PlaneSection>& levels, const Eigen::Vector2d& c) {
+  double room = std::numeric_limits<double>::infinity();
+  bool left = false;
+  for (std::size_t level = 0; level < levels.size(); ++level) {
+    const PlaneSection& cut_here = levels[level];
+    if (cut_here.loops.empty()) continue;
+    const bool inside = inside_loops(cut_here, c);
+    if (level == 0 && !inside) return std::nullopt;
+    if (inside && left) return std::nullopt;
+    left = left || !inside;
+    room = std::min(room, distance_to_loops(cut_here, c));
+  }
+  return room;
+}
+
+// The axis through the area centroid of the largest section at the region's plane when its room
+// keeps `wall` and a quarter more; else the point of a 16 × 16 grid over that section's box with the
+// most room (first in grid order on a tie). On the 20 mm calibration cube, z>V over the top tenth
+// crosses the engraved Z at its centroid.
+std::optional<AxisChoice> choose_axis(const Mesh& outer, const FixRegion& region, double wall, std::string& why) {
   const int axis = region.axis;
   const double lo = outer.V.col(axis).minCoeff(), hi = outer.V.col(axis).maxCoeff();
   if (!(region.above ? region.value < hi : region.value > lo)) {
     why = "the region " + region.text + " holds no part of the surface";
     return std::nullopt;
   }
-  const SectionPlane base = section_plane(axis, region.value);
-  const PlaneSection section = plane_section(outer, base);
+  const double far_end = region.above ? hi : lo;
+  AxisChoice choice;
+  choice.plane = section_plane(axis, region.value);
+  std::vector<PlaneSection> levels;
+  for (int level = 0; level < 9; ++level)
+    levels.push_back(plane_section(outer, section_plane(axis, region.value + (far_end - region.value) * (level / 9.0))));
   const SectionLoop* largest = nullptr;
-  for (const SectionLoop& loop : section.loops)
+  for (const SectionLoop& loop : levels.front().loops)
     if (loop.signed_area > 0.0 && (!largest || loop.signed_area > largest->signed_area)) largest = &loop;
   if (!largest) {
     why = "the outer surface has no section at " + region.text;
@@ -128,14 +162,39 @@ std::optional<std::pair<Eigen::Vector2d, SectionPlane>> section_centroid(const M
   // Area centroid of the largest loop (shoelace).
   Eigen::Vector2d c = Eigen::Vector2d::Zero();
   double a2 = 0.0;
+  Eigen::Vector2d box_lo = largest->points.front(), box_hi = box_lo;
   for (std::size_t i = 0; i < largest->points.size(); ++i) {
     const Eigen::Vector2d p = largest->points[i], q = largest->points[(i + 1) % largest->points.size()];
     const double cr = p.x() * q.y() - q.x() * p.y();
     a2 += cr;
     c += cr * (p + q);
+    box_lo = box_lo.cwiseMin(p);
+    box_hi = box_hi.cwiseMax(p);
   }
   c /= 3.0 * a2;
-  return std::make_pair(c, base);
+  if (const std::optional<double> room = axis_room(levels, c); room && *room >= 1.25 * wall) {
+    choice.point = c;
+    choice.room = *room;
+    return choice;
+  }
+  std::optional<double> best;
+  constexpr int kSide = 16;
+  for (int j = 0; j < kSide; ++j)
+    for (int i = 0; i < kSide; ++i) {
+      const Eigen::Vector2d t((i + 0.5) / kSide, (j + 0.5) / kSide);
+      const Eigen::Vector2d q = box_lo + t.cwiseProduct(box_hi - box_lo);
+      const std::optional<double> room = axis_room(levels, q);
+      if (room && (!best || *room > *best)) {
+        best = room;
+        choice.point = q;
+      }
+    }
+  if (!best) {
+    why = "no line along the region's axis stays inside the outer surface across " + region.text;
+    return std::nullopt;
+  }
+  choice.room = *best;
+  return choice;
 }
 
 // The channel for a half-space region: see the header.
@@ -145,22 +204,11 @@ bool channel_prism(const Mesh& outer, const TriangleBvh& cavity_bvh, const OpenC
   const int axis = region.axis;
   const double s = region.above ? 1.0 : -1.0;
   const double far_end = region.above ? outer.V.col(axis).maxCoeff() : outer.V.col(axis).minCoeff();
-  const auto centroid = section_centroid(outer, region, why);
-  if (!centroid) return false;
-  const Eigen::Vector2d c = centroid->first;
-  const SectionPlane& base = centroid->second;
-  // The largest radius that keeps the wall to every section across the region.
-  double room = std::numeric_limits<double>::infinity();
-  for (int level = 0; level < 9; ++level) {
-    const double v = region.value + (far_end - region.value) * (level / 9.0);
-    const PlaneSection cut_here = plane_section(outer, section_plane(axis, v));
-    if (cut_here.loops.empty()) continue;
-    if (!inside_loops(cut_here, c)) {
-      why = "the channel's axis leaves the outer surface inside " + region.text;
-      return false;
-    }
-    room = std::min(room, distance_to_loops(cut_here, c));
-  }
+  const std::optional<AxisChoice> chosen = choose_axis(outer, region, options.wall, why);
+  if (!chosen) return false;
+  const Eigen::Vector2d c = chosen->point;
+  const SectionPlane& base = chosen->plane;
+  const double room = chosen->room;
   double radius = room - options.wall;
   if (options.max_channel_radius > 0.0) radius = std::min(radius, options.max_channel_radius);
   if (!(radius >= 0.25 * options.wall)) {
@@ -214,17 +262,17 @@ bool channel_prism(const Mesh& outer, const TriangleBvh& cavity_bvh, const OpenC
 
 }  // namespace
 
-std::optional<ChannelAxis> channel_axis(const Mesh& outer, const FixRegion& region, std::string& why) {
+std::optional<ChannelAxis> channel_axis(const Mesh& outer, const FixRegion& region, double wall, std::string& why) {
   if (region.kind != FixRegion::Kind::half_space) {
     why = "only a half-space region has a channel";
     return std::nullopt;
   }
-  const auto centroid = section_centroid(outer, region, why);
-  if (!centroid) return std::nullopt;
-  const SectionPlane& base = centroid->second;
+  const std::optional<AxisChoice> chosen = choose_axis(outer, region, wall, why);
+  if (!chosen) return std::nullopt;
+  const SectionPlane& base = chosen->plane;
   ChannelAxis line;
   line.direction = (region.above ? 1.0 : -1.0) * unit(region.axis);
-  line.point = region.value * unit(region.axis) + centroid->first.x() * base.u + centroid->first.y() * base.v;
+  line.point = region.value * unit(region.axis) + chosen->point.x() * base.u + chosen->point.y() * base.v;
   return line;
 }
 

@@ -11,8 +11,11 @@
 //     inward vertex normal by min(R/2, 0.45 × the void's depth there), the axis from it to its
 //     nearest outer point (the thinnest wall there);
 //   - channel for a half-space region (x/y/z > or < V): along the region's axis, through the
-//     centroid of the largest section of the outer surface at V; its radius the smallest distance
-//     from the axis to the outer surface's sections across the region (9 levels), less the wall
+//     centroid of the largest section of the outer surface at V (where that line has room for the
+//     wall and a quarter more; else through the point of a 16 × 16 grid over that section with the
+//     most room); its radius the smallest distance from the axis to the outer surface's sections
+//     across the region (9 levels; the axis may leave the surface, passing it by the room beyond,
+//     but not enter it again), less the wall
 //     (capped by max_channel_radius when > 0), so the wall around it stays; it starts inside the
 //     void (below the first cavity hit of every prism corner's ray, above the void's other side) and
 //     leaves the bounding box by a wall.
@@ -52,14 +55,14 @@ struct OpenCavityOptions {
   std::string check() const;
 };
 
-// The line a channel through the half-space `region` runs along: through the area centroid of the
-// largest section of `outer` at the region's plane, `direction` the region's axis pointing out of
-// the object into the region (+z for z>V). None, with `why`, when the region holds no section.
+// The line a channel through the half-space `region` runs along (see above: chosen for a channel
+// keeping `wall`), `direction` the region's axis pointing out of the object into the region (+z for
+// z>V). None, with `why`, when no such line stays inside the outer surface across the region.
 struct ChannelAxis {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();      // on the region's plane
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
 };
-std::optional<ChannelAxis> channel_axis(const Mesh& outer, const FixRegion& region, std::string& why);
+std::optional<ChannelAxis> channel_axis(const Mesh& outer, const FixRegion& region, double wall, std::string& why);
 
 struct CutOpening {
   std::string kind;                   // "drain hole", "auto drain hole", "channel"

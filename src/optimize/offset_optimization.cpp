@@ -1486,7 +1486,7 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   // target of 1000 with the ball at the middle).
   if (options.goal == GoalKind::volume && options.fix.kind == FixRegion::Kind::half_space) {
     std::string why;
-    if (const std::optional<ChannelAxis> axis = channel_axis(input, options.fix, why))
+    if (const std::optional<ChannelAxis> axis = channel_axis(input, options.fix, f.wall, why))
       reach_input.volume_start = ReachabilityOptions::Line{axis->point, axis->direction};
   }
   std::atomic<bool> out_of_reach{false};

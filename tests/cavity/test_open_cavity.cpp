@@ -3,7 +3,8 @@
 // prism's and the icosphere's facet error); a box with two spherical cavities gets one automatic
 // hole per cavity, at that cavity's lowest vertex (found here by a plain scan), and the result is
 // one closed, embedded piece; the void joined to the outside is checked by a flood fill on a grid;
-// a channel for `z>V` opens a closed box cavity; the cut below a plane keeps the analytic volume.
+// a channel for `z>V` opens a closed box cavity, and moves off a centroid line without room (a
+// cup's central post) to the widest line; the cut below a plane keeps the analytic volume.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -121,6 +122,32 @@ TEST_CASE("open_cavity: a channel for z>V opens a box's cavity, keeping the wall
   REQUIRE(opened.spill_height);
   CHECK(*opened.spill_height == doctest::Approx(4.0));
   CHECK(void_reaches_outside(opened.solid, Eigen::Vector3d(1.03, 0.98, 2.0), 0.1));
+}
+
+TEST_CASE("open_cavity: a channel for z>V moves off a centroid line without room, to the widest line") {
+  // A cup of revolution (radius 2, rim at z = 4.05, inner wall radius 1, floor at 3.2) with a post of
+  // radius 0.3 up its middle, over a cylindrical cavity (radius 1.7, z in [0.3, 2.7]). The line
+  // through the section's centroid runs up the post, 0.3 from the surface: too little for the
+  // wall 0.25 and a quarter more. The widest vertical line runs through the cup's wall, half-way
+  // between radius 1 and 2 (room 0.5), and leaves the surface at the rim, passing the post by
+  // 1.2; one through the cup's inside would pass the post and the inner wall by 0.35 at most.
+  const Mesh outer = make_revolution({{0.0, 0.0}, {2.0, 0.0}, {2.0, 4.05}, {1.0, 4.05}, {1.0, 3.2}, {0.3, 3.2}, {0.3, 4.5}, {0.0, 4.5}}, 96);
+  const Mesh cavity = make_cylinder(1.7, 0.3, 2.7, 96, 4, 4);
+  for (const Mesh* m : {&outer, &cavity}) REQUIRE(test::closed_and_oriented(*m));
+  OpenCavityOptions options;
+  options.wall = 0.25;
+  REQUIRE(parse_fix_region("z>3", options.opening).empty());
+  const OpenedCavity opened = open_cavity(outer, cavity, options);
+  REQUIRE(opened.ok);
+  REQUIRE(opened.openings.size() == 1);
+  const Eigen::Vector3d axis = opened.openings[0].inner;
+  const double from_middle = std::hypot(axis.x(), axis.y());
+  CHECK(from_middle > 1.0 + options.wall);
+  CHECK(from_middle < 2.0 - options.wall);
+  CHECK(opened.openings[0].radius <= 0.5 - options.wall + 1e-9);
+  CHECK(test::closed_and_oriented(opened.solid));
+  CHECK(self_pairs(opened.solid) == 0);
+  CHECK(void_reaches_outside(opened.solid, Eigen::Vector3d(0.0, 0.0, 1.5), 0.1));
 }
 
 TEST_CASE("cut_by_plane: a box below a plane keeps the analytic volume") {
