@@ -260,6 +260,49 @@ bool channel_prism(const Mesh& outer, const TriangleBvh& cavity_bvh, const OpenC
   return true;
 }
 
+// The opening for a sphere region: see the header.
+bool sphere_opening_prism(const TriangleBvh& outer_bvh, const TriangleBvh& cavity_bvh, const OpenCavityOptions& options,
+                          Prism& prism, std::string& why) {
+  const FixRegion& region = options.opening;
+  const Eigen::Vector3d centre(region.center[0], region.center[1], region.center[2]);
+  const ClosestPoint mouth = closest_point(outer_bvh, centre);
+  if (!mouth.found || !(mouth.distance < region.radius)) {
+    why = "the region " + region.text + " holds no part of the outer surface";
+    return false;
+  }
+  const ClosestPoint end = closest_point(cavity_bvh, mouth.point);
+  const Eigen::Vector3d into_void = (end.point - mouth.point).normalized();
+  if (!end.found || !into_void.allFinite()) {
+    why = "the cavity has no point apart from the outer surface near " + region.text;
+    return false;
+  }
+  RayCastOptions far_side;
+  far_side.ignored_faces.push_back(end.face);  // the ray starts on it
+  far_side.t_min = 1e-9 * outer_bvh.diagonal();
+  const RayCastHit far = ray_cast_closest(cavity_bvh, end.point, into_void, far_side);
+  const double depth = far.hit ? far.t : 0.0;
+  const Eigen::Vector3d u = into_void.unitOrthogonal(), v = into_void.cross(u);
+  double radius = 0.5 * std::sqrt(region.radius * region.radius - mouth.distance * mouth.distance);
+  if (options.max_channel_radius > 0.0) radius = std::min(radius, options.max_channel_radius);
+  for (int shrink = 0; shrink < 12; ++shrink, radius *= 0.8) {
+    if (!(radius >= 0.25 * options.wall)) break;
+    const Eigen::Vector3d inner = end.point + std::min(0.5 * radius, 0.45 * depth) * into_void;
+    bool inside = point_in_solid(cavity_bvh, inner);
+    for (int k = 0; k < options.sides && inside; ++k) {
+      double sine = 0.0, cosine = 0.0;
+      det_sincos(6.283185307179586 * k / options.sides, sine, cosine);
+      inside = point_in_solid(cavity_bvh, inner + radius * (cosine * u + sine * v));
+    }
+    if (!inside) continue;
+    prism.inner = inner;
+    prism.outer = mouth.point - (radius + 2.0 * options.wall) * into_void;
+    prism.radius = radius;
+    return true;
+  }
+  why = "the void near " + region.text + " leaves no room for an opening of a quarter wall's radius";
+  return false;
+}
+
 }  // namespace
 
 std::optional<ChannelAxis> channel_axis(const Mesh& outer, const FixRegion& region, double wall, std::string& why) {
@@ -282,7 +325,6 @@ std::string OpenCavityOptions::check() const {
   if (sides < 3 || sides > 256) return "the prism needs 3 to 256 sides";
   for (const DrainHoleRequest& h : holes)
     if (!h.point.allFinite() || (h.radius >= 0.0 && !(h.radius > 0.0))) return "a drain hole needs a finite point and a positive radius";
-  if (opening.kind == FixRegion::Kind::sphere) return "an opening through a contoured cavity needs a half-space region (x>V, z<V, ...)";
   return "";
 }
 
@@ -368,15 +410,17 @@ OpenedCavity open_cavity(const Mesh& outer, const Mesh& cavity, const OpenCavity
       hole_through_nearest(start, options.hole_radius, 0.0, "auto drain hole", s);
     }
   }
-  if (options.opening.kind == FixRegion::Kind::half_space) {
+  if (options.opening.kind != FixRegion::Kind::none) {
     Prism prism;
     std::string why;
-    if (!channel_prism(outer, cavity_bvh, options, prism, why)) {
+    const bool sphere = options.opening.kind == FixRegion::Kind::sphere;
+    if (sphere ? !sphere_opening_prism(outer_bvh, cavity_bvh, options, prism, why)
+               : !channel_prism(outer, cavity_bvh, options, prism, why)) {
       out.message = why;
       return out;
     }
     CutOpening record;
-    record.kind = "channel";
+    record.kind = sphere ? "opening" : "channel";
     record.inner = prism.inner;
     record.outer = prism.outer;
     record.radius = prism.radius;
@@ -392,7 +436,7 @@ OpenedCavity open_cavity(const Mesh& outer, const Mesh& cavity, const OpenCavity
       out.message = record.kind + " could not be cut: " + why;
       return out;
     }
-    if (record.kind == "channel") {
+    if (record.kind == "channel" || record.kind == "opening") {
       // Where the channel's side meets the outer surface: new vertices on it (within rounding).
       double spill = std::numeric_limits<double>::infinity();
       const double tol = 1e-9 * outer_bvh.diagonal();

@@ -19,6 +19,11 @@
 //     (capped by max_channel_radius when > 0), so the wall around it stays; it starts inside the
 //     void (below the first cavity hit of every prism corner's ray, above the void's other side) and
 //     leaves the bounding box by a wall.
+//   - opening for a sphere region (centre C, radius R): from the void to the point Q of the outer
+//     surface nearest C, its radius half the region's reach on the surface there
+//     (√(R² − |Q − C|²) / 2), shrunk ×0.8 until every corner of its inner end lies in the void;
+//     the inner end at the cavity's point P nearest Q, moved into the void along Q → P by half the
+//     radius (at most 0.45 of the void's depth that way); the outer cap radius + 2·wall beyond Q.
 // Every cut moves the prism sideways by 1e-5 of its radius (an automatic hole's axis starts at a
 // cavity vertex, on lines of the contour's edges); a degenerate cut (a solid vertex on a prism
 // plane, ...) turns it by 0.0137 rad, moves it along its axis by 1e-7 and sideways by another 1e-5
@@ -65,7 +70,7 @@ struct ChannelAxis {
 std::optional<ChannelAxis> channel_axis(const Mesh& outer, const FixRegion& region, double wall, std::string& why);
 
 struct CutOpening {
-  std::string kind;                   // "drain hole", "auto drain hole", "channel"
+  std::string kind;                   // "drain hole", "auto drain hole", "channel", "opening" (a sphere region)
   Eigen::Vector3d inner = Eigen::Vector3d::Zero(), outer = Eigen::Vector3d::Zero();  // cap centres
   double radius = 0.0;
   int shell = -1;                     // auto: the cavity shell

@@ -636,9 +636,10 @@ struct Cavity {
   CavitySummary summary;
 };
 
-// A channel through a contoured cavity (cavity/open_cavity.h) for a half-space --fix region.
+// An opening cut through a contoured cavity (cavity/open_cavity.h) for a --fix region: a channel
+// for a half-space, a hole to the surface point nearest a sphere region's centre.
 bool wants_channel(const OptimizeOptions& options, const Band& b) {
-  return b.fixed_count > 0 && options.fix.kind == FixRegion::Kind::half_space;
+  return b.fixed_count > 0 && options.fix.kind != FixRegion::Kind::none;
 }
 
 // Inputs large enough for the coarse copy, with two or more threads: there the stages after the
@@ -776,11 +777,7 @@ void contour_offset_void(const OptimizeOptions& options, const Frame& f, const B
   const auto& tick = options.on_stage_progress;
   const bool want_contour = wants_offset_contour(options, c);
   std::string problem;
-  if (want_contour && b.fixed_count > 0 && !wants_channel(options, b)) {
-    problem = options.cavity == CavityMode::contour
-                  ? "a contoured cavity cannot have an opening (--fix) yet; the offset surfaces were written"
-                  : "with an opening (--fix) only the offset surfaces can be written, and they do not verify";
-  } else if (want_contour) {
+  if (want_contour) {
     const auto stage_start = Clock::now();
     ContourCavityOptions cavity_options;
     // The wall survives the rounding of both surfaces to the output's precision.
@@ -944,7 +941,7 @@ std::string percent(double fraction) {
 // Whether a quadric void can be written for the goal. Its moment rows read a void inside a fixed
 // outer surface with nothing cut through it; a volume's one row reads the void alone, so a volume
 // takes it inside the outer surface the solve thickened (--outer) and opened by the channel of a
-// half-space --fix (cut_openings aims the void at the target less the channel's share).
+// --fix region (cut_openings aims the void at the target less the channel's share).
 bool quadric_writable(const OptimizeOptions& options, const Band& b) {
   if (!quadric_goal(options.goal)) return false;
   if (options.goal == GoalKind::volume) return b.fixed_count == 0 || wants_channel(options, b);
@@ -1156,8 +1153,7 @@ Cavity make_cavity(const OptimizeOptions& options, const Frame& f, const Band& b
       c.verification.valid = false;
       c.verification.failures.insert(
           c.verification.failures.begin(),
-          !writable           ? "--cavity quadric needs a goal that lowers the centre of mass or spin, without --outer or --fix, or a volume "
-                                  "(with --fix only as a half-space such as z>V)"
+          !writable           ? "--cavity quadric needs a goal that lowers the centre of mass or spin, without --outer or --fix, or a volume"
           : !reach.programme ? "no quadric void: the reachability programme could not be set up"
                              : "no quadric void: no void the programme knows reaches the goal");
     }
@@ -1488,6 +1484,11 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
     std::string why;
     if (const std::optional<ChannelAxis> axis = channel_axis(input, options.fix, f.wall, why))
       reach_input.volume_start = ReachabilityOptions::Line{axis->point, axis->direction};
+  } else if (options.goal == GoalKind::volume && options.fix.kind == FixRegion::Kind::sphere) {
+    // A sphere region: on the line from the vertices' mean to its centre.
+    const Eigen::Vector3d centre(options.fix.center[0], options.fix.center[1], options.fix.center[2]);
+    const Eigen::Vector3d towards = centre - input.V.colwise().mean().transpose();
+    if (towards.norm() > 0.0) reach_input.volume_start = ReachabilityOptions::Line{centre, towards};
   }
   std::atomic<bool> out_of_reach{false};
   std::atomic<bool> reach_running{options.threads > 1};

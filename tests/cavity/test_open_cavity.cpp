@@ -4,7 +4,8 @@
 // hole per cavity, at that cavity's lowest vertex (found here by a plain scan), and the result is
 // one closed, embedded piece; the void joined to the outside is checked by a flood fill on a grid;
 // a channel for `z>V` opens a closed box cavity, and moves off a centroid line without room (a
-// cup's central post) to the widest line; the cut below a plane keeps the analytic volume.
+// cup's central post) to the widest line; a sphere region opens a shell at the surface point
+// nearest its centre; the cut below a plane keeps the analytic volume.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -148,6 +149,33 @@ TEST_CASE("open_cavity: a channel for z>V moves off a centroid line without room
   CHECK(test::closed_and_oriented(opened.solid));
   CHECK(self_pairs(opened.solid) == 0);
   CHECK(void_reaches_outside(opened.solid, Eigen::Vector3d(0.0, 0.0, 1.5), 0.1));
+}
+
+TEST_CASE("open_cavity: a sphere region opens a spherical shell at the surface point nearest its centre") {
+  // Shell radii 5 and 3 about the origin, the region a ball of radius 2 about (0, 0, 5.5): the
+  // nearest surface point is the pole (0, 0, 5), the region reaches √(4 − 0.25) = 1.94 across the
+  // surface there, so the hole's radius is 0.97 (less where the void is narrower, never more).
+  const Mesh outer = make_icosphere(5.0, 4), cavity = make_icosphere(3.0, 4);
+  OpenCavityOptions options;
+  options.wall = 0.5;
+  REQUIRE(parse_fix_region("sphere:0,0,5.5,2", options.opening).empty());
+  const OpenedCavity opened = open_cavity(outer, cavity, options);
+  REQUIRE(opened.ok);
+  REQUIRE(opened.openings.size() == 1);
+  const CutOpening& hole = opened.openings[0];
+  CHECK(hole.kind == "opening");
+  CHECK(hole.radius <= 0.5 * std::sqrt(4.0 - 0.25) + 1e-12);
+  CHECK(hole.radius >= 0.25 * options.wall);
+  // Along the z axis (through both poles; moved sideways by 1e-5 of the radius), from the void out
+  // past the region.
+  CHECK(std::hypot(hole.inner.x(), hole.inner.y()) < 2e-5 * hole.radius);
+  CHECK(std::hypot(hole.outer.x(), hole.outer.y()) < 2e-5 * hole.radius);
+  CHECK(hole.inner.z() > 2.0);
+  CHECK(hole.inner.z() < 3.0);
+  CHECK(hole.outer.z() > 5.0);
+  CHECK(test::closed_and_oriented(opened.solid));
+  CHECK(self_pairs(opened.solid) == 0);
+  CHECK(void_reaches_outside(opened.solid, Eigen::Vector3d(0.0, 0.0, 0.0), 0.2));
 }
 
 TEST_CASE("cut_by_plane: a box below a plane keeps the analytic volume") {
