@@ -1191,8 +1191,8 @@ std::optional<QuadricAttempt> quadric_void_aimed_at(const OptimizeOptions& optio
 // cut solid as written (cavity/verify_opened_cavity.h). When the openings' material moves the goal
 // out of reach, the goal is solved again with their integrals added to the last contour's Δ and
 // the cavity contoured again, or a quadric void holding a volume is aimed at the target less the
-// openings' (at most 6 times: on the demo sphere with --fix 'z>5' the channel
-// lengthens as the void shrinks, and a target of 20000 took 4).
+// openings' (at most 6 times: the channel lengthens as the void shrinks; on the demo sphere behind
+// --fix 'z>5' a target of 300 took all six).
 OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
                              const Reachability* programme, Cavity& cavity, std::optional<Mesh>& opened_solid,
                              StageTimings& timings, const Progress& say) {
