@@ -271,8 +271,8 @@ bool sphere_opening_prism(const TriangleBvh& outer_bvh, const TriangleBvh& cavit
     return false;
   }
   const ClosestPoint end = closest_point(cavity_bvh, mouth.point);
-  const Eigen::Vector3d into_void = (end.point - mouth.point).normalized();
-  if (!end.found || !into_void.allFinite()) {
+  const Eigen::Vector3d into_void = end.found ? (end.point - mouth.point).normalized() : Eigen::Vector3d::Zero();
+  if (!end.found || !into_void.allFinite() || into_void.isZero()) {
     why = "the cavity has no point apart from the outer surface near " + region.text;
     return false;
   }

@@ -1272,6 +1272,24 @@ OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, con
   return summary;
 }
 
+// Where a volume held behind an opening starts its ball (ReachabilityOptions::volume_start): on
+// the channel's axis for a half-space, on the line from the vertices' mean to a sphere region's
+// centre, so that the opening cut to it is short (on the demo sphere through z>55, the channel
+// held 1587 of a target of 1000 with the ball at the middle). None for any other goal or region.
+std::optional<ReachabilityOptions::Line> volume_start_for(const Mesh& input, const OptimizeOptions& options, double wall) {
+  if (options.goal != GoalKind::volume) return std::nullopt;
+  if (options.fix.kind == FixRegion::Kind::half_space) {
+    std::string why;
+    const std::optional<ChannelAxis> axis = channel_axis(input, options.fix, wall, why);
+    if (axis) return ReachabilityOptions::Line{axis->point, axis->direction};
+  } else if (options.fix.kind == FixRegion::Kind::sphere) {
+    const Eigen::Vector3d centre(options.fix.center[0], options.fix.center[1], options.fix.center[2]);
+    const Eigen::Vector3d towards = centre - input.V.colwise().mean().transpose();
+    if (towards.norm() > 0.0) return ReachabilityOptions::Line{centre, towards};
+  }
+  return std::nullopt;
+}
+
 // Stage "report": the frame, the field, the solver and the input as it was, as values.
 FieldSummary field_summary(const OptimizeOptions& options, const Band& b, const ReducedProblem::Evaluation& e) {
   FieldSummary field;
@@ -1473,23 +1491,10 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
   // same either way; when the goal is out of reach the solve is stopped (AlOptions::stop) and the
   // goal refused as before, with the same precedence over the skeleton's and the basis' errors.
   say("reachability: can any void reach the goal?");
-  ReachabilityStageInput reach_input{&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
-                                     options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
-                                     options.threads, options.flatten, input_bvh.get(), options.up,
-                                     options.posed_stable, std::nullopt};
-  // A volume held behind an opening: its ball starts under the opening, on the channel's axis, so
-  // that the channel cut to it is short (on the demo sphere through z>55, one holding 1587 of a
-  // target of 1000 with the ball at the middle).
-  if (options.goal == GoalKind::volume && options.fix.kind == FixRegion::Kind::half_space) {
-    std::string why;
-    if (const std::optional<ChannelAxis> axis = channel_axis(input, options.fix, f.wall, why))
-      reach_input.volume_start = ReachabilityOptions::Line{axis->point, axis->direction};
-  } else if (options.goal == GoalKind::volume && options.fix.kind == FixRegion::Kind::sphere) {
-    // A sphere region: on the line from the vertices' mean to its centre.
-    const Eigen::Vector3d centre(options.fix.center[0], options.fix.center[1], options.fix.center[2]);
-    const Eigen::Vector3d towards = centre - input.V.colwise().mean().transpose();
-    if (towards.norm() > 0.0) reach_input.volume_start = ReachabilityOptions::Line{centre, towards};
-  }
+  const ReachabilityStageInput reach_input{&input, f.goal_input, f.zmin, f.origin, f.wall, f.outer_max, f.ground_tol,
+                                           options.outer, options.cavity_cells_per_wall, options.cavity_margin_cells,
+                                           options.threads, options.flatten, input_bvh.get(), options.up,
+                                           options.posed_stable, volume_start_for(input, options, f.wall)};
   std::atomic<bool> out_of_reach{false};
   std::atomic<bool> reach_running{options.threads > 1};
   struct ReachOutcome {

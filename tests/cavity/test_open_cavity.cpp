@@ -9,6 +9,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "cavity/open_cavity.h"
@@ -42,6 +43,17 @@ long long self_pairs(const Mesh& m) {
 bool void_reaches_outside(const Mesh& solid, const Eigen::Vector3d& probe, double h) {
   const test::OutsideCells cells = test::outside_cells(solid, h);
   return cells.outside[cells.index_of(probe)] != 0;
+}
+
+// The cavity opened for `region` with `wall`: required to succeed with exactly one opening.
+OpenedCavity opened_once(const Mesh& outer, const Mesh& cavity, double wall, const std::string& region) {
+  OpenCavityOptions options;
+  options.wall = wall;
+  REQUIRE(parse_fix_region(region, options.opening).empty());
+  OpenedCavity opened = open_cavity(outer, cavity, options);
+  REQUIRE(opened.ok);
+  REQUIRE(opened.openings.size() == 1);
+  return opened;
 }
 
 }  // namespace
@@ -108,12 +120,8 @@ TEST_CASE("open_cavity: automatic drain holes, one per cavity shell, at its lowe
 TEST_CASE("open_cavity: a channel for z>V opens a box's cavity, keeping the wall around it") {
   const Mesh outer = make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2, 2, 4));
   const Mesh cavity = translated(make_icosphere(0.7, 3), Eigen::Vector3d(1.03, 0.98, 2.0));
-  OpenCavityOptions options;
-  options.wall = 0.25;
-  REQUIRE(parse_fix_region("z>3.5", options.opening).empty());
-  const OpenedCavity opened = open_cavity(outer, cavity, options);
-  REQUIRE(opened.ok);
-  REQUIRE(opened.openings.size() == 1);
+  const double wall = 0.25;
+  const OpenedCavity opened = opened_once(outer, cavity, wall, "z>3.5");
   // The box's section is the 2 × 2 square centred at (1, 1): room 1, radius at most 1 − wall,
   // shrunk by 0.8 steps until the channel's end fits in the spherical cavity (radius 0.7).
   CHECK(opened.openings[0].radius == doctest::Approx(0.6));
@@ -135,17 +143,13 @@ TEST_CASE("open_cavity: a channel for z>V moves off a centroid line without room
   const Mesh outer = make_revolution({{0.0, 0.0}, {2.0, 0.0}, {2.0, 4.05}, {1.0, 4.05}, {1.0, 3.2}, {0.3, 3.2}, {0.3, 4.5}, {0.0, 4.5}}, 96);
   const Mesh cavity = make_cylinder(1.7, 0.3, 2.7, 96, 4, 4);
   for (const Mesh* m : {&outer, &cavity}) REQUIRE(test::closed_and_oriented(*m));
-  OpenCavityOptions options;
-  options.wall = 0.25;
-  REQUIRE(parse_fix_region("z>3", options.opening).empty());
-  const OpenedCavity opened = open_cavity(outer, cavity, options);
-  REQUIRE(opened.ok);
-  REQUIRE(opened.openings.size() == 1);
+  const double wall = 0.25;
+  const OpenedCavity opened = opened_once(outer, cavity, wall, "z>3");
   const Eigen::Vector3d axis = opened.openings[0].inner;
   const double from_middle = std::hypot(axis.x(), axis.y());
-  CHECK(from_middle > 1.0 + options.wall);
-  CHECK(from_middle < 2.0 - options.wall);
-  CHECK(opened.openings[0].radius <= 0.5 - options.wall + 1e-9);
+  CHECK(from_middle > 1.0 + wall);
+  CHECK(from_middle < 2.0 - wall);
+  CHECK(opened.openings[0].radius <= 0.5 - wall + 1e-9);
   CHECK(test::closed_and_oriented(opened.solid));
   CHECK(self_pairs(opened.solid) == 0);
   CHECK(void_reaches_outside(opened.solid, Eigen::Vector3d(0.0, 0.0, 1.5), 0.1));
@@ -156,16 +160,12 @@ TEST_CASE("open_cavity: a sphere region opens a spherical shell at the surface p
   // nearest surface point is the pole (0, 0, 5), the region reaches √(4 − 0.25) = 1.94 across the
   // surface there, so the hole's radius is 0.97 (less where the void is narrower, never more).
   const Mesh outer = make_icosphere(5.0, 4), cavity = make_icosphere(3.0, 4);
-  OpenCavityOptions options;
-  options.wall = 0.5;
-  REQUIRE(parse_fix_region("sphere:0,0,5.5,2", options.opening).empty());
-  const OpenedCavity opened = open_cavity(outer, cavity, options);
-  REQUIRE(opened.ok);
-  REQUIRE(opened.openings.size() == 1);
+  const double wall = 0.5;
+  const OpenedCavity opened = opened_once(outer, cavity, wall, "sphere:0,0,5.5,2");
   const CutOpening& hole = opened.openings[0];
   CHECK(hole.kind == "opening");
   CHECK(hole.radius <= 0.5 * std::sqrt(4.0 - 0.25) + 1e-12);
-  CHECK(hole.radius >= 0.25 * options.wall);
+  CHECK(hole.radius >= 0.25 * wall);
   // Along the z axis (through both poles; moved sideways by 1e-5 of the radius), from the void out
   // past the region.
   CHECK(std::hypot(hole.inner.x(), hole.inner.y()) < 2e-5 * hole.radius);
