@@ -318,7 +318,7 @@ Verification verify_offsets(const VerifyInput& in) {
       const double relative = (inner_int.values(kIntVolume) - g.target_volume) / g.target_volume;
       m.target_volume = g.target_volume;
       m.volume_relative_error = relative;
-      check.require(std::fabs(relative) <= 1e-4, "the void holds " + format_double(inner_int.values(kIntVolume)) +
+      check.require(std::fabs(relative) <= in.volume_tolerance, "the void holds " + format_double(inner_int.values(kIntVolume)) +
                                                      " instead of " + format_double(g.target_volume));
       break;
     }

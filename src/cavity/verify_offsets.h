@@ -67,6 +67,9 @@ struct VerifyInput {
   int threads = 2;              // for the intersection and wall searches; same result for any count
   bool goal_only = false;       // the goal's figures only: `valid` stays false and no validity
                                 // figure is measured (a contour that will be corrected anyway)
+  // Volume: the relative error allowed. Tighter for a void aimed at less than the target, whose
+  // openings add the rest (optimize's cut_openings): the opened void is then checked at 1e-4.
+  double volume_tolerance = 1e-4;
   // When outer and inner are the meshes as they read back from the files (round_for_output.h):
   // the defects the rounding made and could not undo, refused like any other.
   const RoundedForOutput* rounding = nullptr;
