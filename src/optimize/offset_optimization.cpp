@@ -1216,7 +1216,8 @@ OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, con
   open_options.wall = f.wall;
   const VerifyInput base = verify_input_for(options, f);
   OpeningsSummary summary;
-  double aim = f.goal.target_volume;  // a quadric void's volume aimed at (below)
+  double aim = f.goal.target_volume;                  // a quadric void's volume aimed at (below)
+  std::optional<std::pair<double, double>> previous;  // the last aim and its miss
   for (int attempt = 0;; ++attempt) {
     if (!cavity.verification.valid) {
       summary.message = "the cavity was not valid before the openings";
@@ -1240,17 +1241,25 @@ OpeningsSummary cut_openings(const OptimizeOptions& options, const Frame& f, con
                              !cavity.summary.rounds->empty() && solve.constraints_met && v.opened.ok &&
                              v.verification.valid && !v.verification.goal_met && attempt < 3;
     // A quadric void holding a volume: the openings' channels are part of the void (on the demo
-    // sphere a 2 mm drain hole added 297 to a target of 1000), so the void is aimed at the target
-    // less what the last channels held. The channels change little and in steps as the void
-    // shrinks (the demo sphere behind z>5 at 300: 75.5, then 47.95 and 47.90 in the frame's 10⁻⁶,
-    // met on the third aim); a secant through the first step, or through the void's own error,
-    // took it for the channel's slope and crept up on the target (six aims).
+    // sphere a 2 mm drain hole added 297 to a target of 1000), so the void is aimed lower, by a
+    // secant on what the opened void would miss by were the void exactly at its aim (so the void's
+    // own error, up to its tolerance, is not read as the channels' change). A drain hole lengthens
+    // steadily as the ball shrinks, and the secant follows it; a channel through a --fix region
+    // changes in steps (the demo sphere behind z>5 at 300: 75.5, then 47.95 and 47.90 in the
+    // frame's 10⁻⁶), which a secant reads as slopes above 1 (1.36: six aims). The channels only
+    // grow as the void shrinks, so the slope is kept in [0.5, 1]: at 1, the next aim is the target
+    // less the last channels.
     const bool reaimable = cavity.summary.written == WrittenCavity::quadric && f.goal.kind == GoalKind::volume && programme &&
                            v.opened.ok && v.verification.valid && !v.verification.goal_met && attempt < 6;
     std::optional<QuadricAttempt> reaimed;
     if (reaimable) {
       const double channels = integrals_in_frame(f, v.void_surfaces)(kIntVolume) - integrals_in_frame(f, cavity.written)(kIntVolume);
-      aim = f.goal.target_volume - channels;
+      const double miss = aim + channels - f.goal.target_volume;
+      double slope = 1.0;  // of the miss against the aim: 1 + d(channels)/d(aim)
+      if (previous && aim != previous->first)
+        slope = std::clamp((miss - previous->second) / (aim - previous->first), 0.5, 1.0);
+      previous = std::make_pair(aim, miss);
+      aim -= miss / slope;
       if (aim > 0.0) reaimed = quadric_void_aimed_at(options, f, b, solve, *programme, aim);
       else
         v.verification.failures.insert(v.verification.failures.begin(),
