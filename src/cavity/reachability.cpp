@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "cavity/contour_cavity.h"
+#include "cavity/wall_deep_shares.h"
 #include "geometry/aabb.h"
 #include "mass/volume_integrals.h"
 #include "optim/transposed_product_10.h"
@@ -163,6 +164,7 @@ struct FineCell {
   std::int32_t i = 0, j = 0, k = 0;  // grid indices (for the block hierarchy)
   std::int8_t sign = -1; // −1 void, +1 band (material added), −2 skin (material shaved, --outer)
   int source = 0;        // index in its CarvableCells list
+  double share = 1.0;    // of the cube a void may hold (cavity/wall_deep_shares.h); 1 but on the generous reading's shell
 };
 
 struct Group {
@@ -181,8 +183,9 @@ struct Partition {
   // cube_integrals(centre, h, 0), the same arithmetic inlined: the block splits evaluate it for
   // every cell of every block they look at.
   Vector10d cell_integrals(int c) const {
-    const Eigen::Vector3d& x = cells[static_cast<std::size_t>(c)].x;
-    const double v = h * h * h, s = h * h / 12.0;
+    const FineCell& cell = cells[static_cast<std::size_t>(c)];
+    const Eigen::Vector3d& x = cell.x;
+    const double v = h * h * h * cell.share, s = h * h / 12.0;
     Vector10d out;
     out << v, v * x.x(), v * x.y(), v * x.z(), v * (x.x() * x.x() + s), v * (x.y() * x.y() + s), v * (x.z() * x.z() + s),
         v * x.x() * x.y(), v * x.y() * x.z(), v * x.z() * x.x();
@@ -190,8 +193,12 @@ struct Partition {
   }
 };
 
+// `void_shares`, when given, per `voids`: the share of each void cell's cube a void may hold, its
+// column the cube's integrals times it (the void's part of a cube is not the cube's moments
+// scaled, but the programme only proposes; the certificate bounds every cube rigorously).
 Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t>& voids, const std::vector<std::int64_t>& band,
-                         const std::vector<std::int64_t>& skin, const Frame& f, int block) {
+                         const std::vector<std::int64_t>& skin, const Frame& f, int block,
+                         const std::vector<double>* void_shares = nullptr) {
   Partition p;
   p.h = cc.grid.spacing * f.scale;
   const NodeGrid& g = cc.grid;
@@ -204,6 +211,7 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
     const std::vector<std::int64_t>& list = sign == -1 ? voids : sign == 1 ? band : skin;
     const int kind = sign == -1 ? 0 : sign == 1 ? 1 : 2;
     for (std::size_t s = 0; s < list.size(); ++s) {
+      if (sign == -1 && void_shares && (*void_shares)[s] == 0.0) continue;  // no point of it a wall deep
       const std::int64_t cell = list[s];
       const std::int64_t i = cell % g.nx, j = (cell / g.nx) % g.ny, k = cell / (g.nx * g.ny);
       FineCell fc;
@@ -213,6 +221,7 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
       fc.k = static_cast<std::int32_t>(k);
       fc.sign = static_cast<std::int8_t>(sign);
       fc.source = static_cast<int>(s);
+      if (sign == -1 && void_shares) fc.share = (*void_shares)[s];
       p.cells.push_back(fc);
       key.push_back((kind * bz + k / block) * bx * by + (j / block) * bx + i / block);
     }
@@ -361,6 +370,12 @@ class Solver {
   // moved_integrals(p, u), kept for the last (partition, its splits, u) asked: a programme's
   // caller reads its rows at the same occupancy the row generation last did, and the next
   // programme starts from it.
+  // Drops what the solver keeps per partition (keyed by its address): for a partition built
+  // where a discarded one lived.
+  void forget_partitions() {
+    moved_partition_ = basis_partition_ = active_partition_ = nullptr;
+  }
+
   const Moved& moved_at(const Partition& p, const std::vector<double>& u) {
     if (!(moved_partition_ == &p && moved_splits_ == p.splits && moved_groups_ == p.groups.size() && moved_u_ == u)) {
       moved_ = moved_integrals(p, u);
@@ -776,10 +791,13 @@ ReachCertificate certify(const LpRun& run, const Partition& outer, const Frame& 
     // spread once per positive cube: on cgal-data_bunny00 standing as a roly-poly, 0.0044 against
     // the programme's −0.042, no proof. Each term is rounded up (1e-12 of itself; `least` must
     // clear its own rounding), far beyond the sums' own error.
+    // A void holds at most the cell's share of the cube (cavity/wall_deep_shares.h), so at most
+    // share · v · max q of it too.
     if (most > 0.0) {
       const double mean = q + half * half / 3.0 * (g(4) + g(5) + g(6));
       const bool positive = least > 1e-12 * (std::fabs(q) + spread);
-      total.add(v * (positive ? mean : most) * (1.0 + 1e-12));
+      const double at_most = cell.share * most;
+      total.add(v * (positive ? std::min(mean, at_most) : at_most) * (1.0 + 1e-12));
     }
     ++c.cells_checked;
   }
@@ -955,6 +973,39 @@ Frame make_frame(const VolumeIntegrals& input, const Eigen::Matrix3d& R, const E
   return f;
 }
 
+// The generous reading of a goal with a margin (reachability's last part): its best margin, an
+// upper bound where it is one, and a certificate at the user's margin.
+void read_outer_margin(Solver& solver, const MarginSearch& s, const GoalSpec& goal, const Frame& f, double margin, double tau_out,
+                       bool band, const std::vector<double>* part, const ReachabilityOptions& options,
+                       const CarvableCells& cells, Reachability& out) {
+  solver.forget_partitions();
+  Partition outer = make_partition(cells, cells.outer, band ? cells.band_outer : std::vector<std::int64_t>{},
+                                   band ? cells.skin_outer : std::vector<std::int64_t>{}, f, options.block, part);
+  const GoalRows loose = goal_rows(goal, f, tau_out, 1e-3, 0.0, -1.0);
+  const MarginSearch upper = best_margin(solver, outer, loose, f, options.max_dinkelbach);
+  // An upper bound only when it is one: Dinkelbach's margins rise to the optimum, so a search
+  // stopped short of it bounds nothing from above, and the generous reading holds every void of
+  // the mid one, so a figure below the mid reading's best is not its optimum either (the
+  // calibration cube's roly-poly: -62.9 against -61.9).
+  if (upper.feasible) out.outer_margin_found = upper.best / f.scale;
+  if (upper.feasible && upper.converged && (!s.feasible || upper.best >= s.best)) out.best_margin_upper = upper.best / f.scale;
+  // The programme at the user's margin can only prove the goal out of reach. When the generous
+  // reading already has a void whose every ratio row clears the margin, that void meets it with
+  // z >= (best - margin) min_j D_j > 0, so no certificate can come of it (LP tolerances are 1e-11).
+  const bool margin_met = upper.feasible && upper.best >= margin + 1e-9;
+  if (!margin_met) {
+    std::vector<double> warm(outer.groups.size(), 0.0);
+    const LpRun at_margin = solver.solve(outer, ratio_rows_at(loose, margin), static_cast<int>(loose.numerators.size()), true,
+                                         nullptr, warm);
+    if (at_margin.status == LpStatus::infeasible || (at_margin.status == LpStatus::optimal && at_margin.z < 0.0)) {
+      out.certificate = certify(at_margin, outer, f);
+      out.decided = out.certificate.proves;
+    }
+  }
+  if (out.binding.empty() && upper.feasible) out.binding = binding_name(loose, upper.binding);
+}
+
+
 }  // namespace
 
 Vector10d Quadric::about_zero() const {
@@ -982,6 +1033,7 @@ std::string ReachabilityOptions::check() const {
   if (o.max_refinements < 0 || o.max_refinements > 200) return "max_refinements must be in [0, 200]";
   if (!(o.axis_tolerance > 0.0 && o.axis_tolerance <= 0.7e-4)) return "the axis tolerance must be in (0, 0.7e-4]";
   if (o.spin_levels < 1 || o.spin_levels > 200) return "spin_levels must be in [1, 200]";
+  if (o.share_levels < 0 || o.share_levels > 6) return "share_levels must be in [0, 6]";
   if (o.threads < 1 || o.threads > 64) return "threads must be in [1, 64]";
   return o.lp.check();
 }
@@ -1017,13 +1069,19 @@ Reachability reachability(const Mesh& input, const TriangleBvh& input_bvh, const
     return r;
   }
   const Eigen::Vector3d lo = input.V.colwise().minCoeff().transpose(), hi = input.V.colwise().maxCoeff().transpose();
+  ShareSource shares;
+  if (options.share_levels > 0)
+    shares = [cells, &input_bvh, wall = options.wall, levels = options.share_levels, threads = options.threads] {
+      return wall_deep_shares(*cells, input_bvh, wall, levels, threads).share;
+    };
   return reachability(cells, volume_integrals(input), Eigen::Matrix3d::Identity(), goal, ground_z, origin, (hi - lo).norm(),
-                      options);
+                      options, shares);
 }
 
 Reachability reachability(std::shared_ptr<const CarvableCells> cells, const VolumeIntegrals& input_integrals,
                           const Eigen::Matrix3d& rotation, const GoalSpec& goal, double ground_z,
-                          const Eigen::Vector3d& origin, double diagonal, const ReachabilityOptions& options) {
+                          const Eigen::Vector3d& origin, double diagonal, const ReachabilityOptions& options,
+                          const ShareSource& shares) {
   Reachability out;
   if (const std::string problem = options.check(); !problem.empty()) {
     out.message = problem;
@@ -1044,9 +1102,29 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
   for (std::int64_t c : cells->outer) top = std::max(top, (rotation * cells->centre(c)).z() - ground_z);
   const Frame f = make_frame(input_integrals, rotation, origin, diagonal, top, cells->grid);
   out.ok = true;
+  const bool band = options.outer && goal.kind != GoalKind::floating;
+  // The generous reading with its shell cells counted in part, computed once and only where the
+  // whole cells leave the answer open.
+  std::vector<double> void_shares;
+  auto partial_cells = [&]() -> const std::vector<double>* {
+    if (!shares || band) return nullptr;
+    if (void_shares.empty()) {
+      void_shares = shares();
+      out.partial_cells = true;
+    }
+    return void_shares.size() == cells->outer.size() ? &void_shares : nullptr;
+  };
   if (goal.kind == GoalKind::volume) {
     out.reachable = goal.target_volume <= out.carvable_volume;
     out.decided = out.reachable || goal.target_volume > out.carvable_volume_outer;
+    if (!out.decided) {
+      if (const std::vector<double>* part = partial_cells()) {
+        NeumaierSum held;
+        for (const double share : *part) held.add(v * share);
+        out.carvable_volume_outer = held.value();
+        out.decided = goal.target_volume > out.carvable_volume_outer;
+      }
+    }
     if (out.reachable)
       out.find_optimum = [cells, mid = options.mid_reading, target = goal.target_volume,
                           start = options.volume_start](Reachability& r) {
@@ -1055,7 +1133,6 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
     return out;
   }
   Solver solver(f, options, out);
-  const bool band = options.outer && goal.kind != GoalKind::floating;
   Partition inner = make_partition(*cells, writable, band ? cells->band_inner : std::vector<std::int64_t>{}, {}, f, options.block);
   const double margin = user_margin(goal) * f.scale;
   const double tau_in = options.axis_tolerance, tau_out = 1e-4;
@@ -1076,9 +1153,10 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
         };
       }
     }
-    if (!out.reachable) {
+    auto read_outer = [&](const std::vector<double>* part) {
+      solver.forget_partitions();
       Partition outer = make_partition(*cells, cells->outer, band ? cells->band_outer : std::vector<std::int64_t>{},
-                                     band ? cells->skin_outer : std::vector<std::int64_t>{}, f, options.block);
+                                       band ? cells->skin_outer : std::vector<std::int64_t>{}, f, options.block, part);
       const GoalRows rows = goal_rows(goal, f, tau_out, 0.0, 2e-4, -1.0);
       warm.assign(outer.groups.size(), 0.0);
       const LpRun run = solver.solve(outer, rows.plain, 0, false, nullptr, warm);
@@ -1087,7 +1165,10 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
         out.decided = out.certificate.proves;
         out.binding = heaviest_plain(rows, run);
       }
-    }
+    };
+    if (!out.reachable) read_outer(nullptr);
+    if (!out.decided)
+      if (const std::vector<double>* part = partial_cells()) read_outer(part);
     return out;
   }
 
@@ -1118,31 +1199,11 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
     }
     return out;
   }
-  // Not reached on the inner reading: the outer reading's best, and a certificate at the user's margin.
-  Partition outer = make_partition(*cells, cells->outer, band ? cells->band_outer : std::vector<std::int64_t>{},
-                                     band ? cells->skin_outer : std::vector<std::int64_t>{}, f, options.block);
-  const GoalRows loose = goal_rows(goal, f, tau_out, 1e-3, 0.0, -1.0);
-  const MarginSearch upper = best_margin(solver, outer, loose, f, options.max_dinkelbach);
-  // An upper bound only when it is one: Dinkelbach's margins rise to the optimum, so a search
-  // stopped short of it bounds nothing from above, and the generous reading holds every void of
-  // the mid one, so a figure below the mid reading's best is not its optimum either (the
-  // calibration cube's roly-poly: -62.9 against -61.9).
-  if (upper.feasible) out.outer_margin_found = upper.best / f.scale;
-  if (upper.feasible && upper.converged && (!s.feasible || upper.best >= s.best)) out.best_margin_upper = upper.best / f.scale;
-  // The programme at the user's margin can only prove the goal out of reach. When the generous
-  // reading already has a void whose every ratio row clears the margin, that void meets it with
-  // z >= (best - margin) min_j D_j > 0, so no certificate can come of it (LP tolerances are 1e-11).
-  const bool margin_met = upper.feasible && upper.best >= margin + 1e-9;
-  if (!margin_met) {
-    std::vector<double> warm(outer.groups.size(), 0.0);
-    const LpRun at_margin = solver.solve(outer, ratio_rows_at(loose, margin), static_cast<int>(loose.numerators.size()), true,
-                                         nullptr, warm);
-    if (at_margin.status == LpStatus::infeasible || (at_margin.status == LpStatus::optimal && at_margin.z < 0.0)) {
-      out.certificate = certify(at_margin, outer, f);
-      out.decided = out.certificate.proves;
-    }
-  }
-  if (out.binding.empty() && upper.feasible) out.binding = binding_name(loose, upper.binding);
+  // Not reached on the inner reading: the outer reading's best, and a certificate at the user's
+  // margin; where whole cells cannot prove it, again with the shell cells in part.
+  read_outer_margin(solver, s, goal, f, margin, tau_out, band, nullptr, options, *cells, out);
+  if (!out.decided)
+    if (const std::vector<double>* part = partial_cells()) read_outer_margin(solver, s, goal, f, margin, tau_out, band, part, options, *cells, out);
   return out;
 }
 

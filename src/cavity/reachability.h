@@ -68,6 +68,11 @@ struct ReachabilityOptions {
   int block = 8;
   int max_dinkelbach = 30;           // LPs per ratio search
   int max_refinements = 40;          // block splits per LP
+  // Halvings of a shell cell into sub-cubes when the generous reading counts it in part
+  // (cavity/wall_deep_shares.h), in [0, 6]; 0: whole cells only. 3: sub-cubes an eighth of a
+  // cell (a twelfth of a wall at the contour's spacing); the shares then sum to within 0.07 of a
+  // wall's layer of the exact region on a box (bench/cavity/wall_deep_shares.sh for the times).
+  int share_levels = 3;
   bool lowest_cz = true;             // also the lowest centre of mass (stand, stand-filled, roly-poly, float)
   double axis_tolerance = 0.5e-4;    // fraction of the diagonal, the "reachable" reading's τ
   int spin_levels = 11, spin_directions = 24;
@@ -147,6 +152,9 @@ struct Reachability {
                                      // empty when blocks were split after the best iterate
   std::vector<double> band_occupancy;  // per cells->band_inner
   double carvable_volume = 0.0, carvable_volume_outer = 0.0, band_volume = 0.0;
+  // The generous reading counted its shell cells in part (cavity/wall_deep_shares.h): the whole
+  // cells left the answer open. carvable_volume_outer is then the partial cells' volume.
+  bool partial_cells = false;
   int lps = 0;
   long long lp_iterations = 0;
   long long pricing_passes = 0;
@@ -162,8 +170,12 @@ Reachability reachability(const Mesh& input, const TriangleBvh& input_bvh, const
 // (another face down: the cells do not depend on the pose, a rotated cube's integrals are the
 // cube's at the rotated centre). `goal`, `ground_z` and `origin` are in the rotated pose;
 // `input_integrals` of the input as given; `diagonal` the input's.
+// `shares`, when set, gives cavity/wall_deep_shares.h's shares of cells->outer, asked for at most
+// once and only where whole cells decide nothing (not with the --outer band).
+using ShareSource = std::function<std::vector<double>()>;
 Reachability reachability(std::shared_ptr<const CarvableCells> cells, const VolumeIntegrals& input_integrals,
                           const Eigen::Matrix3d& rotation, const GoalSpec& goal, double ground_z,
-                          const Eigen::Vector3d& origin, double diagonal, const ReachabilityOptions& options);
+                          const Eigen::Vector3d& origin, double diagonal, const ReachabilityOptions& options,
+                          const ShareSource& shares = {});
 
 }  // namespace offsetopt

@@ -27,6 +27,7 @@ ReachabilityOptions options_for(const ReachabilityStageInput& in, bool outer) {
   o.contour_cells_per_wall = in.cavity_cells_per_wall;
   o.margin_cells = in.cavity_margin_cells;
   o.threads = in.threads;
+  o.share_levels = in.share_levels;
   o.mid_reading = true;
   o.volume_start = in.volume_start;
   return o;
@@ -149,6 +150,7 @@ std::optional<Reachability> reach_flattened(const ReachabilityStageInput& in, do
   ReachabilityOptions o = options_for(in, false);
   o.lowest_cz = false;
   o.mid_reading = !inner;
+  o.share_levels = 0;  // a base is searched for where it reaches the goal, not where it is proved not to
   Reachability r = reachability(cut.mesh, bvh, standing->goal, standing->ground_z, standing->origin, o);
   if (!r.ok) return std::nullopt;
   return r;
@@ -252,6 +254,7 @@ std::optional<ReachabilityRemedy> thinner_wall(const ReachabilityStageInput& in,
     o.mid_reading = false;
     o.lowest_cz = false;
     o.max_nodes = std::min(o.max_nodes, kThinnerWallMaxNodes);
+    o.share_levels = 0;  // only "holds" is asked: the shell's shares would prove nothing wanted
     return reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, o);
   };
   std::vector<double> walls;

@@ -88,6 +88,9 @@ struct ReachabilityStageInput {
   std::string up = "+z";
   bool posed_stable = false;
   std::optional<ReachabilityOptions::Line> volume_start;  // ReachabilityOptions::volume_start
+  // ReachabilityOptions::share_levels: where whole generous cells decide nothing, their shell is
+  // counted in part before cells half as large are tried (0: whole cells, then finer ones).
+  int share_levels = ReachabilityOptions::defaults().share_levels;
 };
 
 ReachabilitySummary reachability_stage(const ReachabilityStageInput& in);

@@ -239,12 +239,15 @@ TEST_CASE("reachability stage: what the contour's cells cannot decide is decided
   // wall exactly, the best void leaves the centroid at x = box_min_centroid_x(0.5) = 4.08, 0.78
   // outside the strip: out of reach. At the contour's spacing (wall / 1.5) the generous reading's
   // cells reach to wall − √3 h / 2 and still put the centre inside, so that programme cannot tell.
+  // Whole cells only (share_levels 0): counted in part, the contour's cells decide it (the next case).
   const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
   const double width = 3.3;
-  const ReachabilityStageInput in = box_on_strip(box, width);
+  ReachabilityStageInput in = box_on_strip(box, width);
+  in.share_levels = 0;
   REQUIRE(width - box_min_centroid_x(0.5) < in.goal.margin);
 
   ReachabilityOptions coarse;
+  coarse.share_levels = 0;
   coarse.wall = in.wall;
   coarse.ground_tol = in.ground_tol;
   coarse.mid_reading = true;
@@ -279,15 +282,56 @@ TEST_CASE("reachability stage: what the contour's cells cannot decide is decided
   CHECK(s.lps > at_contour.lps);  // the contour's programmes are counted too
 }
 
+TEST_CASE("reachability stage: counted in part, generous cells prove near misses whole cells leave open") {
+  // The strips of the two cases around this one. 3.3 (0.78 outside at the exact wall): whole cells
+  // decide it only on finer cells; with their shell counted in part (cavity/wall_deep_shares.h) the
+  // contour's cells prove it. The certificate checked independently: the best void of the exact
+  // region a wall deep (the 9 × 5 × 3 box), {q < 0} integrated over cubes of side 0.05 tiling it,
+  // leaves the Farkas combination negative.
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
+  const ReachabilityStageInput in = box_on_strip(box, 3.3);
+  const ReachabilitySummary s = reachability_stage(in);
+  CHECK(!s.reachable);
+  CHECK(s.decided);
+  CHECK(s.evidence == "certificate");
+  REQUIRE(s.programme);
+  CHECK(s.programme->partial_cells);
+  CHECK(s.cell_spacing == doctest::Approx(in.wall / 1.5).epsilon(0.06));
+  double best = s.programme->certificate.constant;
+  const double side = 0.05;
+  for (int i = 0; i < 180; ++i)
+    for (int j = 0; j < 100; ++j)
+      for (int k = 0; k < 60; ++k) {
+        const Eigen::Vector3d centre(0.5 + side * (i + 0.5), 0.5 + side * (j + 0.5), 0.5 + side * (k + 0.5));
+        const double integral = s.quadric.dot(cube_integrals(centre, side, s.certificate_origin));
+        if (integral < 0.0) best -= integral;
+      }
+  CHECK(best < 0.0);
+
+  // 4.1 (0.017 inside at the exact wall, short of the margin 0.05 by 0.033): the mid reading calls
+  // it reachable; read on the inner cells after the miss, whole cells leave it undecided even
+  // on finer cells (the next case), and counted in part the finer cells prove it.
+  const ReachabilityStageInput near = box_on_strip(box, 4.1);
+  ReachabilitySummary missed = reachability_stage(near);
+  REQUIRE(missed.reachable);
+  confirm_reachable(near, missed);
+  CHECK(!missed.reachable);
+  CHECK(missed.decided);
+  CHECK(missed.evidence == "certificate");
+  CHECK(missed.cell_spacing == doctest::Approx(0.5 * s.cell_spacing));
+}
+
 TEST_CASE("reachability stage: a strip the mid reading reaches and no void keeping the wall does is undecided after a miss") {
   // Width 4.1: keeping the wall exactly, the best void's centroid is 4.08, 0.017 inside the strip,
   // less than the margin 0.05, so no void the tool can write meets the goal. The mid reading's
   // cells reach half a cell past the wall, and it calls the goal reachable; read again on the
   // inner cells (every corner a wall deep), at the contour's spacing and half of it, the claim
   // goes, the bracket holds the exact answer, and no certificate proves the goal out of reach.
+  // Whole cells only (share_levels 0): counted in part, they prove it (the case before).
   const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
   const double width = 4.1, exact = width - box_min_centroid_x(0.5);
-  const ReachabilityStageInput in = box_on_strip(box, width);
+  ReachabilityStageInput in = box_on_strip(box, width);
+  in.share_levels = 0;
   REQUIRE(exact < in.goal.margin);
   ReachabilitySummary s = reachability_stage(in);
   REQUIRE(s.reachable);  // the mid reading's estimate
@@ -429,6 +473,23 @@ TEST_CASE("reachability stage: a volume larger than the region a wall deep is re
   // Within what the region holds, the same programme calls it reachable.
   in.goal.target_volume = 130.0;
   CHECK(reachability_stage(in).reachable);
+
+  // 141, 4% over the exact 135: whole cells hold up to 191 and cannot tell; counted in part
+  // (cavity/wall_deep_shares.h) the shell holds at most a tenth of a wall's layer over the 9 × 5 × 3
+  // box (area 174), and the refusal names that bound.
+  in.goal.target_volume = 141.0;
+  ReachabilityStageInput whole = in;
+  whole.share_levels = 0;
+  CHECK(!reachability_stage(whole).decided);
+  const ReachabilitySummary part = reachability_stage(in);
+  CHECK(!part.reachable);
+  CHECK(part.decided);
+  REQUIRE(part.programme);
+  CHECK(part.programme->partial_cells);
+  const double held = part.programme->carvable_volume_outer;
+  CHECK(held >= 135.0);
+  CHECK(held <= 135.0 + 0.1 * in.wall * 174.0);
+  CHECK(part.refusal.find("holds at most " + format_double(held) + ", less than the target 141") != std::string::npos);
 }
 
 TEST_CASE("reachability stage: a volume out of reach at the wall asked is named a thinner --wall that holds it, and holds it") {
