@@ -367,15 +367,13 @@ class Solver {
     }
   }
 
+  // Drops what the solver keeps per partition (keyed by its address): for a partition built
+  // where a discarded one lived.
+  void forget_partitions() { moved_partition_ = basis_partition_ = active_partition_ = nullptr; }
+
   // moved_integrals(p, u), kept for the last (partition, its splits, u) asked: a programme's
   // caller reads its rows at the same occupancy the row generation last did, and the next
   // programme starts from it.
-  // Drops what the solver keeps per partition (keyed by its address): for a partition built
-  // where a discarded one lived.
-  void forget_partitions() {
-    moved_partition_ = basis_partition_ = active_partition_ = nullptr;
-  }
-
   const Moved& moved_at(const Partition& p, const std::vector<double>& u) {
     if (!(moved_partition_ == &p && moved_splits_ == p.splits && moved_groups_ == p.groups.size() && moved_u_ == u)) {
       moved_ = moved_integrals(p, u);
@@ -1004,7 +1002,6 @@ void read_outer_margin(Solver& solver, const MarginSearch& s, const GoalSpec& go
   }
   if (out.binding.empty() && upper.feasible) out.binding = binding_name(loose, upper.binding);
 }
-
 
 }  // namespace
 

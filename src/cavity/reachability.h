@@ -27,7 +27,9 @@
 // (q = −q_v; Hafner et al. 2024, "Spin-It Faster"). For an unreachable goal the certificate is that
 // F0 plus, over every outer cell, the cell's volume times an upper bound of q_v on the cube (value,
 // gradient and Hessian bounds at the centre) is negative: no void of any shape keeping the wall can
-// meet every row.
+// meet every row. Where whole outer cells decide nothing, the outer reading is run again with each
+// cell near the wall counted by its share (cavity/wall_deep_shares.h): its column scaled, its
+// bound the share times the cube's volume times that upper bound.
 //
 // Sign conventions: margins positive when met (inside the polygon, below the centre). Everything
 // reported is in input units; lowest_cz is the height over the ground plane (ground_z).
