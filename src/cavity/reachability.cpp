@@ -1163,9 +1163,12 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
         out.binding = heaviest_plain(rows, run);
       }
     };
-    if (!out.reachable) read_outer(nullptr);
-    if (!out.decided)
-      if (const std::vector<double>* part = partial_cells()) read_outer(part);
+    if (!out.reachable) {
+      const std::vector<double>* first = options.shell_in_part_first ? partial_cells() : nullptr;
+      read_outer(first);
+      if (!out.decided && !first)
+        if (const std::vector<double>* part = partial_cells()) read_outer(part);
+    }
     return out;
   }
 
@@ -1198,8 +1201,9 @@ Reachability reachability(std::shared_ptr<const CarvableCells> cells, const Volu
   }
   // Not reached on the inner reading: the outer reading's best, and a certificate at the user's
   // margin; where whole cells cannot prove it, again with the shell cells in part.
-  read_outer_margin(solver, s, goal, f, margin, tau_out, band, nullptr, options, *cells, out);
-  if (!out.decided)
+  const std::vector<double>* first = options.shell_in_part_first ? partial_cells() : nullptr;
+  read_outer_margin(solver, s, goal, f, margin, tau_out, band, first, options, *cells, out);
+  if (!out.decided && !first)
     if (const std::vector<double>* part = partial_cells()) read_outer_margin(solver, s, goal, f, margin, tau_out, band, part, options, *cells, out);
   return out;
 }

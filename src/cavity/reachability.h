@@ -75,6 +75,10 @@ struct ReachabilityOptions {
   // cell (a twelfth of a wall at the contour's spacing); the shares then sum to within 0.07 of a
   // wall's layer of the exact region on a box (bench/cavity/wall_deep_shares.sh for the times).
   int share_levels = 3;
+  // The generous reading straight with the shell in part, not whole cells first: for finer cells
+  // after the contour's counted in part decided nothing (whole cells half as large reach 0.29 of a
+  // wall past it, the contour's in part about 0.07: they would not decide either).
+  bool shell_in_part_first = false;
   bool lowest_cz = true;             // also the lowest centre of mass (stand, stand-filled, roly-poly, float)
   double axis_tolerance = 0.5e-4;    // fraction of the diagonal, the "reachable" reading's τ
   int spin_levels = 11, spin_directions = 24;

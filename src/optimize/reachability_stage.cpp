@@ -282,6 +282,7 @@ Reachability decide_on_finer_cells(const ReachabilityStageInput& in, const Trian
   if (!coarse.ok || coarse.decided) return coarse;
   o.cells_per_wall = std::min(8.0, o.cells_per_wall * kFinerCellsPerWallFactor);
   o.max_nodes = std::min(o.max_nodes, kFinerMaxNodes);
+  o.shell_in_part_first = coarse.partial_cells;
   Reachability finer = reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, o);
   // The node budget may leave the grid as coarse as it was: nothing learned.
   if (!finer.ok || !(finer.cells->grid.spacing < 0.9 * coarse.cells->grid.spacing)) return coarse;
