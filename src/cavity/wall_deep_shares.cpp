@@ -34,9 +34,10 @@ std::pair<double, double> cube_distances(const Eigen::Vector3d& p, const Eigen::
 }
 
 // The volume of the cube [lo, lo + side] that no ball (of `balls`, those in `live`) holds, counted
-// on sub-cubes down to `levels` halvings: a bound from above.
-double kept_volume(const CellBalls& balls, unsigned live, const Eigen::Vector3d& lo, double side, int levels, double wall) {
-  const double inside = wall * wall * (1.0 - 1e-9), touches = wall * wall * (1.0 + 1e-9);
+// on sub-cubes down to `levels` halvings: a bound from above. A sub-cube is held when its farthest
+// corner is within `inside` (squared), and reached into when its nearest point is within `touches`.
+double kept_volume(const CellBalls& balls, unsigned live, const Eigen::Vector3d& lo, double side, int levels, double inside,
+                   double touches) {
   unsigned partial = 0;
   for (int b = 0; b < balls.count; ++b) {
     if (!(live >> b & 1u)) continue;
@@ -49,7 +50,7 @@ double kept_volume(const CellBalls& balls, unsigned live, const Eigen::Vector3d&
   double sum = 0.0;
   for (int octant = 0; octant < 8; ++octant) {
     const Eigen::Vector3d sub = lo + half * Eigen::Vector3d(octant & 1, (octant >> 1) & 1, (octant >> 2) & 1);
-    sum += kept_volume(balls, partial, sub, half, levels - 1, wall);
+    sum += kept_volume(balls, partial, sub, half, levels - 1, inside, touches);
   }
   return sum;
 }
@@ -98,6 +99,12 @@ WallDeepShares wall_deep_shares(const CarvableCells& cells, const TriangleBvh& s
       at_node[static_cast<std::size_t>(n)] = closest_point(surface, grid.position(nodes[static_cast<std::size_t>(n)]));
   });
 
+  // The balls' radius less far more than the rounding of the closest points and of the squared
+  // distances (relative to the coordinates' size, which may be far from the origin).
+  const Eigen::Vector3d far_corner = grid.position(grid.nx - 1, grid.ny - 1, grid.nz - 1);
+  const double size = std::max(grid.origin.cwiseAbs().maxCoeff(), far_corner.cwiseAbs().maxCoeff());
+  const double radius = wall - 1e-12 * (size + wall);
+  const double inside = radius * radius, touches = wall * wall * (1.0 + 1e-9);
   for_ranges(static_cast<long>(shell.size()), threads, 64, [&](long begin, long end) {
     for (long q = begin; q < end; ++q) {
       const std::size_t s = shell[static_cast<std::size_t>(q)];
@@ -126,7 +133,7 @@ WallDeepShares wall_deep_shares(const CarvableCells& cells, const TriangleBvh& s
         }
       }
       if (nearest < std::numeric_limits<double>::infinity()) balls.centre[static_cast<std::size_t>(balls.count++)] = on_surface;
-      const double kept = kept_volume(balls, (1u << balls.count) - 1u, grid.position(cell), h, levels, wall);
+      const double kept = kept_volume(balls, (1u << balls.count) - 1u, grid.position(cell), h, levels, inside, touches);
       out.share[s] = std::min(1.0, kept / (h * h * h));
     }
   });
