@@ -74,12 +74,7 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
   const double h = grid.spacing;
   out.margin = options.node_margin >= 0.0 ? options.node_margin
                                           : cavity_node_level(wall, h, options.margin_cells, bounding_box(outer.V)) - wall;
-  NodeGrid centres;
-  centres.spacing = h;
-  centres.origin = grid.origin + Eigen::Vector3d::Constant(0.5 * h);
-  centres.nx = grid.nx - 1;
-  centres.ny = grid.ny - 1;
-  centres.nz = grid.nz - 1;
+  const NodeGrid centres = cell_centres(grid);
 
   // Nodes: inside with distance >= wall + margin (the contour's cavity nodes).
   std::vector<std::int8_t> deep;

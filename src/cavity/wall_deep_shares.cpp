@@ -65,12 +65,7 @@ WallDeepShares wall_deep_shares(const CarvableCells& cells, const TriangleBvh& s
   out.share.assign(cells.outer.size(), 1.0);
 
   // Mid cells (centre a wall deep) at least wall + r deep hold no point nearer than the wall.
-  NodeGrid centres;
-  centres.spacing = h;
-  centres.origin = grid.origin + Eigen::Vector3d::Constant(0.5 * h);
-  centres.nx = grid.nx - 1;
-  centres.ny = grid.ny - 1;
-  centres.nz = grid.nz - 1;
+  const NodeGrid centres = cell_centres(grid);
   auto centre_index = [&](std::int64_t cell) {
     const std::int64_t i = cell % grid.nx, j = (cell / grid.nx) % grid.ny, k = cell / (grid.nx * grid.ny);
     return static_cast<std::size_t>(centres.index(i, j, k));

@@ -26,4 +26,15 @@ struct NodeGrid {
   }
 };
 
+// The grid of `g`'s cell centres: point (i, j, k) is the centre of cell (i, j, k).
+inline NodeGrid cell_centres(const NodeGrid& g) {
+  NodeGrid c;
+  c.spacing = g.spacing;
+  c.origin = g.origin + Eigen::Vector3d::Constant(0.5 * g.spacing);
+  c.nx = g.nx - 1;
+  c.ny = g.ny - 1;
+  c.nz = g.nz - 1;
+  return c;
+}
+
 }  // namespace offsetopt
