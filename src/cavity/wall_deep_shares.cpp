@@ -55,6 +55,37 @@ double kept_volume(const CellBalls& balls, unsigned live, const Eigen::Vector3d&
   return sum;
 }
 
+// The balls of one cell: about the closest surface points of its 8 corners (`at_node`, per sorted
+// `nodes`), and about the centre's nearest point on those corners' nearest faces (any surface
+// point bounds the distance, so the centre's ball needs no search of its own).
+CellBalls cell_balls(const CarvableCells& cells, const TriangleBvh& surface, const std::vector<std::int64_t>& nodes,
+                     const std::vector<ClosestPoint>& at_node, std::int64_t cell) {
+  const NodeGrid& grid = cells.grid;
+  CellBalls balls;
+  std::array<const ClosestPoint*, 8> corner;
+  for (int k = 0; k < 8; ++k) {
+    const std::int64_t node = cell + (k & 1) + ((k >> 1) & 1) * grid.nx + ((k >> 2) & 1) * grid.nx * grid.ny;
+    const ClosestPoint& c = at_node[static_cast<std::size_t>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin())];
+    corner[static_cast<std::size_t>(k)] = &c;
+    if (c.found) balls.centre[static_cast<std::size_t>(balls.count++)] = c.point;
+  }
+  const Eigen::Vector3d middle = cells.centre(cell);
+  double nearest = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d on_surface = Eigen::Vector3d::Zero();
+  for (const ClosestPoint* c : corner) {
+    if (!c->found) continue;
+    const Eigen::Vector3d point =
+        closest_point_on_triangle(middle, surface.corner(c->face, 0), surface.corner(c->face, 1), surface.corner(c->face, 2));
+    const double d = (point - middle).squaredNorm();
+    if (d < nearest) {
+      nearest = d;
+      on_surface = point;
+    }
+  }
+  if (nearest < std::numeric_limits<double>::infinity()) balls.centre[static_cast<std::size_t>(balls.count++)] = on_surface;
+  return balls;
+}
+
 }  // namespace
 
 WallDeepShares wall_deep_shares(const CarvableCells& cells, const TriangleBvh& surface, double wall, int levels, int threads) {
@@ -104,30 +135,7 @@ WallDeepShares wall_deep_shares(const CarvableCells& cells, const TriangleBvh& s
     for (long q = begin; q < end; ++q) {
       const std::size_t s = shell[static_cast<std::size_t>(q)];
       const std::int64_t cell = cells.outer[s];
-      CellBalls balls;
-      std::array<ClosestPoint, 8> corner;
-      for (int k = 0; k < 8; ++k) {
-        const std::int64_t node = cell + (k & 1) + ((k >> 1) & 1) * grid.nx + ((k >> 2) & 1) * grid.nx * grid.ny;
-        corner[static_cast<std::size_t>(k)] =
-            at_node[static_cast<std::size_t>(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin())];
-        if (corner[static_cast<std::size_t>(k)].found) balls.centre[static_cast<std::size_t>(balls.count++)] = corner[static_cast<std::size_t>(k)].point;
-      }
-      // Any surface point bounds the distance, so the centre's ball needs no search of its own:
-      // its nearest point on the corners' nearest faces.
-      const Eigen::Vector3d middle = cells.centre(cell);
-      double nearest = std::numeric_limits<double>::infinity();
-      Eigen::Vector3d on_surface;
-      for (const ClosestPoint& c : corner) {
-        if (!c.found) continue;
-        const Eigen::Vector3d point =
-            closest_point_on_triangle(middle, surface.corner(c.face, 0), surface.corner(c.face, 1), surface.corner(c.face, 2));
-        const double d = (point - middle).squaredNorm();
-        if (d < nearest) {
-          nearest = d;
-          on_surface = point;
-        }
-      }
-      if (nearest < std::numeric_limits<double>::infinity()) balls.centre[static_cast<std::size_t>(balls.count++)] = on_surface;
+      const CellBalls balls = cell_balls(cells, surface, nodes, at_node, cell);
       const double kept = kept_volume(balls, (1u << balls.count) - 1u, grid.position(cell), h, levels, inside, touches);
       out.share[s] = std::min(1.0, kept / (h * h * h));
     }
