@@ -159,13 +159,16 @@ struct Reachability {
   std::vector<double> band_occupancy;  // per cells->band_inner
   double carvable_volume = 0.0, carvable_volume_outer = 0.0, band_volume = 0.0;
   // The generous reading counted its shell cells in part (cavity/wall_deep_shares.h): the whole
-  // cells left the answer open. carvable_volume_outer is then the partial cells' volume.
+  // cells left the answer open. For volume, carvable_volume_outer is then the shares' sum.
   bool partial_cells = false;
   int lps = 0;
   long long lp_iterations = 0;
   long long pricing_passes = 0;
   int columns = 0;                   // of the last LP (blocks and split cells)
 };
+
+// Computes the shares of the generous cells a void may hold (cavity/wall_deep_shares.h), on demand.
+using ShareSource = std::function<std::vector<double>()>;
 
 // The goal in input units, as posed (support polygon CCW, GoalSpec's fields); ground_z the ground
 // plane; `origin` a point near the object (the ground contact centroid on the ground).
@@ -175,10 +178,9 @@ Reachability reachability(const Mesh& input, const TriangleBvh& input_bvh, const
 // The same on cells already found for the input as given, for the input rotated by `rotation`
 // (another face down: the cells do not depend on the pose, a rotated cube's integrals are the
 // cube's at the rotated centre). `goal`, `ground_z` and `origin` are in the rotated pose;
-// `input_integrals` of the input as given; `diagonal` the input's.
-// `shares`, when set, gives cavity/wall_deep_shares.h's shares of cells->outer, asked for at most
-// once and only where whole cells decide nothing (not with the --outer band).
-using ShareSource = std::function<std::vector<double>()>;
+// `input_integrals` of the input as given; `diagonal` the input's. `shares`, when set, gives
+// cavity/wall_deep_shares.h's shares of cells->outer, asked for at most once and only where whole
+// cells decide nothing (not with the --outer band); the overload above sets it.
 Reachability reachability(std::shared_ptr<const CarvableCells> cells, const VolumeIntegrals& input_integrals,
                           const Eigen::Matrix3d& rotation, const GoalSpec& goal, double ground_z,
                           const Eigen::Vector3d& origin, double diagonal, const ReachabilityOptions& options,
