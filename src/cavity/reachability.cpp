@@ -211,7 +211,8 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
     const std::vector<std::int64_t>& list = sign == -1 ? voids : sign == 1 ? band : skin;
     const int kind = sign == -1 ? 0 : sign == 1 ? 1 : 2;
     for (std::size_t s = 0; s < list.size(); ++s) {
-      if (sign == -1 && void_shares && (*void_shares)[s] == 0.0) continue;  // no point of it a wall deep
+      const double share = sign == -1 && void_shares ? (*void_shares)[s] : 1.0;
+      if (share == 0.0) continue;  // no point of it a wall deep
       const std::int64_t cell = list[s];
       const std::int64_t i = cell % g.nx, j = (cell / g.nx) % g.ny, k = cell / (g.nx * g.ny);
       FineCell fc;
@@ -221,7 +222,7 @@ Partition make_partition(const CarvableCells& cc, const std::vector<std::int64_t
       fc.k = static_cast<std::int32_t>(k);
       fc.sign = static_cast<std::int8_t>(sign);
       fc.source = static_cast<int>(s);
-      if (sign == -1 && void_shares) fc.share = (*void_shares)[s];
+      fc.share = share;
       p.cells.push_back(fc);
       key.push_back((kind * bz + k / block) * bx * by + (j / block) * bx + i / block);
     }
