@@ -58,7 +58,7 @@ void print_usage(std::FILE* out) {
 // fresh pages in it) and asks for transparent huge pages where the kernel gives them on request
 // ("madvise", Debian's default): one fault per 2 MiB. Measured in docs/performance.md.
 constexpr std::size_t kHugePage = std::size_t(2) << 20;
-constexpr std::size_t kHugeHeap = std::size_t(1) << 30;  // address space only: pages come on touch
+constexpr std::size_t kHugeHeap = std::size_t(512) << 20;  // address space: pages come on touch; under the trim threshold
 
 void keep_large_blocks_in_heap() {
 #if defined(__GLIBC__)
@@ -71,7 +71,8 @@ void keep_large_blocks_in_heap() {
   // nothing is advised.
   const auto before = reinterpret_cast<std::uintptr_t>(sbrk(0));
   mallopt(M_TOP_PAD, static_cast<int>(kHugeHeap));
-  void* probe = std::malloc(8 << 20);
+  // volatile: a block that is only freed could be left out by the compiler.
+  void* volatile probe = std::malloc(8 << 20);
   mallopt(M_TOP_PAD, 128 << 10);  // glibc's default
   const auto after = reinterpret_cast<std::uintptr_t>(sbrk(0));
   const std::uintptr_t start = (before + kHugePage - 1) & ~(kHugePage - 1);
