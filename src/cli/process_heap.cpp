@@ -1,5 +1,6 @@
 #include "cli/process_heap.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -20,9 +21,9 @@ namespace {
 
 #if defined(__GLIBC__) && defined(__linux__) && !defined(__SANITIZE_ADDRESS__)
 constexpr std::size_t kHugePage = std::size_t(2) << 20;
-// Address space only (pages come as they are touched), and under the trim threshold below, so
-// that freeing never hands it back.
-constexpr std::size_t kHugeHeap = std::size_t(512) << 20;
+// Address space only: pages come as they are touched. Half the memory at most, so that the
+// kernel's heuristic overcommit check never refuses it; 8 GiB covers a 10^6-vertex run (3.4 GB).
+constexpr std::size_t kHugeHeapMax = std::size_t(8) << 30;
 
 // The first line of a file of /proc or /sys, empty when it cannot be read.
 std::string first_line(const char* path) {
@@ -40,14 +41,15 @@ bool huge_pages_on_request() {
          first_line("/proc/sys/vm/overcommit_memory") != "2";
 }
 
-// Grows the heap once by kHugeHeap (a block under the mmap threshold and larger than the heap's
-// top, with that much top padding) and advises the range. Where the break cannot move, malloc maps
-// the block instead and nothing is advised.
+// Grows the heap once by a reserve (one block taken from the break, since nothing is mapped, and
+// freed again; trimming is off) and advises the range. Where the break cannot move that far,
+// malloc maps the block instead and nothing is advised.
 void advise_huge_heap() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return;
+  const std::size_t reserve = std::min(kHugeHeapMax, static_cast<std::size_t>(pages) * static_cast<std::size_t>(page) / 2);
   const auto before = reinterpret_cast<std::uintptr_t>(sbrk(0));
-  mallopt(M_TOP_PAD, static_cast<int>(kHugeHeap));
-  void* volatile probe = std::malloc(8 << 20);  // volatile: a block only freed may be left out
-  mallopt(M_TOP_PAD, 128 << 10);                // glibc's default
+  void* volatile probe = std::malloc(reserve);  // volatile: a block only freed may be left out
   const auto after = reinterpret_cast<std::uintptr_t>(sbrk(0));
   const std::uintptr_t start = (before + kHugePage - 1) & ~(kHugePage - 1);
   if (after > start + kHugePage) madvise(reinterpret_cast<void*>(start), (after - start) & ~(kHugePage - 1), MADV_HUGEPAGE);
@@ -58,17 +60,17 @@ void advise_huge_heap() {
 }  // namespace
 
 // The pipeline frees and reallocates the same large work arrays many times (Lanczos panels, the
-// per-evaluation Jacobians). glibc hands blocks above its adaptive mmap threshold back to the
-// kernel at once, so each reuse pays fresh zeroed pages: on the 101,730-vertex bottle 530k page
-// faults and about 1 s of system time, against 294k and 0.5-0.8 s with the blocks kept in the
-// heap. A fault costs about 8 us on the 2-core machines we run on, and a demo goal took 12k-17k
-// of them even so: the tasks and pools start about 30 threads a run, each of which took an arena
-// of its own and touched fresh pages in it, and the heap came 4 KiB a fault. One arena and huge
-// pages: about 1.1k faults.
+// per-evaluation Jacobians, the contour's grids). Each block glibc maps by itself (those over its
+// mmap threshold, at most 32 MiB) goes back to the kernel when freed, so each reuse pays fresh
+// zeroed pages, and a fault costs about 8 us on the 2-core machines we run on. So every block
+// comes from one heap that is never trimmed, shared by every thread (the tasks and pools start
+// about 30 threads a run, each of which took an arena of its own and touched fresh pages in it),
+// and that heap takes huge pages, one fault per 2 MiB. Demo bottle `stand`: 17.6k faults -> 1.3k;
+// the 10^6-vertex bottle: 1.72M -> 0.7M and 14 s -> 4 s of system time (docs/performance.md).
 void set_up_process_heap() {
 #if defined(__GLIBC__)
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest allowed value
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  mallopt(M_MMAP_MAX, 0);
+  mallopt(M_TRIM_THRESHOLD, -1);  // -1: never trim (mallopt(3))
   mallopt(M_ARENA_MAX, 1);
 #if defined(__linux__) && !defined(__SANITIZE_ADDRESS__)
   if (huge_pages_on_request()) advise_huge_heap();
