@@ -53,18 +53,23 @@ bool huge_pages_on_request() {
 }
 
 // Grows the heap once by a reserve (one block taken from the break, since nothing is mapped, and
-// freed again; trimming is off) and advises the range. Where the break cannot move that far,
-// malloc maps the block instead and nothing is advised.
-void advise_huge_heap() {
+// freed again; trimming is off) and advises the range; returns its bytes. Where the break cannot
+// move that far, malloc maps the block instead and nothing is advised.
+std::size_t advise_huge_heap() {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page <= 0) return;
+  if (pages <= 0 || page <= 0) return 0;
   const std::size_t reserve = std::min(kHugeHeapMax, static_cast<std::size_t>(pages) * static_cast<std::size_t>(page) / 2);
   const auto before = reinterpret_cast<std::uintptr_t>(sbrk(0));
   void* volatile probe = std::malloc(reserve);  // volatile: a block only freed may be left out
   const auto after = reinterpret_cast<std::uintptr_t>(sbrk(0));
   const std::uintptr_t start = (before + kHugePage - 1) & ~(kHugePage - 1);
-  if (after > start + kHugePage) madvise(reinterpret_cast<void*>(start), (after - start) & ~(kHugePage - 1), MADV_HUGEPAGE);
+  std::size_t advised = 0;
+  if (after > start + kHugePage) {
+    const std::size_t length = (after - start) & ~(kHugePage - 1);
+    if (madvise(reinterpret_cast<void*>(start), length, MADV_HUGEPAGE) == 0) advised = length;
+  }
   std::free(probe);
+  return advised;
 }
 #endif
 
@@ -78,15 +83,18 @@ void advise_huge_heap() {
 // about 30 threads a run, each of which took an arena of its own and touched fresh pages in it),
 // and that heap takes huge pages, one fault per 2 MiB. Demo bottle `stand`: 17.6k faults -> 1.3k;
 // the 10^6-vertex bottle: 1.72M -> 0.7M and 14 s -> 4 s of system time (docs/performance.md).
-void set_up_process_heap() {
+ProcessHeap set_up_process_heap() {
+  ProcessHeap heap;
 #if defined(__GLIBC__)
-  mallopt(M_MMAP_MAX, 0);
-  mallopt(M_TRIM_THRESHOLD, -1);  // -1: never trim (mallopt(3))
-  mallopt(M_ARENA_MAX, 1);
+  const bool unmapped = mallopt(M_MMAP_MAX, 0) == 1;
+  const bool untrimmed = mallopt(M_TRIM_THRESHOLD, -1) == 1;  // -1: never trim (mallopt(3))
+  const bool one_arena = mallopt(M_ARENA_MAX, 1) == 1;
+  heap.one_heap = unmapped && untrimmed && one_arena;
 #if defined(OFFSETOPT_HUGE_HEAP)
-  if (huge_pages_on_request()) advise_huge_heap();
+  if (heap.one_heap && huge_pages_on_request()) heap.huge_reserve = advise_huge_heap();
 #endif
 #endif
+  return heap;
 }
 
 }  // namespace offsetopt::cli
