@@ -35,6 +35,7 @@ constexpr std::size_t kHugePage = std::size_t(2) << 20;
 // Address space only: pages come as they are touched. Half the memory at most, so that the
 // kernel's heuristic overcommit check never refuses it; 8 GiB covers a 10^6-vertex run (3.4 GB).
 constexpr std::size_t kHugeHeapMax = std::size_t(8) << 30;
+constexpr std::size_t kHugeHeapMin = std::size_t(128) << 20;
 
 // The first line of a file of /proc or /sys, empty when it cannot be read.
 std::string first_line(const char* path) {
@@ -54,22 +55,26 @@ bool huge_pages_on_request() {
 
 // Grows the heap once by a reserve (one block taken from the break, since nothing is mapped, and
 // freed again; trimming is off) and advises the range; returns its bytes. Where the break cannot
-// move that far, malloc maps the block instead and nothing is advised.
+// move that far (an address-space limit, ulimit -v), malloc maps the block instead or fails, and
+// a quarter of the reserve is tried, down to kHugeHeapMin.
 std::size_t advise_huge_heap() {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
   if (pages <= 0 || page <= 0) return 0;
-  const std::size_t reserve = std::min(kHugeHeapMax, static_cast<std::size_t>(pages) * static_cast<std::size_t>(page) / 2);
-  const auto before = reinterpret_cast<std::uintptr_t>(sbrk(0));
-  void* volatile probe = std::malloc(reserve);  // volatile: a block only freed may be left out
-  const auto after = reinterpret_cast<std::uintptr_t>(sbrk(0));
-  const std::uintptr_t start = (before + kHugePage - 1) & ~(kHugePage - 1);
-  std::size_t advised = 0;
-  if (after > start + kHugePage) {
-    const std::size_t length = (after - start) & ~(kHugePage - 1);
-    if (madvise(reinterpret_cast<void*>(start), length, MADV_HUGEPAGE) == 0) advised = length;
+  std::size_t reserve = std::min(kHugeHeapMax, static_cast<std::size_t>(pages) * static_cast<std::size_t>(page) / 2);
+  for (; reserve >= kHugeHeapMin; reserve /= 4) {
+    const auto before = reinterpret_cast<std::uintptr_t>(sbrk(0));
+    void* volatile probe = std::malloc(reserve);  // volatile: a block only freed may be left out
+    const auto after = reinterpret_cast<std::uintptr_t>(sbrk(0));
+    const std::uintptr_t start = (before + kHugePage - 1) & ~(kHugePage - 1);
+    std::size_t advised = 0;
+    if (after >= start + reserve / 2) {
+      const std::size_t length = (after - start) & ~(kHugePage - 1);
+      if (madvise(reinterpret_cast<void*>(start), length, MADV_HUGEPAGE) == 0) advised = length;
+    }
+    std::free(probe);
+    if (advised > 0) return advised;
   }
-  std::free(probe);
-  return advised;
+  return 0;
 }
 #endif
 
