@@ -83,11 +83,11 @@ std::size_t advise_huge_heap() {
 // The pipeline frees and reallocates the same large work arrays many times (Lanczos panels, the
 // per-evaluation Jacobians, the contour's grids). Each block glibc maps by itself (those over its
 // mmap threshold, at most 32 MiB) goes back to the kernel when freed, so each reuse pays fresh
-// zeroed pages, and a fault costs about 8 us on the 2-core machines we run on. So every block
-// comes from one heap that is never trimmed, shared by every thread (the tasks and pools start
-// about 30 threads a run, each of which took an arena of its own and touched fresh pages in it),
-// and that heap takes huge pages, one fault per 2 MiB. Demo bottle `stand`: 17.6k faults -> 1.3k;
-// the 10^6-vertex bottle: 1.72M -> 0.7M and 14 s -> 4 s of system time (docs/performance.md).
+// zeroed pages, and a page fault costs 8-12 us on the 2-core virtual machines we run on. So every
+// block comes from one heap that is never trimmed, shared by every thread (the tasks and pools
+// start about 30 threads a run, and each took an arena of its own and touched fresh pages in it),
+// and that heap takes huge pages, one fault per 2 MiB. What it saves: docs/performance.md, "Page
+// faults".
 ProcessHeap set_up_process_heap() {
   ProcessHeap heap;
 #if defined(__GLIBC__)
