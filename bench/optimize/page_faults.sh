@@ -6,6 +6,7 @@
 #
 # usage: bench/optimize/page_faults.sh BINARY [REFERENCE_BINARY]
 set -euo pipefail
+[[ $# -ge 1 ]] || { echo "usage: bench/optimize/page_faults.sh BINARY [REFERENCE_BINARY]" >&2; exit 2; }
 root=$(cd "$(dirname "$0")/../.." && pwd)
 source "$root/bench/optimize/demo_goals.sh"
 out=$(mktemp -d)
