@@ -6,7 +6,6 @@
 #include <exception>
 #include <new>
 
-
 #include <Eigen/Core>
 
 #include "cli/cli_support.h"

@@ -1,8 +1,10 @@
 // The heap's set-up (cli/process_heap.h), read back from the kernel's own account of this
 // process's mappings (/proc/self/smaps): a large block allocated afterwards lies in the heap (the
-// program break's mapping, not one mapped for it alone) and in a range advised for huge pages
-// (VmFlags "hg"). Both earlier mistakes fail it: a reserve the compiler left out (the probe block
-// only freed) and one the free trimmed back each leave the block's range unadvised.
+// program break's mapping, not one mapped for it alone) and, wherever /sys and /proc say that huge
+// pages come on request and overcommit is not strict (read here, not taken from the set-up's own
+// answer), in a range advised for huge pages (VmFlags "hg"). A reserve never made (the first
+// version's probe block, only freed, was left out by the compiler) or trimmed back by the free
+// (its second version) leaves the block's range unadvised, and fails it; both were checked.
 #include <doctest/doctest.h>
 
 #include <cstdint>
