@@ -55,14 +55,6 @@ Mapping mapping_of(const void* address) {
   return m;
 }
 
-// The first line of a file, empty when it cannot be read.
-std::string first_line(const char* path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  return line;
-}
-
 }  // namespace
 
 TEST_CASE("process heap: a large block after the set-up lies in the heap, in a range advised for huge pages") {
@@ -79,8 +71,9 @@ TEST_CASE("process heap: a large block after the set-up lies in the heap, in a r
   std::free(block);
   REQUIRE(m.found);
   CHECK(m.name == "[heap]");  // from the break: M_MMAP_MAX 0 maps no block by itself
-  const bool on_request = first_line("/sys/kernel/mm/transparent_hugepage/enabled").find("[madvise]") != std::string::npos &&
-                          first_line("/proc/sys/vm/overcommit_memory") != "2";
+  using offsetopt::test::read_file;
+  const bool on_request = read_file("/sys/kernel/mm/transparent_hugepage/enabled").find("[madvise]") != std::string::npos &&
+                          read_file("/proc/sys/vm/overcommit_memory").rfind('2', 0) != 0;
   if (!on_request) {
     CHECK(heap.huge_reserve == 0);
     offsetopt::test::skip_test("the kernel gives huge pages always or never here, or overcommit is strict: no reserve");
