@@ -1539,10 +1539,10 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
       out_of_reach = true;
       return outcome;
     }
-    // The quadric void reads the input, the frame and the programme alone: on inputs large enough
-    // for the coarse copy, with two or more threads, it is started now, beside the skeleton, the
-    // basis and the solve, where the offset void's stages would otherwise run before it
-    // (make_cavity takes it if it wants it). One thread: the result is the same on any number.
+    // The quadric void reads the input, the frame and the programme alone: where quadric_ahead
+    // says so it is started now, beside the skeleton, the basis and the solve, where the offset
+    // void's stages would otherwise run before it (make_cavity takes it if it wants it). The
+    // result is the same on any number of threads.
     if (quadric_ahead(options, n) && quadric_possible(options, reach))
       outcome.quadric_ahead = start_task(true, [&input, &options, &f, input_bvh, programme = reach.programme, n]() {
         return attempt_quadric(options, f, input, *input_bvh, *programme, large_input(n) ? 1 : options.threads);
