@@ -89,10 +89,13 @@ class InnerField {
 // themselves), the distance to its nearest face.
 class MeshField final : public InnerField {
  public:
-  explicit MeshField(const Mesh& inner) : inner_(inner), bvh_(inner.V, inner.F) {}
+  MeshField(const Mesh& inner, const GridWinding* known) : inner_(inner), bvh_(inner.V, inner.F), known_(known) {}
   Aabb box() const override { return bounding_box(inner_.V); }
   std::vector<std::int8_t> inside(const NodeGrid& grid, const std::vector<std::int8_t>&, int threads) const override {
-    std::vector<std::int8_t> winding = grid_winding(inner_, grid, threads);
+    std::vector<std::int8_t> winding = known_ && same_grid(known_->grid, grid) &&
+                                               known_->winding.size() == static_cast<std::size_t>(grid.node_count())
+                                           ? known_->winding
+                                           : grid_winding(inner_, grid, threads);
     for (std::int8_t& w : winding) w = w >= 1;
     return winding;
   }
@@ -106,8 +109,13 @@ class MeshField final : public InnerField {
   }
 
  private:
+  static bool same_grid(const NodeGrid& a, const NodeGrid& b) {
+    return a.origin == b.origin && a.spacing == b.spacing && a.nx == b.nx && a.ny == b.ny && a.nz == b.nz;
+  }
+
   const Mesh& inner_;
   TriangleBvh bvh_;
+  const GridWinding* known_;
 };
 
 // The quadric void { q < 0 }: its signed distance to first order, −q/|∇q| (Taubin's estimate,
@@ -1022,14 +1030,14 @@ std::string ContourCavityOptions::check() const {
 }
 
 ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Mesh& inner,
-                             const ContourCavityOptions& options) {
+                             const ContourCavityOptions& options, const GridWinding* inner_winding) {
   if (inner.F.rows() == 0) {  // no void
     ContourCavity out;
     out.message = options.check();
     out.ok = out.message.empty();
     return out;
   }
-  return contour_field(outer, outer_bvh, MeshField(inner), options);
+  return contour_field(outer, outer_bvh, MeshField(inner, inner_winding), options);
 }
 
 ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Vector10d& quadric,

@@ -37,6 +37,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "geometry/bvh.h"
 #include "geometry/node_grid.h"
@@ -89,8 +90,16 @@ bool cavity_grid(const Aabb& box, double wall, double cells_per_wall, std::int64
 // outer surface (the rounding hair grows with the coordinates' size).
 double cavity_node_level(double wall, double h, double margin_cells, const Aabb& outer_box);
 
+// A mesh's winding numbers at the nodes of a grid (geometry/grid_winding.h).
+struct GridWinding {
+  NodeGrid grid;
+  std::vector<std::int8_t> winding;
+};
+
+// `inner_winding` (optional): `inner`'s winding numbers, computed before (cavity/fold_integrals.h);
+// read when their grid is the contour's own, else computed again: the same result either way.
 ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Mesh& inner,
-                             const ContourCavityOptions& options);
+                             const ContourCavityOptions& options, const GridWinding* inner_winding = nullptr);
 
 // The same with a quadric for the inner term: the void is { q < 0 } with
 // q(x) = Σ quadric_i m_i(x) over the monomials m = [1, x, y, z, x², y², z², xy, yz, zx] (the order

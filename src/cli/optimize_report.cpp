@@ -197,6 +197,12 @@ Json cavity_json(const CavitySummary& cavity) {
   j["offset_goal_met"] = cavity.offset_goal_met;
   j["offset_valid"] = cavity.offset_valid ? Json(*cavity.offset_valid) : Json();
   j["offset_failures"] = strings(cavity.offset_failures);
+  if (cavity.fold_correction) {
+    Json folds = Json::object();
+    folds["void_volume"] = cavity.fold_correction->void_volume;
+    folds["predicted_violation"] = cavity.fold_correction->predicted_violation;
+    j["fold_correction"] = folds;
+  }
   if (cavity.rounds) {
     Json rounds = Json::array();
     for (const ContourRound& round : *cavity.rounds) rounds.push_back(contour_round_json(round));

@@ -271,11 +271,18 @@ ContourRound contour_round(const ContourCavity& contoured, const Verification& v
 // Which cavity was written and why: the offset surface's own verification, then the contour rounds,
 // then, where the offset model fell short of a goal some void reaches, the quadric void's rounds.
 // Objectives are the goal's (shape/goal.h, normalised frame) on the solid as written.
+// The offset model corrected for its folds before the first contour (cavity/fold_integrals.h).
+struct FoldCorrection {
+  double void_volume = 0.0;          // the folds' void volume, input units (the contour holds that much more)
+  double predicted_violation = 0.0;  // the largest margin row with them, normalised frame (> 0: missed)
+};
+
 struct CavitySummary {
   CavityMode mode = CavityMode::automatic;
   bool offset_goal_met = false;
   std::optional<bool> offset_valid;  // absent when only the goal was checked (the quadric void decided first)
   std::vector<std::string> offset_failures;
+  std::optional<FoldCorrection> fold_correction;    // present when the model was corrected for folds first
   std::optional<std::vector<ContourRound>> rounds;  // present when a contour was attempted
   std::optional<std::vector<ContourRound>> quadric_rounds;  // present when the quadric void was attempted
   std::optional<double> offset_objective, quadric_objective;  // of each void that verified
