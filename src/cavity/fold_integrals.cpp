@@ -1,9 +1,30 @@
 #include "cavity/fold_integrals.h"
 
+#include <algorithm>
+
 #include "geometry/aabb.h"
+#include "geometry/closest_point.h"
 #include "geometry/grid_winding.h"
+#include "util/parallel.h"
 
 namespace offsetopt {
+
+namespace {
+
+// The integrals of the cube of side h·scale about node position p, in the frame.
+Vector10d cube_integrals(const Eigen::Vector3d& p, double h, const Eigen::Vector3d& origin, double scale) {
+  const double side = h * scale, cube = side * side * side, square_term = side * side / 12.0;
+  const Eigen::Vector3d c = (p - origin) * scale;
+  Vector10d cell;
+  cell << 1.0, c.x(), c.y(), c.z(), c.x() * c.x() + square_term, c.y() * c.y() + square_term, c.z() * c.z() + square_term,
+      c.x() * c.y(), c.y() * c.z(), c.z() * c.x();
+  return cube * cell;
+}
+
+// Parts of the node range, fixed whatever the thread count.
+constexpr int kParts = 16;
+
+}  // namespace
 
 FoldIntegrals fold_integrals(const Mesh& outer, const Mesh& inner, const ContourCavityOptions& options,
                              const Eigen::Vector3d& origin, double scale) {
@@ -25,18 +46,42 @@ FoldIntegrals fold_integrals(const Mesh& outer, const Mesh& inner, const Contour
   out.ok = true;
   const NodeGrid& grid = out.inner.grid;
   out.inner.winding = grid_winding(inner, grid, options.threads);
-  const double side = grid.spacing * scale, cube = side * side * side, square_term = side * side / 12.0;
   for (std::int64_t node = 0; node < grid.node_count(); ++node) {
     const int w = out.inner.winding[static_cast<std::size_t>(node)];
     const double weight = (w >= 1 ? 1.0 : 0.0) - static_cast<double>(w);
     if (weight == 0.0) continue;
     ++out.folded_nodes;
-    const Eigen::Vector3d c = (grid.position(node) - origin) * scale;
-    Vector10d cell;
-    cell << 1.0, c.x(), c.y(), c.z(), c.x() * c.x() + square_term, c.y() * c.y() + square_term, c.z() * c.z() + square_term,
-        c.x() * c.y(), c.y() * c.z(), c.z() * c.x();
-    out.integrals += (weight * cube) * cell;
+    out.integrals += weight * cube_integrals(grid.position(node), grid.spacing, origin, scale);
   }
+  out.volume = out.integrals(kIntVolume) / (scale * scale * scale);
+  return out;
+}
+
+WallCutIntegrals wall_cut_integrals(const Mesh& outer, const TriangleBvh& outer_bvh, const FoldIntegrals& folds,
+                                    const ContourCavityOptions& options, const Eigen::Vector3d& origin, double scale) {
+  WallCutIntegrals out;
+  const NodeGrid& grid = folds.inner.grid;
+  if (!folds.ok || folds.inner.winding.size() != static_cast<std::size_t>(grid.node_count()) || grid.node_count() == 0)
+    return out;
+  const std::vector<std::int8_t> outer_winding = grid_winding(outer, grid, options.threads);
+  const double level = cavity_node_level(options.wall, grid.spacing, options.margin_cells, bounding_box(outer.V));
+  Vector10d part_sums[kParts];
+  WorkerPool pool(std::max(1, std::min(options.threads, kParts)));
+  pool.run_parts(kParts, [&](int part) {
+    Vector10d sum = Vector10d::Zero();
+    const long count = static_cast<long>(grid.node_count());
+    for (long node = split_point(count, kParts, part); node < split_point(count, kParts, part + 1); ++node) {
+      const std::size_t i = static_cast<std::size_t>(node);
+      if (folds.inner.winding[i] < 1) continue;
+      const Eigen::Vector3d p = grid.position(node);
+      // The contour's node test (cavity/contour_cavity.h): inside the outer surface, and no face
+      // within the level.
+      if (outer_winding[i] >= 1 && !closest_point(outer_bvh, p, level).found) continue;
+      sum -= cube_integrals(p, grid.spacing, origin, scale);
+    }
+    part_sums[part] = sum;
+  });
+  for (const Vector10d& sum : part_sums) out.integrals += sum;
   out.volume = out.integrals(kIntVolume) / (scale * scale * scale);
   return out;
 }

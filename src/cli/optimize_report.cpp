@@ -200,6 +200,7 @@ Json cavity_json(const CavitySummary& cavity) {
   if (cavity.fold_correction) {
     Json folds = Json::object();
     folds["void_volume"] = cavity.fold_correction->void_volume;
+    folds["wall_cut_volume"] = cavity.fold_correction->wall_cut_volume;
     folds["predicted_violation"] = cavity.fold_correction->predicted_violation;
     j["fold_correction"] = folds;
   }

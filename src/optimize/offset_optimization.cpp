@@ -800,27 +800,37 @@ double largest_inequality(const GoalSpec& goal, const Vector10d& outer, const Ve
 }
 
 // Folds before the first contour (cavity/fold_integrals.h): where the inner offset surface turns
-// pockets inside out, the first contour's void differs from the model's by the folds' integrals.
-// When the model plus them misses a margin row, so would that contour (the demo bottle standing
-// filled with --outer: 2.13e-4 predicted, 2.19e-4 contoured), and the correction it would cause
-// is made first, from the folds, which saves a contour. Equality rows are left to the rounds:
-// their tolerances are the verification's, which the folds rarely cross (the demo top 6e-6, the
-// roly-poly 3e-5, against 1e-4). Only for a solve not corrected yet: a correction's shift is a
-// contour's measure, better than the folds'. Returns the winding numbers the first contour reads
-// when the surface did not move; counts the correction in `corrections`.
-std::optional<FoldIntegrals> correct_for_folds(const OptimizeOptions& options, const Frame& f, OffsetSolve& solve,
+// pockets inside out, the first contour's void differs from the model's by the folds' integrals
+// and the wall's cut. When the model plus both misses a margin row, so would that contour (the
+// demo bottle standing filled with --outer: 2.5e-4 predicted, 2.2e-4 contoured), and the
+// correction it would cause is made first, from them, which saves a contour. The wall's cut costs
+// a distance query per node and is read only when the folds alone predict a miss. Equality rows
+// are left to the rounds: their tolerances are the verification's, which the folds rarely cross
+// (the demo top 6e-6, the roly-poly 3e-5, against 1e-4). Only for a solve not corrected yet: a
+// correction's shift is a contour's measure, better than this one. Returns the winding numbers
+// the first contour reads when the surface did not move; counts the correction in `corrections`.
+std::optional<FoldIntegrals> correct_for_folds(const OptimizeOptions& options, const Frame& f, const Band& b, OffsetSolve& solve,
                                                const ContourCavityOptions& cavity_options, const Vector10d& opening_void,
                                                const Progress& say, Cavity& c, int& corrections) {
   if (!solve.constraints_met || solve.corrected() || options.max_correction_rounds < 1) return std::nullopt;
   FoldIntegrals folds = fold_integrals(solve.outer, solve.inner, cavity_options, f.origin, f.scale);
   if (!folds.ok) return std::nullopt;
   if (folds.folded_nodes == 0) return folds;
-  const Vector10d shift = folds.integrals + opening_void;
-  const double predicted = largest_inequality(f.goal, solve.eval.outer_integrals, solve.eval.inner_integrals + shift);
-  if (!(predicted > options.solver.feasibility_tolerance)) return folds;
-  c.summary.fold_correction = FoldCorrection{folds.volume, predicted};
-  say("folds: the inner offset surface folds over " + format_double(folds.volume) +
-      " of void; with them a margin row misses by " + format_double(predicted) + " (frame): corrected before contouring");
+  const double tolerance = options.solver.feasibility_tolerance;
+  auto worst_row = [&](const Vector10d& shift) {
+    return largest_inequality(f.goal, solve.eval.outer_integrals, solve.eval.inner_integrals + shift);
+  };
+  if (!(worst_row(folds.integrals + opening_void) > tolerance)) return folds;
+  std::optional<TriangleBvh> offset_bvh;
+  const TriangleBvh& outer_bvh = options.outer ? offset_bvh.emplace(solve.outer.V, solve.outer.F) : *b.bvh;
+  const WallCutIntegrals cut = wall_cut_integrals(solve.outer, outer_bvh, folds, cavity_options, f.origin, f.scale);
+  const Vector10d shift = folds.integrals + cut.integrals + opening_void;
+  const double predicted = worst_row(shift);
+  if (!(predicted > tolerance)) return folds;
+  c.summary.fold_correction = FoldCorrection{folds.volume, cut.volume, predicted};
+  say("folds: the inner offset surface folds over " + format_double(folds.volume) + " of void and the wall cuts " +
+      format_double(-cut.volume) + "; with them a margin row misses by " + format_double(predicted) +
+      " (frame): corrected before contouring");
   solve.correct(shift, ++corrections);
   return std::nullopt;
 }
@@ -845,7 +855,7 @@ void contour_offset_void(const OptimizeOptions& options, const Frame& f, const B
     std::vector<ContourRound>& rounds = c.summary.rounds.emplace();
     double contour_seconds = 0.0;
     int corrections = 0;
-    const std::optional<FoldIntegrals> folds = correct_for_folds(options, f, solve, cavity_options, opening_void, say, c, corrections);
+    const std::optional<FoldIntegrals> folds = correct_for_folds(options, f, b, solve, cavity_options, opening_void, say, c, corrections);
     for (int round = 0;; ++round) {
       // Most runs need one or two rounds; the estimate is the round over the rounds allowed.
       if (tick) tick("contour", static_cast<double>(round) / (options.max_correction_rounds + 1));

@@ -274,7 +274,8 @@ ContourRound contour_round(const ContourCavity& contoured, const Verification& v
 // The offset model corrected for its folds before the first contour (cavity/fold_integrals.h).
 struct FoldCorrection {
   double void_volume = 0.0;          // the folds' void volume, input units (the contour holds that much more)
-  double predicted_violation = 0.0;  // the largest margin row with them, normalised frame (> 0: missed)
+  double wall_cut_volume = 0.0;      // the wall's cut, input units (<= 0: void the contour leaves solid)
+  double predicted_violation = 0.0;  // the largest margin row with both, normalised frame (> 0: missed)
 };
 
 struct CavitySummary {

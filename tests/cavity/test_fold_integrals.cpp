@@ -1,14 +1,16 @@
 // The folds' integrals (cavity/fold_integrals.h) against closed forms: a surface that folds
 // nowhere has none; a cube the inner surface turns inside out (winding −1) adds the cube's
 // integrals, a region it covers twice (winding 2) takes the overlap's away, both within the
-// grid's error; and the contour that reads the winding numbers computed here is the one it makes
-// by itself, bit for bit.
+// grid's error; the wall's cut of an inner box that pokes out of the outer one is the slab beyond
+// the contour's node level; and the contour that reads the winding numbers computed here is the
+// one it makes by itself, bit for bit.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
 #include "cavity/contour_cavity.h"
 #include "cavity/fold_integrals.h"
+#include "geometry/aabb.h"
 #include "geometry/bvh.h"
 #include "mass/volume_integrals.h"
 #include "mesh/primitives.h"
@@ -91,6 +93,32 @@ TEST_CASE("fold integrals: a cube turned inside out adds the cube, a region cove
     CHECK(std::fabs(f.volume + overlap) <= volume_bound(area, h));
     CHECK(std::fabs(f.integrals(kIntX) / f.integrals(kIntVolume) - (-1.0)) <= h);
   }
+}
+
+TEST_CASE("wall cut integrals: an inner box through the outer one loses the slab past the node level") {
+  const Mesh outer = make_box(Eigen::Vector3d(-10, -10, -10), Eigen::Vector3d(10, 10, 10));
+  const TriangleBvh outer_bvh(outer.V, outer.F);
+  // 1 beyond x = 10: within the contour's grid, which ends 3.5 cells past the outer box.
+  const Mesh inner = make_box(Eigen::Vector3d(-7, -5, -5), Eigen::Vector3d(11, 5, 5));
+  const ContourCavityOptions options = options_with_wall(0.5);
+  const FoldIntegrals folds = fold_integrals(outer, inner, options, Eigen::Vector3d::Zero(), 1.0);
+  REQUIRE(folds.ok);
+  CHECK(folds.folded_nodes == 0);
+  const double h = folds.inner.grid.spacing;
+  const double level = cavity_node_level(options.wall, h, options.margin_cells, bounding_box(outer.V));
+  const WallCutIntegrals cut = wall_cut_integrals(outer, outer_bvh, folds, options, Eigen::Vector3d::Zero(), 1.0);
+  // The slab x in [10 − level, 11] of the 10 × 10 section; the section's sides keep 5 from the outer faces.
+  const double slab = (1.0 + level) * 100.0;
+  CHECK(cut.volume < 0.0);
+  CHECK(std::fabs(-cut.volume - slab) <= volume_bound(2.0 * 100.0 + 4.0 * 10.0 * (1.0 + level), h));
+  CHECK(std::fabs(cut.integrals(kIntX) / cut.integrals(kIntVolume) - (10.0 - level + 11.0) / 2.0) <= h);
+  // One thread or four: the same bits.
+  ContourCavityOptions one = options;
+  one.threads = 1;
+  ContourCavityOptions four = options;
+  four.threads = 4;
+  CHECK(wall_cut_integrals(outer, outer_bvh, folds, one, Eigen::Vector3d::Zero(), 1.0).integrals ==
+        wall_cut_integrals(outer, outer_bvh, folds, four, Eigen::Vector3d::Zero(), 1.0).integrals);
 }
 
 TEST_CASE("fold integrals: the contour reading their winding numbers is the contour made without them") {
