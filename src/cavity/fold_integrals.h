@@ -8,7 +8,7 @@
 // that the model's integrals plus F predict the contour's to within the wall's cut and the
 // grid's error. On the demo bottle standing filled with --outer, the pockets hold 2% of the
 // void, and the model plus F put the filled margin row at 2.13e-4 against the contour's 2.19e-4
-// (the model alone: 2e-9); docs/cavity.md "Folds before the first contour".
+// (the model alone: 2e-9); docs/printable-solid.md "Folds before the first contour".
 //
 // Integrals in the caller's normalised frame, x ↦ (x − origin) · scale, about its origin, in the
 // order of mass/volume_integrals.h (volume, x, y, z, x², y², z², xy, yz, zx); each node's cube of

@@ -268,9 +268,6 @@ const char* to_string(WrittenCavity written);
 // when validity was measured. The caller sets Δ and the void volumes.
 ContourRound contour_round(const ContourCavity& contoured, const Verification& verification, bool validity_measured);
 
-// Which cavity was written and why: the offset surface's own verification, then the contour rounds,
-// then, where the offset model fell short of a goal some void reaches, the quadric void's rounds.
-// Objectives are the goal's (shape/goal.h, normalised frame) on the solid as written.
 // The offset model corrected for its folds before the first contour (cavity/fold_integrals.h).
 struct FoldCorrection {
   double void_volume = 0.0;          // the folds' void volume, input units (the contour holds that much more)
@@ -278,6 +275,9 @@ struct FoldCorrection {
   double predicted_violation = 0.0;  // the largest margin row with both, normalised frame (> 0: missed)
 };
 
+// Which cavity was written and why: the offset surface's own verification, then the contour rounds,
+// then, where the offset model fell short of a goal some void reaches, the quadric void's rounds.
+// Objectives are the goal's (shape/goal.h, normalised frame) on the solid as written.
 struct CavitySummary {
   CavityMode mode = CavityMode::automatic;
   bool offset_goal_met = false;
