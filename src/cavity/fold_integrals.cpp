@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "cavity/carvable_cells.h"
 #include "geometry/aabb.h"
 #include "geometry/closest_point.h"
 #include "geometry/grid_winding.h"
@@ -11,14 +12,10 @@ namespace offsetopt {
 
 namespace {
 
-// The integrals of the cube of side h·scale about node position p, in the frame.
-Vector10d cube_integrals(const Eigen::Vector3d& p, double h, const Eigen::Vector3d& origin, double scale) {
-  const double side = h * scale, cube = side * side * side, square_term = side * side / 12.0;
-  const Eigen::Vector3d c = (p - origin) * scale;
-  Vector10d cell;
-  cell << 1.0, c.x(), c.y(), c.z(), c.x() * c.x() + square_term, c.y() * c.y() + square_term, c.z() * c.z() + square_term,
-      c.x() * c.y(), c.y() * c.z(), c.z() * c.x();
-  return cube * cell;
+// The integrals, in the frame, of the cube of side h about node position p (carvable_cells.h's,
+// read in the frame's coordinates).
+Vector10d frame_cube_integrals(const Eigen::Vector3d& p, double h, const Eigen::Vector3d& origin, double scale) {
+  return cube_integrals((p - origin) * scale, h * scale, Eigen::Vector3d::Zero());
 }
 
 // Parts of the node range, fixed whatever the thread count.
@@ -51,7 +48,7 @@ FoldIntegrals fold_integrals(const Mesh& outer, const Mesh& inner, const Contour
     const double weight = (w >= 1 ? 1.0 : 0.0) - static_cast<double>(w);
     if (weight == 0.0) continue;
     ++out.folded_nodes;
-    out.integrals += weight * cube_integrals(grid.position(node), grid.spacing, origin, scale);
+    out.integrals += weight * frame_cube_integrals(grid.position(node), grid.spacing, origin, scale);
   }
   out.volume = out.integrals(kIntVolume) / (scale * scale * scale);
   return out;
@@ -77,7 +74,7 @@ WallCutIntegrals wall_cut_integrals(const Mesh& outer, const TriangleBvh& outer_
       // The contour's node test (cavity/contour_cavity.h): inside the outer surface, and no face
       // within the level.
       if (outer_winding[i] >= 1 && !closest_point(outer_bvh, p, level).found) continue;
-      sum -= cube_integrals(p, grid.spacing, origin, scale);
+      sum -= frame_cube_integrals(p, grid.spacing, origin, scale);
     }
     part_sums[part] = sum;
   });

@@ -8,6 +8,8 @@
 
 #include <cmath>
 
+#include "../mesh_checks.h"
+
 #include "cavity/contour_cavity.h"
 #include "cavity/fold_integrals.h"
 #include "geometry/aabb.h"
@@ -18,15 +20,6 @@
 using namespace offsetopt;
 
 namespace {
-
-Mesh joined(const Mesh& a, const Mesh& b) {
-  Mesh out;
-  out.V.resize(a.V.rows() + b.V.rows(), 3);
-  out.V << a.V, b.V;
-  out.F.resize(a.F.rows() + b.F.rows(), 3);
-  out.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
-  return out;
-}
 
 Mesh inside_out(Mesh m) {
   m.F.col(1).swap(m.F.col(2));
@@ -67,7 +60,7 @@ TEST_CASE("fold integrals: a cube turned inside out adds the cube, a region cove
   const double wall = 0.5, h = wall / 1.5;
 
   SUBCASE("winding -1: the pocket's integrals, in the frame asked for") {
-    const Mesh inner = joined(make_box(lo, hi), inside_out(make_box(pocket_lo, pocket_hi)));
+    const Mesh inner = test::join(make_box(lo, hi), inside_out(make_box(pocket_lo, pocket_hi)));
     const Eigen::Vector3d origin(1.0, -2.0, 0.5);
     const double scale = 0.1;
     const FoldIntegrals f = fold_integrals(outer, inner, options_with_wall(wall), origin, scale);
@@ -86,7 +79,7 @@ TEST_CASE("fold integrals: a cube turned inside out adds the cube, a region cove
 
   SUBCASE("winding 2: minus the overlap") {
     const Eigen::Vector3d second_lo(-3, -3, -3), second_hi(5, 3, 3);  // overlaps the void in [-3, 1] × [-3, 3]²
-    const Mesh inner = joined(make_box(lo, hi), make_box(second_lo, second_hi));
+    const Mesh inner = test::join(make_box(lo, hi), make_box(second_lo, second_hi));
     const FoldIntegrals f = fold_integrals(outer, inner, options_with_wall(wall), Eigen::Vector3d::Zero(), 1.0);
     REQUIRE(f.ok);
     const double overlap = 4.0 * 6.0 * 6.0, area = 2.0 * (4 * 6 + 4 * 6 + 6 * 6);
@@ -124,7 +117,7 @@ TEST_CASE("wall cut integrals: an inner box through the outer one loses the slab
 TEST_CASE("fold integrals: the contour reading their winding numbers is the contour made without them") {
   const Mesh outer = make_icosphere(10.0, 4);
   const TriangleBvh outer_bvh(outer.V, outer.F);
-  const Mesh inner = joined(make_icosphere(6.0, 3), inside_out(make_box(Eigen::Vector3d(-2, -2, 6.5), Eigen::Vector3d(2, 2, 8))));
+  const Mesh inner = test::join(make_icosphere(6.0, 3), inside_out(make_box(Eigen::Vector3d(-2, -2, 6.5), Eigen::Vector3d(2, 2, 8))));
   const ContourCavityOptions options = options_with_wall(1.0);
   const FoldIntegrals f = fold_integrals(outer, inner, options, Eigen::Vector3d::Zero(), 1.0);
   REQUIRE(f.ok);
