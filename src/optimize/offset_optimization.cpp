@@ -987,13 +987,20 @@ void credit_written_solid(ReachabilitySummary& reach, GoalKind kind, const Verif
 }
 
 // The fraction of the possible lowering the offset model's solution predicts (its integrals, before
-// any contour): for stand and the other centre-lowering goals except float, whose depth needs the
-// written solid.
+// any contour), as optimality() reads it of a written solid: for float, the depth of the centre of
+// mass below the centre of buoyancy, which the model takes fully submerged (shape/goal.h: its mass
+// row balances the whole outer volume), so the centre of buoyancy is the outer surface's centroid.
 std::optional<double> predicted_fraction(const Frame& f, const Reachability& reach, const ReducedProblem::Evaluation& e) {
-  if (f.goal.kind == GoalKind::floating || !reach.lowest_cz) return std::nullopt;
   const double shell_volume = e.outer_integrals(kIntVolume) - e.inner_integrals(kIntVolume);
   if (!(shell_volume > 0.0)) return std::nullopt;
-  const double cz = (e.outer_integrals(kIntZ) - e.inner_integrals(kIntZ)) / shell_volume / f.scale + f.origin.z() - f.zmin;
+  const double shell_z = (e.outer_integrals(kIntZ) - e.inner_integrals(kIntZ)) / shell_volume;
+  if (f.goal.kind == GoalKind::floating) {
+    if (!reach.best_margin || !(*reach.best_margin > 0.0) || !(e.outer_integrals(kIntVolume) > 0.0)) return std::nullopt;
+    const double buoyancy_z = e.outer_integrals(kIntZ) / e.outer_integrals(kIntVolume);
+    return (buoyancy_z - shell_z) / f.scale / *reach.best_margin;
+  }
+  if (!reach.lowest_cz) return std::nullopt;
+  const double cz = shell_z / f.scale + f.origin.z() - f.zmin;
   const double before = f.before(kCz) - f.zmin, best = *reach.lowest_cz;
   if (!(before - best > 0.0)) return std::nullopt;
   return (before - cz) / (before - best);
