@@ -109,10 +109,6 @@ class MeshField final : public InnerField {
   }
 
  private:
-  static bool same_grid(const NodeGrid& a, const NodeGrid& b) {
-    return a.origin == b.origin && a.spacing == b.spacing && a.nx == b.nx && a.ny == b.ny && a.nz == b.nz;
-  }
-
   const Mesh& inner_;
   TriangleBvh bvh_;
   const GridWinding* known_;
@@ -534,8 +530,7 @@ struct ContourReuse {
   std::vector<Vertex> vertices;  // sorted by (positive, negative)
 
   bool matches(const NodeGrid& g, double level_now, double target_now) const {
-    return !outer_winding.empty() && g.origin == grid.origin && g.spacing == grid.spacing && g.nx == grid.nx &&
-           g.ny == grid.ny && g.nz == grid.nz && level_now == level && target_now == target;
+    return !outer_winding.empty() && same_grid(g, grid) && level_now == level && target_now == target;
   }
   const Vertex* find(std::int64_t positive, std::int64_t negative) const {
     const auto it = std::lower_bound(vertices.begin(), vertices.end(), std::make_pair(positive, negative),
@@ -896,10 +891,8 @@ ContourCavity contour_field(const Mesh& outer, const TriangleBvh& outer_bvh, con
     return out;
   }
   const double wall = options.wall;
-  Aabb box = field.box();
   const Aabb outer_box = bounding_box(outer.V);
-  box.lo = box.lo.cwiseMax(outer_box.lo);
-  box.hi = box.hi.cwiseMin(outer_box.hi);
+  const Aabb box = cavity_box(field.box(), outer_box);
   out.ok = true;
   if (box.empty()) return out;  // no void
   NodeGrid& grid = out.grid;
@@ -1012,6 +1005,13 @@ bool cavity_grid(const Aabb& box, double wall, double cells_per_wall, std::int64
   grid.ny = static_cast<std::int64_t>(std::ceil(extent.y() / h)) + 6;
   grid.nz = static_cast<std::int64_t>(std::ceil(extent.z() / h)) + 6;
   return true;
+}
+
+Aabb cavity_box(const Aabb& void_box, const Aabb& outer_box) {
+  Aabb box = void_box;
+  box.lo = box.lo.cwiseMax(outer_box.lo);
+  box.hi = box.hi.cwiseMin(outer_box.hi);
+  return box;
 }
 
 double cavity_node_level(double wall, double h, double margin_cells, const Aabb& outer_box) {

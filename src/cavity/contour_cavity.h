@@ -81,6 +81,10 @@ struct ContourCavity {
 
 // `outer` is the closed outer surface and `outer_bvh` its tree; `inner` the inner offset surface
 // (closed as a mesh, possibly folded or crossing `outer`). Both in the same units as the wall.
+// The box the contour grids: the void's (the inner surface's box; for a quadric, the outer
+// surface's), clipped to the outer surface's; empty when they do not overlap.
+Aabb cavity_box(const Aabb& void_box, const Aabb& outer_box);
+
 // The contour's grid over `box`: spacing wall / cells_per_wall, grown by 5% steps while the box
 // would need more than max_nodes nodes; false when even 60 steps do not bring it under.
 bool cavity_grid(const Aabb& box, double wall, double cells_per_wall, std::int64_t max_nodes, NodeGrid& grid);

@@ -30,11 +30,7 @@ FoldIntegrals fold_integrals(const Mesh& outer, const Mesh& inner, const Contour
     out.ok = true;
     return out;
   }
-  // The box contour_cavity grids: the inner surface's, within the outer surface's.
-  Aabb box = bounding_box(inner.V);
-  const Aabb outer_box = bounding_box(outer.V);
-  box.lo = box.lo.cwiseMax(outer_box.lo);
-  box.hi = box.hi.cwiseMin(outer_box.hi);
+  const Aabb box = cavity_box(bounding_box(inner.V), bounding_box(outer.V));
   if (box.empty()) {
     out.ok = true;
     return out;

@@ -26,6 +26,11 @@ struct NodeGrid {
   }
 };
 
+// Whether two grids have the same nodes (origin, spacing and counts, exactly).
+inline bool same_grid(const NodeGrid& a, const NodeGrid& b) {
+  return a.origin == b.origin && a.spacing == b.spacing && a.nx == b.nx && a.ny == b.ny && a.nz == b.nz;
+}
+
 // The grid of `g`'s cell centres: point (i, j, k) is the centre of cell (i, j, k).
 inline NodeGrid cell_centres(const NodeGrid& g) {
   NodeGrid c;
