@@ -688,8 +688,8 @@ double ratio_cap(const Form& N, const Form& D, const std::array<Eigen::Vector3d,
 }
 
 // Dinkelbach: t ← min_j N_j(u)/D_j(u) after each LP max_u min_j (N_j − t D_j), each ratio capped
-// by ratio_cap.
-MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, const Frame& f, int cap) {
+// by ratio_cap; stopped short (not converged) once the best reaches `enough`.
+MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, const Frame& f, int cap, double enough = kInf) {
   MarginSearch s;
   std::vector<double> warm(p.groups.size(), 0.0);
   const int nr = static_cast<int>(rows.numerators.size());
@@ -738,6 +738,7 @@ MarginSearch best_margin(Solver& solver, Partition& p, const GoalRows& rows, con
       s.converged = true;
       break;
     }
+    if (s.best >= enough) break;
     t = t_new;
   }
   return s;
@@ -981,7 +982,9 @@ void read_outer_margin(Solver& solver, const MarginSearch& s, const GoalSpec& go
   Partition outer = make_partition(cells, cells.outer, band ? cells.band_outer : std::vector<std::int64_t>{},
                                    band ? cells.skin_outer : std::vector<std::int64_t>{}, f, options.block, part);
   const GoalRows loose = goal_rows(goal, f, tau_out, 1e-3, 0.0, -1.0);
-  const MarginSearch upper = best_margin(solver, outer, loose, f, options.max_dinkelbach);
+  // Once a void of the reading clears the user's margin, no certificate can come of it (below).
+  const double enough = options.bound_undecided ? kInf : margin + 1e-9;
+  const MarginSearch upper = best_margin(solver, outer, loose, f, options.max_dinkelbach, enough);
   // An upper bound only when it is one: Dinkelbach's margins rise to the optimum, so a search
   // stopped short of it bounds nothing from above, and the generous reading holds every void of
   // the mid one, so a figure below the mid reading's best is not its optimum either (the

@@ -89,6 +89,12 @@ struct ReachabilityOptions {
   // estimate of the best void at the exact wall, and the programme the quadric void is written
   // from. The claim "unreachable" is always read on the outer cells.
   bool mid_reading = false;
+  // The generous reading's margin search to its optimum even once it clears the user's margin.
+  // Cleared, no certificate can come of it, so the claim stays undecided and the optimum would
+  // only bound best_margin_upper: by default the search stops there (the demo bottle standing
+  // filled with --outer: 18 programmes instead of 32), and a run that misses the goal asks again
+  // with this set, for the bracket its refusal prints.
+  bool bound_undecided = false;
   // Volume: where the ball that holds the target starts (Reachability::find_optimum). None: at
   // the writable cell nearest their centroid. A line (a channel's axis, pointing out of the object
   // into the opening): at the writable cell farthest along it of those within a cell of it, so

@@ -1761,8 +1761,11 @@ OptimizeResult optimize_offsets(const Mesh& input, const OptimizeOptions& option
       if (written.quadric_rounds) result.message += "; the quadric void was tried: " + written.choice;
     }
     if (result.reachability && (result.reachability->reachable || !result.reachability->decided)) {
-      confirm_reachable(reach_input, *result.reachability);
-      add_remedies(reach_input, *result.reachability);
+      ReachabilityStageInput missed = reach_input;
+      missed.bound_undecided = true;
+      bound_undecided(missed, *result.reachability);
+      confirm_reachable(missed, *result.reachability);
+      add_remedies(missed, *result.reachability);
       result.message += "; " + reachability_note(*result.reachability);
     }
   }

@@ -30,6 +30,7 @@ ReachabilityOptions options_for(const ReachabilityStageInput& in, bool outer) {
   o.share_levels = in.share_levels;
   o.mid_reading = true;
   o.volume_start = in.volume_start;
+  o.bound_undecided = in.bound_undecided;
   return o;
 }
 
@@ -324,6 +325,14 @@ std::string remedy_clauses(const ReachabilitySummary& s, const std::string& none
   return clauses;
 }
 
+// The stage's programme: on the contour's cells and, where they cannot tell, on finer ones. Not
+// on finer cells with --outer: there the bracket is the band's (the generous reading lets
+// material come as near the input as the band is thick), which finer cells do not narrow.
+Reachability stage_programme(const ReachabilityStageInput& in, const TriangleBvh& bvh, const ReachabilityOptions& o) {
+  Reachability first = reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, o);
+  return in.outer ? first : decide_on_finer_cells(in, bvh, o, std::move(first));
+}
+
 }  // namespace
 
 ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
@@ -331,11 +340,7 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
   std::optional<TriangleBvh> own;
   const TriangleBvh& bvh = in.input_bvh ? *in.input_bvh : own.emplace(in.input->V, in.input->F);
   s.options = options_for(in, in.outer);
-  // Not on finer cells with --outer: there the bracket is the band's (the generous reading lets
-  // material come as near the input as the band is thick), which finer cells do not narrow.
-  Reachability first = reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, s.options);
-  const auto programme = std::make_shared<const Reachability>(
-      in.outer ? std::move(first) : decide_on_finer_cells(in, bvh, s.options, std::move(first)));
+  const auto programme = std::make_shared<const Reachability>(stage_programme(in, bvh, s.options));
   const Reachability& r = *programme;
   if (!r.ok) {
     s.decided = false;
@@ -356,6 +361,22 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in) {
   add_remedies(in, s);
   s.refusal = reachability_note(s);
   return s;
+}
+
+void bound_undecided(const ReachabilityStageInput& in, ReachabilitySummary& s) {
+  if (s.reachable || s.decided || s.best_margin_upper || !s.programme || !s.programme->outer_margin_found) return;
+  std::optional<TriangleBvh> own;
+  const TriangleBvh& bvh = in.input_bvh ? *in.input_bvh : own.emplace(in.input->V, in.input->F);
+  ReachabilityOptions o = s.options;
+  o.bound_undecided = true;
+  const Reachability r = stage_programme(in, bvh, o);
+  if (!r.ok) return;
+  s.lps += r.lps;
+  s.lp_iterations += r.lp_iterations;
+  // The same cells and rows: the claim is the stage's; only the generous reading went on.
+  if (r.reachable || r.decided) return;
+  s.best_margin_upper = r.best_margin_upper;
+  s.binding = r.binding;
 }
 
 void confirm_reachable(const ReachabilityStageInput& in, ReachabilitySummary& s) {

@@ -91,6 +91,9 @@ struct ReachabilityStageInput {
   // ReachabilityOptions::share_levels: where whole generous cells decide nothing, their shell is
   // counted in part before cells half as large are tried (0: whole cells, then finer ones).
   int share_levels = ReachabilityOptions::defaults().share_levels;
+  // ReachabilityOptions::bound_undecided: the generous reading to its optimum (for a refusal's
+  // bracket), not only until it clears the user's margin.
+  bool bound_undecided = false;
 };
 
 ReachabilitySummary reachability_stage(const ReachabilityStageInput& in);
@@ -102,6 +105,12 @@ ReachabilitySummary reachability_stage(const ReachabilityStageInput& in);
 // made undecided, with the inner reading's best margin and the generous reading's bound (or
 // proved out of reach where its certificate proves it). The remedies are not added here.
 void confirm_reachable(const ReachabilityStageInput& in, ReachabilitySummary& summary);
+
+// For a run that missed a goal the programme left undecided: the generous reading read to its
+// optimum (the stage stops it once it clears the user's margin, where it can no longer prove the
+// goal out of reach), so that the refusal prints the bracket, best_margin_upper. `in` should have
+// bound_undecided set, as for confirm_reachable and add_remedies after a miss.
+void bound_undecided(const ReachabilityStageInput& in, ReachabilitySummary& summary);
 
 // The remedies, each checked by the same programme, into `summary` (remedies, remedy_list): the
 // stage adds them itself to a proved refusal; for an undecided goal the pipeline asks only once

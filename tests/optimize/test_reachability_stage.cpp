@@ -7,7 +7,8 @@
 // is refused with a flat base among the remedies, and cut at the height named it stands, verified.
 // A box on a strip that the contour's cells cannot decide is decided on cells half as large, and
 // the finer certificate, integrated here cell by cell, proves it. A strip the mid reading calls
-// reachable and no void keeping the wall reaches is made undecided once a run has missed it.
+// reachable and no void keeping the wall reaches is made undecided once a run has missed it. A
+// generous reading that clears the margin stops there, and is read to its optimum after a miss.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -337,6 +338,7 @@ TEST_CASE("reachability stage: a strip the mid reading reaches and no void keepi
   REQUIRE(s.reachable);  // the mid reading's estimate
   CHECK(s.evidence == "programme");
   const int lps = s.lps;
+  in.bound_undecided = true;  // as the pipeline asks after a miss
   confirm_reachable(in, s);
   CHECK(s.inner_reading);
   CHECK(!s.reachable);
@@ -362,6 +364,43 @@ TEST_CASE("reachability stage: a strip the mid reading reaches and no void keepi
   CHECK(kept.reachable);
   CHECK(kept.decided);
   CHECK(reachability_note(kept).find("a void the tool can write reaches it") == 0);
+}
+
+TEST_CASE("reachability stage: the generous reading stops once it clears the margin, and a miss reads it to its optimum") {
+  // Width 3.0 with --outer: the mid cells leave the centre of mass 0.18 outside the strip, and the
+  // generous reading (the band lets material come as near as it is thick) clears the margin, so
+  // no certificate can come of it and the claim is undecided. The stage stops that search there:
+  // no bound. After a miss the search goes on to its optimum, a bound at least as high as any
+  // void the search met (Dinkelbach's margins only rise) and above the mid cells' best, in more
+  // programmes, the claim unchanged.
+  const Mesh box = make_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(10, 6, 4));
+  ReachabilityStageInput in = box_on_strip(box, 3.0);
+  in.outer = true;
+  ReachabilitySummary s = reachability_stage(in);
+  REQUIRE(!s.reachable);
+  REQUIRE(!s.decided);
+  REQUIRE(s.programme);
+  REQUIRE(s.programme->outer_margin_found);
+  const double found = *s.programme->outer_margin_found;
+  CHECK(found >= in.goal.margin);
+  CHECK(!s.best_margin_upper);
+  const ReachabilitySummary stopped = s;
+
+  in.bound_undecided = true;
+  bound_undecided(in, s);
+  REQUIRE(s.best_margin_upper);
+  CHECK(*s.best_margin_upper >= found - 1e-12);
+  REQUIRE(s.best_margin);
+  CHECK(*s.best_margin_upper >= *s.best_margin);
+  CHECK(s.lps > stopped.lps);
+  CHECK(!s.reachable);
+  CHECK(!s.decided);
+  CHECK(s.best_margin == stopped.best_margin);
+  CHECK(reachability_note(s).find("to " + format_double(*s.best_margin_upper) + ")") != std::string::npos);
+  // Read once: a second call leaves it.
+  const int lps = s.lps;
+  bound_undecided(in, s);
+  CHECK(s.lps == lps);
 }
 
 TEST_CASE("reachability stage: the --outer remedy is named to be tried only where the band's inner cells reach the goal") {
