@@ -85,34 +85,50 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
     deep = distance_band(grid, node_inside, outer_bvh, {wall + out.margin}, options.threads, out.distance_queries);
   }
 
-  // Centres: the thresholds every reading needs, each answered by one band count.
+  // Centres: each side asks only the thresholds its readings need, each answered by one band
+  // count. Fewer thresholds near a centre's distance let its block's bounds settle it more often:
+  // with --outer every centre was asked five, and the demo bottle standing filled spent 645 M
+  // instructions here, now 574 M (the same cells).
   const double r = 0.5 * std::sqrt(3.0) * h;
   const double level = wall - r - (options.band ? options.outer_max : 0.0);  // signed, outer void cells
-  std::vector<double> thresholds;
-  if (level > 0.0) thresholds.push_back(level);
-  if (level < 0.0) thresholds.push_back(-level);
-  thresholds.push_back(wall);  // the mid reading
+  std::vector<double> inside_thresholds{wall};  // the mid reading
+  std::vector<double> outside_thresholds;
+  if (level > 0.0) inside_thresholds.push_back(level);
+  if (level < 0.0) outside_thresholds.push_back(-level);
   if (options.band) {
-    thresholds.push_back(r);
-    thresholds.push_back(options.outer_max);
-    thresholds.push_back(options.outer_max + r);
+    inside_thresholds.push_back(r);                          // band_outer
+    inside_thresholds.push_back(options.outer_max + r);      // skin_outer
+    outside_thresholds.push_back(options.outer_max);         // band_inner
+    outside_thresholds.push_back(options.outer_max + r);     // band_outer
   }
-  std::sort(thresholds.begin(), thresholds.end());
-  thresholds.erase(std::unique(thresholds.begin(), thresholds.end()), thresholds.end());
+  for (std::vector<double>* t : {&inside_thresholds, &outside_thresholds}) {
+    std::sort(t->begin(), t->end());
+    t->erase(std::unique(t->begin(), t->end()), t->end());
+  }
   const std::vector<std::int8_t> centre_winding = grid_winding(outer, centres, options.threads);
-  std::vector<std::int8_t> centre_mask(centre_winding.size());
   const bool outside_matters = options.band || level < 0.0;
-  for (std::size_t v = 0; v < centre_winding.size(); ++v) centre_mask[v] = centre_winding[v] >= 1 || outside_matters;
-  const std::vector<std::int8_t> centre_band =
-      distance_band(centres, centre_mask, outer_bvh, thresholds, options.threads, out.distance_queries);
-  // d >= t for one of the thresholds (by its position in the sorted list).
-  // Positions looked up once (a threshold not in the list is never asked about).
-  auto position = [&](double t) {
+  std::vector<std::int8_t> inside_mask(centre_winding.size()), outside_mask(centre_winding.size());
+  for (std::size_t v = 0; v < centre_winding.size(); ++v) {
+    inside_mask[v] = centre_winding[v] >= 1;
+    outside_mask[v] = centre_winding[v] < 1 && outside_matters;
+  }
+  const std::vector<std::int8_t> inside_band =
+      distance_band(centres, inside_mask, outer_bvh, inside_thresholds, options.threads, out.distance_queries);
+  const std::vector<std::int8_t> outside_band =
+      outside_thresholds.empty()
+          ? std::vector<std::int8_t>(centre_winding.size(), 0)
+          : distance_band(centres, outside_mask, outer_bvh, outside_thresholds, options.threads, out.distance_queries);
+  // d >= t for one of a side's thresholds (by its position in that side's sorted list); a
+  // threshold not in the list is never asked about.
+  auto position = [](const std::vector<double>& thresholds, double t) {
     return static_cast<std::int8_t>(std::lower_bound(thresholds.begin(), thresholds.end(), t) - thresholds.begin());
   };
-  const std::int8_t at_level = position(level), at_minus_level = position(-level), at_wall = position(wall),
-                    at_r = position(r), at_outer = position(options.outer_max), at_outer_r = position(options.outer_max + r);
-  auto reaches = [&](std::size_t v, std::int8_t at) { return centre_band[v] > at; };
+  const std::int8_t at_level = position(inside_thresholds, level), at_wall = position(inside_thresholds, wall),
+                    at_r = position(inside_thresholds, r), at_skin = position(inside_thresholds, options.outer_max + r),
+                    at_minus_level = position(outside_thresholds, -level), at_outer = position(outside_thresholds, options.outer_max),
+                    at_outer_r = position(outside_thresholds, options.outer_max + r);
+  auto reaches_inside = [&](std::size_t v, std::int8_t at) { return inside_band[v] > at; };
+  auto reaches_outside = [&](std::size_t v, std::int8_t at) { return outside_band[v] > at; };
   const bool outside_listed = options.band || level < 0.0 || options.strict;
 
   const double base = options.ground_z + 2.0 * options.outer_max + options.ground_tol;
@@ -130,17 +146,18 @@ CarvableCells carvable_cells(const Mesh& outer, const TriangleBvh& outer_bvh, co
           bool whole = options.strict;
           for (int corner = 0; corner < 8 && whole; ++corner)
             whole = deep[static_cast<std::size_t>(cell + (corner & 1) + ((corner >> 1) & 1) * grid.nx + ((corner >> 2) & 1) * nxy)] > 0;
-          const bool may = whole || (inside ? (level <= 0.0 || reaches(c, at_level)) : (level < 0.0 && !reaches(c, at_minus_level)));
+          const bool may =
+              whole || (inside ? (level <= 0.0 || reaches_inside(c, at_level)) : (level < 0.0 && !reaches_outside(c, at_minus_level)));
           if (whole) lists[part][0].push_back(cell);
           if (may) lists[part][1].push_back(cell);
-          if (inside && reaches(c, at_wall)) lists[part][5].push_back(cell);
+          if (inside && reaches_inside(c, at_wall)) lists[part][5].push_back(cell);
           if (!options.band) continue;
           const double z = centres.z(k);
-          if (!inside && !reaches(c, at_outer) && z - 0.5 * h >= base)
+          if (!inside && !reaches_outside(c, at_outer) && z - 0.5 * h >= base)
             lists[part][2].push_back(cell);
           const bool above_contacts = z + 0.5 * h > options.ground_z + options.ground_tol;
-          if ((inside ? !reaches(c, at_r) : !reaches(c, at_outer_r)) && above_contacts) lists[part][3].push_back(cell);
-          if (inside && !reaches(c, at_outer_r) && above_contacts) lists[part][4].push_back(cell);
+          if ((inside ? !reaches_inside(c, at_r) : !reaches_outside(c, at_outer_r)) && above_contacts) lists[part][3].push_back(cell);
+          if (inside && !reaches_inside(c, at_skin) && above_contacts) lists[part][4].push_back(cell);
         }
   });
   std::vector<std::int64_t>* targets[6] = {&out.inner, &out.outer, &out.band_inner, &out.band_outer, &out.skin_outer, &out.mid};
