@@ -10,7 +10,8 @@
 //   DIR: meshes (.ply .obj .stl .off .3mf), each posed as it is to be printed; e.g. the census's
 //        (tar -xJf ../shared/realposed/meshes.tar.xz -C DIR)
 //   SETTING: name=value[,name=value...], names initial_inner_tolerance, initial_penalty, memory,
-//            stationarity_tolerance (the solver's AlOptions, optim/augmented_lagrangian.h)
+//            stationarity_tolerance (the solver's AlOptions, optim/augmented_lagrangian.h) and
+//            warm_penalty_cap (OptimizeOptions: the first penalty of a repair or correction round)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -31,6 +32,7 @@ namespace {
 struct Setting {
   std::string text;  // as given ("default" for none)
   AlOptions solver;
+  double warm_penalty_cap = OptimizeOptions::defaults().warm_penalty_cap;  // a later round's first penalty at most
 };
 
 // Applies "name=value[,name=value...]" to the defaults; false on an unknown name or a bad value.
@@ -50,6 +52,7 @@ bool parse_setting(const std::string& text, Setting& out) {
     else if (name == "initial_penalty") out.solver.initial_penalty = value;
     else if (name == "stationarity_tolerance") out.solver.stationarity_tolerance = value;
     else if (name == "memory") out.solver.inner.memory = static_cast<int>(value);
+    else if (name == "warm_penalty_cap") out.warm_penalty_cap = value;
     else return false;
   }
   return true;
@@ -122,6 +125,7 @@ int main(int argc, char** argv) {
     for (std::size_t s = 0; s < settings.size(); ++s) {
       OptimizeOptions options = base;
       options.solver = settings[s].solver;
+      options.warm_penalty_cap = settings[s].warm_penalty_cap;
       options.input_self_intersections = loaded.self_intersections;
       const auto start = std::chrono::steady_clock::now();
       const OptimizeResult r = optimize_offsets(loaded.mesh, options);
