@@ -306,13 +306,21 @@ TEST_CASE("real meshes: cgal-data_turbine floats at 0.8 (its quadric void's corr
   check_floats(w, 0.8);
 }
 
-TEST_CASE("real meshes: cgal-data_eight spins with the quadric void where the offset void misses") {
+TEST_CASE("real meshes: cgal-data_eight spins, and spins with the quadric void asked for") {
+  // Refused as the tool's shortfall once; then the offset model missed spin and the quadric void
+  // was written. Since the solver's first penalty is 100 (docs/solver.md) the offset model meets
+  // it, and the contoured offset void is written: both ways it must spin.
   const std::string mesh = census_mesh("cgal-data_eight.ply");
   if (mesh.empty()) return;
   const Written w = optimize("eight", mesh, "--goal spin");
   CHECK(w.exit_code == 0);
-  CHECK_FALSE(w.report.at("cavity").at("offset_goal_met").as_bool());
-  CHECK(w.report.at("cavity").at("written").as_string() == "quadric");
+  const std::string written = w.report.at("cavity").at("written").as_string();
+  if (written != "quadric") CHECK(w.report.at("cavity").at("offset_goal_met").as_bool());
   check_printable(w);
   check_spins(w);
+  const Written quadric = optimize("eight_quadric", mesh, "--goal spin --cavity quadric");
+  CHECK(quadric.exit_code == 0);
+  CHECK(quadric.report.at("cavity").at("written").as_string() == "quadric");
+  check_printable(quadric);
+  check_spins(quadric);
 }
