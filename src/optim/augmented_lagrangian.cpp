@@ -176,6 +176,7 @@ std::string AlOptions::check() const {
   if (infeasibility_patience < 1) return "infeasibility_patience must be >= 1";
   if (stall_patience < 1) return "stall_patience must be >= 1";
   if (!(clear_violation_factor >= 0.0)) return "clear_violation_factor must be >= 0";
+  if (!(hand_off_violation >= 0.0) || !std::isfinite(hand_off_violation)) return "hand_off_violation must be >= 0";
   const std::string inner_problem = inner.check();
   if (!inner_problem.empty()) return "inner: " + inner_problem;
   return std::string();
@@ -189,6 +190,7 @@ const char* to_string(AlStatus status) {
     case AlStatus::max_outer_iterations: return "max-outer-iterations";
     case AlStatus::max_evaluations: return "max-evaluations";
     case AlStatus::stopped: return "stopped";
+    case AlStatus::handed_off: return "handed-off";
     case AlStatus::numerical_issue: return "numerical-issue";
     case AlStatus::invalid_input: return "invalid-input";
   }
@@ -578,6 +580,7 @@ AlResult AugmentedLagrangian::minimize() {
   LbfgsbOptions inner = params_.inner;
   inner.stop = params_.stop;
   const auto stop_requested = [this]() { return params_.stop && params_.stop->load(std::memory_order_relaxed); };
+  bool hand_off_asked = false;
 
   for (int outer = 1; outer <= params_.max_outer_iterations; ++outer) {
     if (stop_requested()) {
@@ -609,6 +612,10 @@ AlResult AugmentedLagrangian::minimize() {
         meas.complementarity <= params_.complementarity_tolerance)
       return fill_result(AlStatus::converged, meas);
     if (ev_.count >= params_.max_evaluations) return fill_result(AlStatus::max_evaluations, meas);
+    if (params_.hand_off && !hand_off_asked && feas <= params_.hand_off_violation) {
+      hand_off_asked = true;
+      if (params_.hand_off(x_)) return fill_result(AlStatus::handed_off, meas);
+    }
     // The subproblem stopped at the budget this loop left it, not at its own cap. Its count
     // includes its start point, which the evaluator had cached and does not count again, so the
     // total can end just below the cap: every later subproblem would then stop at its start

@@ -121,6 +121,13 @@ struct AlOptions {
   // When set (by another thread), the run ends with `stopped` at its next outer iteration, and
   // every subproblem in flight ends at its next iteration (the inner options' stop is this one).
   const std::atomic<bool>* stop = nullptr;
+  // Hand-off: the first outer iteration that ends with its violation (unscaled and scaled) within
+  // hand_off_violation, without having converged, asks hand_off(x) once; true ends the run there
+  // with `handed_off` (x that iterate, the multipliers and the penalty as they are), for a caller
+  // that will solve a nearby problem from it anyway. It must not change what the run reads: when
+  // it returns false, the run goes on exactly as without it.
+  std::function<bool(const Eigen::VectorXd&)> hand_off;
+  double hand_off_violation = 0.0;
   // Inner defaults: no relative-reduction stop (the projected-gradient and noise tests decide),
   // and 20 pairs instead of 10 because the subproblems are ill-conditioned (ρ‖∇c‖² against the
   // objective's curvature): on the 100,000-row benchmark 20 pairs need 40% fewer evaluations.
@@ -142,6 +149,7 @@ enum class AlStatus {
   max_outer_iterations,  // outer cap reached
   max_evaluations,       // evaluation cap reached
   stopped,               // AlOptions::stop was set: x is the last iterate, no claim is made
+  handed_off,            // AlOptions::hand_off took the iterate: violation within hand_off_violation
   numerical_issue,       // f or a constraint not finite at the start point
   invalid_input          // sizes, bounds or parameters not valid (message says which)
 };

@@ -521,3 +521,53 @@ TEST_CASE("augmented-lagrangian: a stop flag ends the solve within the subproble
     CHECK(std::equal(trace.begin(), trace.begin() + static_cast<std::ptrdiff_t>(common), full_trace.begin()));
   }
 }
+
+TEST_CASE("augmented-lagrangian: a hand-off takes the first iterate within its violation, once, and declined changes nothing") {
+  // Rosenbrock on the sphere |x|² = 4, as above. Declined, the run is the same to the bit as one
+  // without a hand-off, and it was asked once, at an iterate within its violation. Taken, the run
+  // ends there `handed_off`, that iterate and its violation (measured here on the sphere) within
+  // the bound, in fewer evaluations; from its multipliers and penalty a warm run converges to the
+  // same point as the whole one.
+  const ConstrainedProblem p = rosenbrock_on_sphere();
+  const VectorXd x0 = VectorXd::Constant(10, -1.0);
+  AlOptions params;
+  params.feasibility_tolerance = 1e-10;
+  const AlResult full = augmented_lagrangian_minimize(p, x0, params);
+  REQUIRE(full.status == AlStatus::converged);
+  const double bound = 1e-6;
+  std::vector<VectorXd> asked;
+  AlOptions declining = params;
+  declining.hand_off_violation = bound;
+  declining.hand_off = [&asked](const VectorXd& x) {
+    asked.push_back(x);
+    return false;
+  };
+  const AlResult declined = augmented_lagrangian_minimize(p, x0, declining);
+  REQUIRE(asked.size() == 1);
+  CHECK(std::fabs(asked[0].squaredNorm() - 4.0) <= bound * (1.0 + 1e-9));
+  CHECK(declined.status == full.status);
+  CHECK(declined.evaluations == full.evaluations);
+  CHECK(declined.x == full.x);
+
+  AlOptions taking = params;
+  taking.hand_off_violation = bound;
+  taking.hand_off = [](const VectorXd&) { return true; };
+  const AlResult taken = augmented_lagrangian_minimize(p, x0, taking);
+  MESSAGE(describe(taken));
+  CHECK(taken.status == AlStatus::handed_off);
+  CHECK(std::string(to_string(taken.status)) == "handed-off");
+  CHECK(taken.x == asked[0]);
+  CHECK(std::fabs(taken.x.squaredNorm() - 4.0) <= bound * (1.0 + 1e-9));
+  CHECK(taken.evaluations < full.evaluations);
+  AlOptions warm = params;
+  warm.initial_equality_multipliers = taken.equality_multipliers;
+  warm.initial_inequality_multipliers = taken.inequality_multipliers;
+  warm.initial_penalty = taken.penalty;
+  const AlResult rest = augmented_lagrangian_minimize(p, taken.x, warm);
+  REQUIRE(rest.status == AlStatus::converged);
+  CHECK((rest.x - full.x).lpNorm<Eigen::Infinity>() < 1e-6);
+
+  AlOptions bad = params;
+  bad.hand_off_violation = -1.0;
+  CHECK(augmented_lagrangian_minimize(p, x0, bad).status == AlStatus::invalid_input);
+}
