@@ -78,6 +78,14 @@ TEST_CASE("bottle: --goal stand-filled --fill-density 0.8 --outer stands empty a
   // The thickened outer surface was searched, and adds no crossing (the demo bottle has none).
   CHECK(after.at("outer_new_self_intersections").as_integer() == 0);
   CHECK(after.at("outer_own_self_intersections").as_integer() == 0);
+  // The first solve was handed off to the fold correction: the offset surfaces fold, so they are
+  // not written as they are, and not searched for other defects.
+  const Json& cavity = out.report.at("cavity");
+  REQUIRE(cavity.contains("fold_correction"));
+  CHECK_FALSE(cavity.at("offset_valid").as_bool());
+  REQUIRE(cavity.at("offset_failures").size() == 1);
+  CHECK(cavity.at("offset_failures").at(0).as_string().find("the inner surface folds") == 0);
+  CHECK(cavity.at("written").as_string() == "contour");
 }
 
 TEST_CASE("bottle standing 5 mm inside: the folds predict the first contour's miss, so one contour meets the goal") {
