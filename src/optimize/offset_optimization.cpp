@@ -405,8 +405,6 @@ std::string make_band(const Mesh& input, const std::shared_ptr<const TriangleBvh
   return "";
 }
 
-// Stage "solve": the reduced problem, solved from x, again after each repair (`--cavity offset`)
-// or correction (the contoured cavity's moments) from where the last solve ended.
 // The largest of the goal's inequality rows (normalised frame, > 0 where missed) on the integrals
 // given: the margins the goal asks for (inside the support polygon, below a centre).
 double largest_inequality(const GoalSpec& goal, const Vector10d& outer, const Vector10d& inner) {
@@ -456,6 +454,8 @@ ContourCavityOptions offset_contour_options(const OptimizeOptions& options, cons
   return o;
 }
 
+// Stage "solve": the reduced problem, solved from x, again after each repair (`--cavity offset`)
+// or correction (the contoured cavity's moments) from where the last solve ended.
 class OffsetSolve {
  public:
   OffsetSolve(const Mesh& input, const OptimizeOptions& options, const Frame& f, Band& b,
@@ -546,7 +546,7 @@ class OffsetSolve {
   using FoldPredictor = std::function<FoldPrediction(const Mesh& outer, const Mesh& inner, const ReducedProblem::Evaluation&)>;
   void hand_off_for_folds(FoldPredictor predict) { predict_folds_ = std::move(predict); }
   // The grid nodes where the inner surface winds neither 0 nor 1 times, as the first solve was
-  // handed off on them (0 when it was not): proof that it intersects itself.
+  // handed off on them (0 when it was not); a closed surface clear of itself has none.
   std::int64_t handed_off_folded_nodes() const { return fold_prediction_ ? fold_prediction_->folds.folded_nodes : 0; }
   // The prediction the first solve was handed off on, once (empty when it was not).
   std::optional<FoldPrediction> take_fold_prediction() {

@@ -330,7 +330,8 @@ std::string remedy_clauses(const ReachabilitySummary& s, const std::string& none
 // material come as near the input as the band is thick), which finer cells do not narrow.
 Reachability stage_programme(const ReachabilityStageInput& in, const TriangleBvh& bvh, const ReachabilityOptions& o) {
   Reachability first = reachability(*in.input, bvh, in.goal, in.ground_z, in.origin, o);
-  return in.outer ? first : decide_on_finer_cells(in, bvh, o, std::move(first));
+  if (in.outer) return first;
+  return decide_on_finer_cells(in, bvh, o, std::move(first));
 }
 
 }  // namespace

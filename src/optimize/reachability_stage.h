@@ -108,8 +108,8 @@ void confirm_reachable(const ReachabilityStageInput& in, ReachabilitySummary& su
 
 // For a run that missed a goal the programme left undecided: the generous reading read to its
 // optimum (the stage stops it once it clears the user's margin, where it can no longer prove the
-// goal out of reach), so that the refusal prints the bracket, best_margin_upper. `in` should have
-// bound_undecided set, as for confirm_reachable and add_remedies after a miss.
+// goal out of reach), so that the refusal prints the bracket, best_margin_upper. `in` as the stage
+// had it (the programme is read again with bound_undecided set).
 void bound_undecided(const ReachabilityStageInput& in, ReachabilitySummary& summary);
 
 // The remedies, each checked by the same programme, into `summary` (remedies, remedy_list): the
