@@ -79,8 +79,6 @@ struct ContourCavity {
                                       // optimize then calls the solid invalid)
 };
 
-// `outer` is the closed outer surface and `outer_bvh` its tree; `inner` the inner offset surface
-// (closed as a mesh, possibly folded or crossing `outer`). Both in the same units as the wall.
 // The box the contour grids: the void's (the inner surface's box; for a quadric, the outer
 // surface's), clipped to the outer surface's; empty when they do not overlap.
 Aabb cavity_box(const Aabb& void_box, const Aabb& outer_box);
@@ -100,6 +98,8 @@ struct GridWinding {
   std::vector<std::int8_t> winding;
 };
 
+// `outer` is the closed outer surface and `outer_bvh` its tree; `inner` the inner offset surface
+// (closed as a mesh, possibly folded or crossing `outer`). Both in the same units as the wall.
 // `inner_winding` (optional): `inner`'s winding numbers, computed before (cavity/fold_integrals.h);
 // read when their grid is the contour's own, else computed again: the same result either way.
 ContourCavity contour_cavity(const Mesh& outer, const TriangleBvh& outer_bvh, const Mesh& inner,
